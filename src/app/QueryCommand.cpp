@@ -1,0 +1,87 @@
+// mfadvr query MODEL (--points FILE | X Y Z) [--derivatives 0|1|2] [-o OUT.csv]
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+
+#include "app/Commands.h"
+#include "core/model/ModelFile.h"
+#include "core/util/AtomicFile.h"
+#include "core/util/Error.h"
+#include "core/util/PointList.h"
+
+namespace mfadvr::app {
+
+Command addQueryCommand(CLI::App& app) {
+  struct Options {
+    std::string model, pointsFile, output;
+    std::vector<double> xyz;
+    int derivatives = 0;
+  };
+  auto o = std::make_shared<Options>();
+  CLI::App* sub = app.add_subcommand(
+      "query", "Evaluate a model (value, gradient, Hessian) at physical points; prints CSV");
+  sub->add_option("model", o->model, "Model file (.mfa)")->required();
+  auto* xyz = sub->add_option("x y z", o->xyz, "One point, physical coordinates")->expected(3);
+  auto* pts = sub->add_option("--points", o->pointsFile,
+                              "Text file with one 'x y z' per line (comma or space separated; "
+                              "'-' reads stdin)");
+  xyz->excludes(pts);
+  sub->add_option("--derivatives,-d", o->derivatives,
+                  "0: value; 1: value and gradient; 2: value, gradient and Hessian")
+      ->check(CLI::Range(0, 2))
+      ->capture_default_str();
+  sub->add_option("-o,--output", o->output, "Write the CSV to this file instead of stdout");
+
+  return {sub, [o]() {
+            std::vector<Vec3d> points;
+            if (!o->pointsFile.empty()) {
+              std::ostringstream text;
+              if (o->pointsFile == "-") {
+                text << std::cin.rdbuf();
+              } else {
+                std::ifstream in(o->pointsFile, std::ios::binary);
+                if (!in) throw Error("cannot open " + o->pointsFile);
+                text << in.rdbuf();
+              }
+              points = parsePointList(text.str(), o->pointsFile);
+            } else if (o->xyz.size() == 3) {
+              points.emplace_back(o->xyz[0], o->xyz[1], o->xyz[2]);
+            } else {
+              throw CLI::ValidationError("query", "give a point as X Y Z or a file with --points");
+            }
+            const Model model = loadModel(o->model);
+            std::vector<float> values(points.size());
+            std::vector<Vec3f> gradients(o->derivatives >= 1 ? points.size() : 0);
+            std::vector<Sym3f> hessians(o->derivatives >= 2 ? points.size() : 0);
+            model.evaluate(points, values, gradients, hessians);
+
+            std::size_t outside = 0;
+            std::string csv = "x,y,z,value";
+            if (o->derivatives >= 1) csv += ",dx,dy,dz";
+            if (o->derivatives >= 2) csv += ",dxx,dxy,dxz,dyy,dyz,dzz";
+            csv += "\n";
+            char buf[64];
+            auto put = [&](double v, bool last = false) {
+              std::snprintf(buf, sizeof buf, "%.9g%c", v, last ? '\n' : ',');
+              csv += buf;
+            };
+            for (size_t i = 0; i < points.size(); ++i) {
+              if (!model.domain().contains(points[i])) ++outside;
+              for (int a = 0; a < 3; ++a) put(points[i][a]);
+              put(values[i], o->derivatives == 0);
+              if (o->derivatives >= 1)
+                for (int a = 0; a < 3; ++a) put(gradients[i][a], o->derivatives == 1 && a == 2);
+              if (o->derivatives >= 2)
+                for (int a = 0; a < 6; ++a) put(hessians[i][a], a == 5);
+            }
+            if (outside > 0)
+              std::cerr << "mfadvr query: warning: " << outside << " of " << points.size()
+                        << " points lie outside the model's domain box and were clamped onto it\n";
+            if (o->output.empty()) std::cout << csv;
+            else writeFileAtomically(o->output, csv);
+            return 0;
+          }};
+}
+
+}  // namespace mfadvr::app

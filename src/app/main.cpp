@@ -1,0 +1,51 @@
+// mfadvr: encode volumes into MFA models, inspect and query them.
+#include <CLI/CLI.hpp>
+#include <iostream>
+
+#include "app/Commands.h"
+#include "core/util/Error.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "mfadvr: direct volume rendering of MFA models (tensor-product B-spline models of "
+      "volumetric data)",
+      "mfadvr"};
+  app.set_version_flag("--version", std::string("mfadvr ") + MFADVR_VERSION);
+  app.require_subcommand(1);
+  app.fallthrough(false);
+
+  const mfadvr::app::Command commands[] = {mfadvr::app::addEncodeCommand(app),
+                                           mfadvr::app::addInfoCommand(app),
+                                           mfadvr::app::addQueryCommand(app)};
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    app.exit(e);  // prints the message
+    return 2;
+  }
+
+  try {
+    for (const auto& command : commands)
+      if (command.subcommand->parsed()) return command.run();
+  } catch (const CLI::Error& e) {  // an option value that failed validation after parsing
+    std::cerr << "mfadvr: usage error: " << e.what() << "\n";
+    return 2;
+  } catch (const mfadvr::Error& e) {
+    std::cerr << "mfadvr: error: " << e.what() << "\n";
+    return 1;
+  } catch (const std::bad_alloc&) {
+    std::cerr << "mfadvr: error: out of memory\n";
+    return 1;
+  } catch (const std::exception& e) {
+    std::cerr << "mfadvr: error: " << e.what() << "\n";
+    return 1;
+  }
+  return 2;
+}

@@ -1,0 +1,173 @@
+#include "core/analytic/BuiltinFunction.h"
+
+#include <cmath>
+#include <numbers>
+#include <regex>
+
+#include <tbb/parallel_for.h>
+
+#include "core/util/Error.h"
+
+namespace mfadvr {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+// Marschner & Lobb (1994), fM = 6, alpha = 0.25 (paper eq. 2).
+class MarschnerLobb final : public BuiltinFunction {
+ public:
+  std::string name() const override { return "marschner-lobb"; }
+  Index3 defaultDims() const override { return {41, 41, 41}; }
+  double value(const Vec3d& x) const override {
+    const double r = std::hypot(x[0], x[1]);
+    const double rho = std::cos(2.0 * kPi * kFm * std::cos(kPi * r / 2.0));
+    return (1.0 - std::sin(kPi * x[2] / 2.0) + kAlpha * (1.0 + rho)) / (2.0 * (1.0 + kAlpha));
+  }
+  double valueGradient(const Vec3d& x, Vec3d& g) const override {
+    const double r = std::hypot(x[0], x[1]);
+    const double phase = 2.0 * kPi * kFm * std::cos(kPi * r / 2.0);
+    const double rho = std::cos(phase);
+    const double scale = 1.0 / (2.0 * (1.0 + kAlpha));
+    // d rho / dr divided by r; sin(pi r/2)/r tends to pi/2 at the axis.
+    const double sinc = r > 1e-8 ? std::sin(kPi * r / 2.0) / r : kPi / 2.0;
+    const double drho_over_r = std::sin(phase) * 2.0 * kPi * kFm * (kPi / 2.0) * sinc;
+    g[0] = scale * kAlpha * drho_over_r * x[0];
+    g[1] = scale * kAlpha * drho_over_r * x[1];
+    g[2] = -scale * (kPi / 2.0) * std::cos(kPi * x[2] / 2.0);
+    return (1.0 - std::sin(kPi * x[2] / 2.0) + kAlpha * (1.0 + rho)) * scale;
+  }
+
+ private:
+  static constexpr double kFm = 6.0;
+  static constexpr double kAlpha = 0.25;
+};
+
+// One radial Gaussian: vmax * exp(-(l - mu)^2 / (2 sigma^2)), l = |x - c| / R (paper eq. 1, with
+// Vmin = 0 and mu = 0).
+struct Beam {
+  Vec3d center;
+  double radius;
+  double valueGradient(const Vec3d& x, Vec3d* g) const {
+    constexpr double kVmax = 255.0, kSigma = 1.0 / 3.0;
+    const Vec3d d = x - center;
+    const double l2 = d.squaredNorm() / (radius * radius);
+    const double v = kVmax * std::exp(-l2 / (2.0 * kSigma * kSigma));
+    // d/dx of exp(-|d|^2 / (2 sigma^2 R^2)) = -d / (sigma^2 R^2) * exp(...)
+    if (g) *g = -v / (kSigma * kSigma * radius * radius) * d;
+    return v;
+  }
+};
+
+class GaussianBeam final : public BuiltinFunction {
+ public:
+  std::string name() const override { return "gaussian-beam"; }
+  Index3 defaultDims() const override { return {64, 64, 64}; }
+  double value(const Vec3d& x) const override { return beam_.valueGradient(x, nullptr); }
+  double valueGradient(const Vec3d& x, Vec3d& g) const override {
+    return beam_.valueGradient(x, &g);
+  }
+
+ private:
+  Beam beam_{Vec3d::Zero(), std::sqrt(3.0)};
+};
+
+// Four beams on the diagonal x = y of the plane z = 0. Beam k is the single beam shrunk into an
+// axis-aligned box of side 2^-k; the boxes touch corner to corner from (-1,-1) onwards, so that
+// on the default 128^3 grid (spacing 2/127) a view of box k covers about 64^3 / 8^k samples.
+class GaussianBeams final : public BuiltinFunction {
+ public:
+  GaussianBeams() {
+    double start = -1.0;
+    for (int k = 0; k < 4; ++k) {
+      const double side = std::ldexp(1.0, -k);
+      const double c = start + side / 2.0;
+      beams_[k] = Beam{Vec3d(c, c, 0.0), std::sqrt(3.0) * side / 2.0};
+      start += side;
+    }
+  }
+  std::string name() const override { return "gaussian-beams"; }
+  Index3 defaultDims() const override { return {128, 128, 128}; }
+  double value(const Vec3d& x) const override {
+    double v = 0.0;
+    for (const Beam& b : beams_) v += b.valueGradient(x, nullptr);
+    return v;
+  }
+  double valueGradient(const Vec3d& x, Vec3d& g) const override {
+    double v = 0.0;
+    g.setZero();
+    for (const Beam& b : beams_) {
+      Vec3d gb;
+      v += b.valueGradient(x, &gb);
+      g += gb;
+    }
+    return v;
+  }
+
+ private:
+  Beam beams_[4];
+};
+
+}  // namespace
+
+std::vector<std::string> builtinNames() {
+  return {"marschner-lobb", "gaussian-beam", "gaussian-beams"};
+}
+
+std::unique_ptr<BuiltinFunction> makeBuiltin(const std::string& name) {
+  if (name == "marschner-lobb") return std::make_unique<MarschnerLobb>();
+  if (name == "gaussian-beam") return std::make_unique<GaussianBeam>();
+  if (name == "gaussian-beams") return std::make_unique<GaussianBeams>();
+  std::string known;
+  for (const auto& n : builtinNames()) known += (known.empty() ? "" : ", ") + n;
+  throw Error("unknown built-in function '" + name + "' (known: " + known + ")");
+}
+
+BuiltinSpec parseBuiltinSpec(const std::string& spec) {
+  static const std::regex re(R"(builtin:([a-z\-]+)(?::(\d+)(?:x(\d+)x(\d+))?)?)");
+  std::smatch m;
+  if (!std::regex_match(spec, m, re))
+    throw Error("malformed built-in spec '" + spec +
+                "': expected builtin:NAME, builtin:NAME:N or builtin:NAME:NXxNYxNZ");
+  BuiltinSpec out;
+  out.name = m[1];
+  const auto f = makeBuiltin(out.name);
+  if (!m[2].matched) {
+    out.dims = f->defaultDims();
+    return out;
+  }
+  auto parse = [&](const std::string& s) -> std::int64_t {
+    if (s.size() > 6) throw Error("grid size in '" + spec + "' is too large");
+    const long v = std::stol(s);
+    if (v < 2) throw Error("grid size in '" + spec + "' must be at least 2 per axis");
+    return v;
+  };
+  const std::int64_t nx = parse(m[2]);
+  out.dims = m[3].matched ? Index3{nx, parse(m[3]), parse(m[4])} : Index3{nx, nx, nx};
+  return out;
+}
+
+StructuredGrid sampleBuiltin(const BuiltinFunction& f, const Index3& dims) {
+  StructuredGrid g;
+  g.dims = dims;
+  const Vec3d lo = BuiltinFunction::domainMin(), hi = BuiltinFunction::domainMax();
+  g.origin = lo;
+  for (int a = 0; a < 3; ++a) g.spacing[a] = (hi[a] - lo[a]) / static_cast<double>(dims[a] - 1);
+  g.values.resize(static_cast<size_t>(g.sampleCount()));
+  tbb::parallel_for(std::int64_t(0), dims[2], [&](std::int64_t k) {
+    for (std::int64_t j = 0; j < dims[1]; ++j)
+      for (std::int64_t i = 0; i < dims[0]; ++i) g.at(i, j, k) = f.value(g.position(i, j, k));
+  });
+  g.source = "builtin:" + f.name() + ":" + std::to_string(dims[0]) + "x" +
+             std::to_string(dims[1]) + "x" + std::to_string(dims[2]);
+  g.fieldName = f.name();
+  g.sampleType = "float64";
+  g.inputBytes = g.sampleCount() * static_cast<std::int64_t>(sizeof(double));
+  return g;
+}
+
+StructuredGrid sampleBuiltinSpec(const std::string& spec) {
+  const BuiltinSpec s = parseBuiltinSpec(spec);
+  return sampleBuiltin(*makeBuiltin(s.name), s.dims);
+}
+
+}  // namespace mfadvr

@@ -1,0 +1,34 @@
+#pragma once
+// How well an encoding went: errors over every input sample, size, time.
+#include <cstdint>
+#include <string>
+
+#include "core/util/Vec.h"
+
+namespace mfadvr {
+
+struct FitReport {
+  std::string source;
+  Index3 samples{0, 0, 0};
+  Degree3 degree{0, 0, 0};
+  Index3 controlCounts{0, 0, 0};
+  double seconds = 0.0;     // wall time of the fit, error evaluation included
+  double valueMin = 0.0, valueMax = 0.0;
+  double maxError = 0.0;    // absolute, model (float32 control points) vs every input sample
+  double rmsError = 0.0;
+  std::int64_t inputBytes = 0;
+  std::int64_t modelBytes = 0;  // size of the .mfa file
+
+  double valueRange() const { return valueMax - valueMin; }
+  // Errors relative to the value range (0 when the data are constant and fitted exactly).
+  double maxRelativeError() const { return relative(maxError); }
+  double rmsRelativeError() const { return relative(rmsError); }
+  double compressionRatio() const {
+    return modelBytes > 0 ? static_cast<double>(inputBytes) / static_cast<double>(modelBytes) : 0;
+  }
+
+ private:
+  double relative(double e) const { return valueRange() > 0.0 ? e / valueRange() : e; }
+};
+
+}  // namespace mfadvr

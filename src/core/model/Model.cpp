@@ -1,0 +1,62 @@
+#include "core/model/Model.h"
+
+#include <tbb/parallel_for.h>
+
+#include "core/util/Error.h"
+
+namespace mfadvr {
+
+Model::Model(TensorBSpline spline, DomainBox domain, double valueMin, double valueMax,
+             Provenance provenance)
+    : spline_(std::move(spline)),
+      domain_(domain),
+      valueMin_(valueMin),
+      valueMax_(valueMax),
+      provenance_(std::move(provenance)) {
+  const Vec3d e = domain_.extent();
+  if (!((e.array() > 0.0).all() && e.allFinite()))
+    throw Error("model domain box must have positive, finite extent on every axis");
+  invExtent_ = e.cwiseInverse().cast<float>();
+}
+
+ValueGradient Model::valueGradient(const Vec3d& x) const {
+  ValueGradient r = spline_.valueGradient(domain_.toParameter(x));
+  r.gradient = r.gradient.cwiseProduct(invExtent_);
+  return r;
+}
+
+ValueGradientHessian Model::valueGradientHessian(const Vec3d& x) const {
+  ValueGradientHessian r = spline_.valueGradientHessian(domain_.toParameter(x));
+  r.gradient = r.gradient.cwiseProduct(invExtent_);
+  const Vec3f s = invExtent_;
+  const float scale[6] = {s[0] * s[0], s[0] * s[1], s[0] * s[2],
+                          s[1] * s[1], s[1] * s[2], s[2] * s[2]};
+  for (int i = 0; i < 6; ++i) r.hessian[i] *= scale[i];
+  return r;
+}
+
+void Model::evaluate(std::span<const Vec3d> points, std::span<float> values,
+                     std::span<Vec3f> gradients, std::span<Sym3f> hessians) const {
+  const size_t n = points.size();
+  if (values.size() != n || (!gradients.empty() && gradients.size() != n) ||
+      (!hessians.empty() && hessians.size() != n))
+    throw Error("batched query: output sizes do not match the number of points");
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 4096), [&](const auto& range) {
+    for (size_t i = range.begin(); i < range.end(); ++i) {
+      if (!hessians.empty()) {
+        const ValueGradientHessian r = valueGradientHessian(points[i]);
+        values[i] = r.value;
+        if (!gradients.empty()) gradients[i] = r.gradient;
+        hessians[i] = r.hessian;
+      } else if (!gradients.empty()) {
+        const ValueGradient r = valueGradient(points[i]);
+        values[i] = r.value;
+        gradients[i] = r.gradient;
+      } else {
+        values[i] = value(points[i]);
+      }
+    }
+  });
+}
+
+}  // namespace mfadvr

@@ -1,0 +1,74 @@
+#pragma once
+// An MFA model: a tensor-product B-spline, the physical box it covers, the value range of the
+// data it was fitted to, and where it came from.
+//
+// Queries take physical coordinates. The box maps affinely onto the spline's [0,1]^3, so a
+// physical derivative is the parametric one divided by the box extent of that axis
+// (DESIGN.md section 3). Points outside the box are clamped onto it.
+#include <cstdint>
+#include <span>
+#include <string>
+
+#include "core/spline/TensorBSpline.h"
+#include "core/util/Vec.h"
+
+namespace mfadvr {
+
+struct DomainBox {
+  Vec3d min = Vec3d::Zero();
+  Vec3d max = Vec3d::Ones();
+  Vec3d extent() const { return max - min; }
+  Vec3d toParameter(const Vec3d& x) const { return (x - min).cwiseQuotient(extent()); }
+  bool contains(const Vec3d& x) const {
+    return (x.array() >= min.array()).all() && (x.array() <= max.array()).all();
+  }
+};
+
+// What the model was fitted from and how well; stored in the .mfa header and shown by `info`.
+struct Provenance {
+  std::string source;          // input path or builtin spec
+  std::string field;           // scalar name
+  std::string sampleType;      // source storage type
+  Index3 sampleDims{0, 0, 0};  // input grid size (0 when scattered)
+  std::int64_t inputBytes = 0;
+  std::string encoder;         // e.g. "structured-least-squares"
+  std::string created;         // UTC time, ISO 8601
+  std::string toolVersion;
+  double fitSeconds = 0.0;
+  double maxError = 0.0;       // absolute, over all input samples
+  double rmsError = 0.0;       // absolute
+};
+
+class Model {
+ public:
+  Model() = default;
+  Model(TensorBSpline spline, DomainBox domain, double valueMin, double valueMax,
+        Provenance provenance = {});
+
+  const TensorBSpline& spline() const { return spline_; }
+  const DomainBox& domain() const { return domain_; }
+  double valueMin() const { return valueMin_; }
+  double valueMax() const { return valueMax_; }
+  const Provenance& provenance() const { return provenance_; }
+  Provenance& provenance() { return provenance_; }
+
+  float value(const Vec3d& x) const { return spline_.value(domain_.toParameter(x)); }
+  // Value and physical gradient.
+  ValueGradient valueGradient(const Vec3d& x) const;
+  // Value, physical gradient and physical Hessian.
+  ValueGradientHessian valueGradientHessian(const Vec3d& x) const;
+
+  // Batched queries over all cores; gradients/hessians may be empty spans to skip them.
+  // Output spans must match points.size() when non-empty.
+  void evaluate(std::span<const Vec3d> points, std::span<float> values,
+                std::span<Vec3f> gradients = {}, std::span<Sym3f> hessians = {}) const;
+
+ private:
+  TensorBSpline spline_;
+  DomainBox domain_;
+  Vec3f invExtent_ = Vec3f::Ones();
+  double valueMin_ = 0.0, valueMax_ = 0.0;
+  Provenance provenance_;
+};
+
+}  // namespace mfadvr

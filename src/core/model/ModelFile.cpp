@@ -1,0 +1,214 @@
+#include "core/model/ModelFile.h"
+
+#include <zlib.h>
+
+#include <bit>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "core/util/AtomicFile.h"
+#include "core/util/Error.h"
+
+namespace mfadvr {
+namespace {
+
+static_assert(std::endian::native == std::endian::little,
+              "the .mfa writer and reader assume a little-endian host");
+
+constexpr char kMagic[10] = {'M', 'F', 'A', 'D', 'V', 'R', '\r', '\n', '\x1a', '\n'};
+constexpr size_t kPrefixBytes = sizeof(kMagic) + 4 + 4;  // magic, version, header length
+constexpr std::uint32_t kMaxHeaderBytes = 1u << 20;
+constexpr std::int64_t kMaxControlPerAxis = 1 << 20;
+
+using nlohmann::json;
+
+json provenanceToJson(const Provenance& p) {
+  return {{"source", p.source},         {"field", p.field},
+          {"sample_type", p.sampleType}, {"sample_dims", p.sampleDims},
+          {"input_bytes", p.inputBytes}, {"encoder", p.encoder},
+          {"created", p.created},        {"tool_version", p.toolVersion},
+          {"fit_seconds", p.fitSeconds}, {"max_error", p.maxError},
+          {"rms_error", p.rmsError}};
+}
+
+Provenance provenanceFromJson(const json& j) {
+  Provenance p;
+  p.source = j.value("source", "");
+  p.field = j.value("field", "");
+  p.sampleType = j.value("sample_type", "");
+  p.sampleDims = j.value("sample_dims", Index3{0, 0, 0});
+  p.inputBytes = j.value("input_bytes", std::int64_t(0));
+  p.encoder = j.value("encoder", "");
+  p.created = j.value("created", "");
+  p.toolVersion = j.value("tool_version", "");
+  p.fitSeconds = j.value("fit_seconds", 0.0);
+  p.maxError = j.value("max_error", 0.0);
+  p.rmsError = j.value("rms_error", 0.0);
+  return p;
+}
+
+std::string headerText(const Model& m) {
+  const TensorBSpline& s = m.spline();
+  const DomainBox& d = m.domain();
+  json h = {{"format", "mfadvr-model"},
+            {"degree", s.degrees()},
+            {"control_counts", s.counts()},
+            {"domain_min", {d.min[0], d.min[1], d.min[2]}},
+            {"domain_max", {d.max[0], d.max[1], d.max[2]}},
+            {"value_range", {m.valueMin(), m.valueMax()}},
+            {"provenance", provenanceToJson(m.provenance())}};
+  return h.dump();
+}
+
+template <class T>
+void append(std::string& out, const T& v) {
+  out.append(reinterpret_cast<const char*>(&v), sizeof(T));
+}
+
+template <class T>
+T readAt(std::span<const std::uint8_t> b, size_t offset) {
+  T v;
+  std::memcpy(&v, b.data() + offset, sizeof(T));
+  return v;
+}
+
+std::uint32_t crc(const std::uint8_t* data, size_t n) {
+  uLong c = crc32(0L, Z_NULL, 0);
+  while (n > 0) {  // zlib takes uInt lengths
+    const uInt chunk = static_cast<uInt>(std::min<size_t>(n, 1u << 30));
+    c = crc32(c, data, chunk);
+    data += chunk;
+    n -= chunk;
+  }
+  return static_cast<std::uint32_t>(c);
+}
+
+Vec3d vec3(const json& j, const char* key) {
+  const auto a = j.at(key).get<std::array<double, 3>>();
+  return Vec3d(a[0], a[1], a[2]);
+}
+
+}  // namespace
+
+std::string serializeModel(const Model& model) {
+  const std::string header = headerText(model);
+  std::string out;
+  out.reserve(static_cast<size_t>(modelFileSize(model)));
+  out.append(kMagic, sizeof(kMagic));
+  append(out, kModelFormatVersion);
+  append(out, static_cast<std::uint32_t>(header.size()));
+  out += header;
+  for (int a = 0; a < 3; ++a)
+    for (double k : model.spline().knots(a).knots()) append(out, k);
+  const auto& ctrl = model.spline().controlPoints();
+  out.append(reinterpret_cast<const char*>(ctrl.data()), ctrl.size() * sizeof(float));
+  append(out, crc(reinterpret_cast<const std::uint8_t*>(out.data()), out.size()));
+  return out;
+}
+
+std::int64_t modelFileSize(const Model& model) {
+  std::int64_t knots = 0;
+  for (int a = 0; a < 3; ++a)
+    knots += static_cast<std::int64_t>(model.spline().knots(a).knots().size());
+  return static_cast<std::int64_t>(kPrefixBytes + headerText(model).size()) + 8 * knots +
+         4 * static_cast<std::int64_t>(model.spline().controlPoints().size()) + 4;
+}
+
+Model parseModel(std::span<const std::uint8_t> b, const std::string& name) {
+  auto bad = [&](const std::string& why) -> Error {
+    return Error(name + ": not a valid .mfa model: " + why);
+  };
+  if (b.size() < sizeof(kMagic) || std::memcmp(b.data(), kMagic, sizeof(kMagic)) != 0)
+    throw Error(name + ": not an .mfa model file (wrong magic bytes)");
+  if (b.size() < kPrefixBytes + 4) throw bad("file is truncated");
+  const auto version = readAt<std::uint32_t>(b, sizeof(kMagic));
+  if (version != kModelFormatVersion)
+    throw Error(name + ": .mfa format version " + std::to_string(version) +
+                " is not supported; this build reads version " +
+                std::to_string(kModelFormatVersion));
+  const auto headerBytes = readAt<std::uint32_t>(b, sizeof(kMagic) + 4);
+  if (headerBytes > kMaxHeaderBytes || kPrefixBytes + headerBytes + 4 > b.size())
+    throw bad("header length " + std::to_string(headerBytes) + " does not fit the file");
+
+  json h;
+  Degree3 p{};
+  Index3 n{};
+  Vec3d lo, hi;
+  std::array<double, 2> range{};
+  Provenance prov;
+  try {
+    h = json::parse(b.begin() + kPrefixBytes, b.begin() + kPrefixBytes + headerBytes);
+    if (h.value("format", "") != "mfadvr-model") throw bad("header is not an mfadvr-model header");
+    p = h.at("degree").get<Degree3>();
+    n = h.at("control_counts").get<Index3>();
+    lo = vec3(h, "domain_min");
+    hi = vec3(h, "domain_max");
+    range = h.at("value_range").get<std::array<double, 2>>();
+    if (h.contains("provenance")) prov = provenanceFromJson(h.at("provenance"));
+  } catch (const json::exception& e) {
+    throw bad(std::string("header is corrupt (") + e.what() + ")");
+  }
+  for (int a = 0; a < 3; ++a) {
+    if (p[a] < 1 || p[a] > kMaxDegree) throw bad("degree outside 1.." + std::to_string(kMaxDegree));
+    if (n[a] < p[a] + 1 || n[a] > kMaxControlPerAxis) throw bad("control count out of range");
+    if (!(std::isfinite(lo[a]) && std::isfinite(hi[a]) && hi[a] > lo[a]))
+      throw bad("domain box is empty or not finite");
+  }
+  if (!(std::isfinite(range[0]) && std::isfinite(range[1]) && range[0] <= range[1]))
+    throw bad("value range is not finite");
+
+  // Sizes: every factor is at most 2^20, so the products below cannot overflow int64.
+  const std::int64_t knotCount = (n[0] + p[0] + 1) + (n[1] + p[1] + 1) + (n[2] + p[2] + 1);
+  const std::int64_t ctrlCount = n[0] * n[1] * n[2];
+  if (ctrlCount > std::numeric_limits<std::int64_t>::max() / 8) throw bad("too many control points");
+  const std::int64_t expected =
+      static_cast<std::int64_t>(kPrefixBytes + headerBytes) + 8 * knotCount + 4 * ctrlCount + 4;
+  if (static_cast<std::int64_t>(b.size()) != expected)
+    throw bad("size is " + std::to_string(b.size()) + " bytes but the header describes " +
+              std::to_string(expected) + (static_cast<std::int64_t>(b.size()) < expected
+                                              ? " (file is truncated)"
+                                              : " (trailing bytes)"));
+  const auto stored = readAt<std::uint32_t>(b, b.size() - 4);
+  if (crc(b.data(), b.size() - 4) != stored) throw bad("checksum mismatch (file is corrupted)");
+
+  size_t offset = kPrefixBytes + headerBytes;
+  std::array<KnotVector, 3> knots;
+  for (int a = 0; a < 3; ++a) {
+    std::vector<double> k(static_cast<size_t>(n[a] + p[a] + 1));
+    std::memcpy(k.data(), b.data() + offset, k.size() * sizeof(double));
+    offset += k.size() * sizeof(double);
+    try {
+      knots[a] = KnotVector::fromKnots(p[a], std::move(k));
+    } catch (const Error& e) {
+      throw bad(std::string("knots of axis ") + "xyz"[a] + ": " + e.what());
+    }
+  }
+  std::vector<float> ctrl(static_cast<size_t>(ctrlCount));
+  std::memcpy(ctrl.data(), b.data() + offset, ctrl.size() * sizeof(float));
+  for (float c : ctrl)
+    if (!std::isfinite(c)) throw bad("a control point is NaN or infinite");
+  return Model(TensorBSpline(std::move(knots), std::move(ctrl)), DomainBox{lo, hi}, range[0],
+               range[1], std::move(prov));
+}
+
+void saveModel(const Model& model, const std::filesystem::path& path) {
+  writeFileAtomically(path, serializeModel(model));
+}
+
+Model loadModel(const std::filesystem::path& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec))
+    throw Error("cannot read " + path.string() + ": is a directory");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error("cannot open " + path.string() + ": " + std::strerror(errno));
+  std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)),
+                                  std::istreambuf_iterator<char>());
+  if (in.bad()) throw Error("cannot read " + path.string());
+  return parseModel(bytes, path.string());
+}
+
+}  // namespace mfadvr

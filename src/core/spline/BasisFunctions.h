@@ -1,0 +1,93 @@
+#pragma once
+// B-spline basis functions and their derivatives (The NURBS Book, algorithms A2.2 and A2.3).
+//
+// The routines take the degree as a plain int but are force-inlined: called with a
+// compile-time constant (from the degree-specialized evaluators) the loops unroll completely,
+// called with a runtime degree they serve every other case. One implementation, both speeds.
+#include "core/spline/KnotVector.h"
+
+#if defined(__GNUC__)
+#define MFADVR_INLINE inline __attribute__((always_inline))
+#else
+#define MFADVR_INLINE inline
+#endif
+
+namespace mfadvr {
+
+// N[r] = N_{span-p+r, p}(u), r = 0..p.
+MFADVR_INLINE void basisFunctions(const double* U, int p, int span, double u, double* N) {
+  double left[kMaxDegree + 1], right[kMaxDegree + 1];
+  N[0] = 1.0;
+  for (int j = 1; j <= p; ++j) {
+    left[j] = u - U[span + 1 - j];
+    right[j] = U[span + j] - u;
+    double saved = 0.0;
+    for (int r = 0; r < j; ++r) {
+      const double temp = N[r] / (right[r + 1] + left[j - r]);
+      N[r] = saved + right[r + 1] * temp;
+      saved = left[j - r] * temp;
+    }
+    N[j] = saved;
+  }
+}
+
+// ders[k * (p+1) + r] = k-th derivative of N_{span-p+r, p} at u, for k = 0..order (order <= p
+// gives the non-zero derivatives; higher orders are written as zero).
+MFADVR_INLINE void basisDerivatives(const double* U, int p, int span, double u, int order,
+                                    double* ders) {
+  double ndu[kMaxDegree + 1][kMaxDegree + 1];
+  double left[kMaxDegree + 1], right[kMaxDegree + 1];
+  ndu[0][0] = 1.0;
+  for (int j = 1; j <= p; ++j) {
+    left[j] = u - U[span + 1 - j];
+    right[j] = U[span + j] - u;
+    double saved = 0.0;
+    for (int r = 0; r < j; ++r) {
+      ndu[j][r] = right[r + 1] + left[j - r];  // lower triangle: knot differences
+      const double temp = ndu[r][j - 1] / ndu[j][r];
+      ndu[r][j] = saved + right[r + 1] * temp;  // upper triangle: basis values
+      saved = left[j - r] * temp;
+    }
+    ndu[j][j] = saved;
+  }
+  const int w = p + 1;
+  for (int r = 0; r <= p; ++r) ders[r] = ndu[r][p];
+  const int top = order < p ? order : p;
+  for (int k = top + 1; k <= order; ++k)
+    for (int r = 0; r <= p; ++r) ders[k * w + r] = 0.0;
+
+  double a[2][kMaxDegree + 1];
+  for (int r = 0; r <= p; ++r) {
+    int s1 = 0, s2 = 1;
+    a[0][0] = 1.0;
+    for (int k = 1; k <= top; ++k) {
+      double d = 0.0;
+      const int rk = r - k, pk = p - k;
+      if (r >= k) {
+        a[s2][0] = a[s1][0] / ndu[pk + 1][rk];
+        d = a[s2][0] * ndu[rk][pk];
+      }
+      const int j1 = rk >= -1 ? 1 : -rk;
+      const int j2 = (r - 1 <= pk) ? k - 1 : p - r;
+      for (int j = j1; j <= j2; ++j) {
+        a[s2][j] = (a[s1][j] - a[s1][j - 1]) / ndu[pk + 1][rk + j];
+        d += a[s2][j] * ndu[rk + j][pk];
+      }
+      if (r <= pk) {
+        a[s2][k] = -a[s1][k - 1] / ndu[pk + 1][r];
+        d += a[s2][k] * ndu[r][pk];
+      }
+      ders[k * w + r] = d;
+      const int t = s1;
+      s1 = s2;
+      s2 = t;
+    }
+  }
+  int factor = p;
+  for (int k = 1; k <= top; ++k) {
+    for (int r = 0; r <= p; ++r) ders[k * w + r] *= factor;
+    factor *= (p - k);
+  }
+}
+
+}  // namespace mfadvr

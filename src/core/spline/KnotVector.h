@@ -1,0 +1,60 @@
+#pragma once
+// A clamped knot vector on [0,1] for one parametric axis of a B-spline.
+//
+// Knots u_0..u_{n+p}: the first p+1 are 0, the last p+1 are 1, the rest non-decreasing in
+// between. Uniform vectors (equal interior spacing) get an O(1) span lookup; every routine also
+// works for the non-uniform vectors that knot insertion produces.
+#include <vector>
+
+namespace mfadvr {
+
+inline constexpr int kMaxDegree = 7;
+
+class KnotVector {
+ public:
+  KnotVector() = default;
+
+  // Clamped, uniformly spaced knots for `count` control points of degree `degree`.
+  static KnotVector clampedUniform(int degree, int count);
+  // Validates clamping, monotonicity, range and multiplicity (interior knots at most p).
+  static KnotVector fromKnots(int degree, std::vector<double> knots);
+
+  int degree() const { return degree_; }
+  int controlCount() const { return static_cast<int>(knots_.size()) - degree_ - 1; }
+  bool isUniform() const { return uniform_; }
+  const std::vector<double>& knots() const { return knots_; }
+  const double* data() const { return knots_.data(); }
+
+  // The span s in [p, n-1] with u_s <= u < u_{s+1}; u is clamped to [0,1] first and u = 1
+  // belongs to the last non-empty span.
+  int findSpan(double u) const {
+    if (u <= 0.0) return degree_;
+    const int last = controlCount() - 1;
+    if (u >= 1.0) return last;
+    if (uniform_) {
+      int s = degree_ + static_cast<int>(u * spansPerUnit_);
+      // Guard against rounding at span boundaries.
+      if (s > last) s = last;
+      if (u < knots_[s]) --s;
+      else if (u >= knots_[s + 1] && s < last) ++s;
+      return s;
+    }
+    return findSpanBinary(u);
+  }
+
+  // A new vector with `u` (strictly inside (0,1)) inserted once.
+  KnotVector withInsertedKnot(double u) const;
+
+  bool operator==(const KnotVector& o) const { return degree_ == o.degree_ && knots_ == o.knots_; }
+
+ private:
+  KnotVector(int degree, std::vector<double> knots);
+  int findSpanBinary(double u) const;
+
+  int degree_ = 0;
+  std::vector<double> knots_;
+  bool uniform_ = false;
+  double spansPerUnit_ = 0.0;  // n - p for uniform vectors
+};
+
+}  // namespace mfadvr

@@ -1,0 +1,33 @@
+#pragma once
+// Helpers shared by the test programs: where the real data lives, scratch folders.
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+
+#include <gtest/gtest.h>
+
+namespace mfadvr::test {
+
+// Folder of the shared real volumes ($MFADVR_DATA_DIR overrides the configured default).
+inline std::filesystem::path dataDir() {
+  if (const char* env = std::getenv("MFADVR_DATA_DIR")) return env;
+  return MFADVR_DEFAULT_DATA_DIR;
+}
+
+// Path of a shared data file, or empty when it is absent (callers GTEST_SKIP()).
+inline std::filesystem::path dataFile(const std::string& name) {
+  const auto p = dataDir() / name;
+  return std::filesystem::exists(p) ? p : std::filesystem::path();
+}
+
+// A fresh, empty scratch folder per test.
+inline std::filesystem::path scratchDir() {
+  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  auto dir = std::filesystem::path(MFADVR_TEST_TMP_DIR) /
+             (std::string(info->test_suite_name()) + "." + info->name());
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+}  // namespace mfadvr::test
