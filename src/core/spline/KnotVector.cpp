@@ -12,11 +12,22 @@ KnotVector::KnotVector(int degree, std::vector<double> knots)
     : degree_(degree), knots_(std::move(knots)) {
   const int n = controlCount();
   const int spans = n - degree_;
-  spansPerUnit_ = spans;
   uniform_ = true;
   for (int s = 0; s <= spans && uniform_; ++s) {
     const double expected = static_cast<double>(s) / spans;
     if (std::abs(knots_[degree_ + s] - expected) > 1e-12) uniform_ = false;
+  }
+  // Interior knots are u_{p+1} .. u_{n-1}.
+  const int interior = n - degree_ - 1;
+  regular_ = true;
+  firstInterior_ = interior > 0 ? knots_[degree_ + 1] : 1.0;
+  const double h = interior > 1 ? knots_[degree_ + 2] - knots_[degree_ + 1] : 1.0;
+  if (!(h > 0.0)) {
+    regular_ = false;
+  } else {
+    inverseSpacing_ = 1.0 / h;
+    for (int j = 1; j < interior && regular_; ++j)
+      if (std::abs(knots_[degree_ + 1 + j] - (firstInterior_ + j * h)) > 1e-9 * h) regular_ = false;
   }
 }
 

@@ -2,8 +2,9 @@
 // A clamped knot vector on [0,1] for one parametric axis of a B-spline.
 //
 // Knots u_0..u_{n+p}: the first p+1 are 0, the last p+1 are 1, the rest non-decreasing in
-// between. Uniform vectors (equal interior spacing) get an O(1) span lookup; every routine also
-// works for the non-uniform vectors that knot insertion produces.
+// between. Vectors whose interior knots are equally spaced (uniform ones, and the fitted
+// placements whose end spans differ) get an O(1) span lookup; every routine also works for the
+// irregular vectors that knot insertion produces (binary search).
 #include <vector>
 
 namespace mfadvr {
@@ -21,7 +22,10 @@ class KnotVector {
 
   int degree() const { return degree_; }
   int controlCount() const { return static_cast<int>(knots_.size()) - degree_ - 1; }
+  // All spans equally long.
   bool isUniform() const { return uniform_; }
+  // Interior knots equally spaced (end spans may differ): span lookup is O(1).
+  bool hasRegularInterior() const { return regular_; }
   const std::vector<double>& knots() const { return knots_; }
   const double* data() const { return knots_.data(); }
 
@@ -31,12 +35,13 @@ class KnotVector {
     if (u <= 0.0) return degree_;
     const int last = controlCount() - 1;
     if (u >= 1.0) return last;
-    if (uniform_) {
-      int s = degree_ + static_cast<int>(u * spansPerUnit_);
-      // Guard against rounding at span boundaries.
+    if (regular_) {
+      const double t = (u - firstInterior_) * inverseSpacing_;
+      int s = t < 0.0 ? degree_ : degree_ + 1 + static_cast<int>(t);
       if (s > last) s = last;
-      if (u < knots_[s]) --s;
-      else if (u >= knots_[s + 1] && s < last) ++s;
+      // Rounding can put u one span off at a boundary.
+      while (s > degree_ && u < knots_[s]) --s;
+      while (s < last && u >= knots_[s + 1]) ++s;
       return s;
     }
     return findSpanBinary(u);
@@ -54,7 +59,9 @@ class KnotVector {
   int degree_ = 0;
   std::vector<double> knots_;
   bool uniform_ = false;
-  double spansPerUnit_ = 0.0;  // n - p for uniform vectors
+  bool regular_ = false;
+  double firstInterior_ = 1.0;   // u_{p+1}
+  double inverseSpacing_ = 0.0;  // 1 / (u_{p+2} - u_{p+1})
 };
 
 }  // namespace mfadvr

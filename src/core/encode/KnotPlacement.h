@@ -1,0 +1,22 @@
+#pragma once
+// Where the knots go when a spline is fitted to equally spaced samples.
+//
+// Uniform knots look natural but are a poor choice near interpolation: with n close to N the
+// samples drift against the knots, some basis functions are sampled only at the tails of their
+// support, and the normal equations become numerically singular (cubic, N = 118: smallest
+// singular value of the collocation matrix 4e-9). The placements of The NURBS Book keep every
+// span populated and the system well conditioned:
+//   n = N (interpolation): averaging, u_{p+j} = (1/p) sum_{i=j}^{j+p-1} t_i      (eq. 9.8)
+//   n < N (approximation): u_{p+j} = (1 - a) t_{i-1} + a t_i, i = floor(j d), a = j d - i,
+//                          d = N / (n - p)                                       (eq. 9.69)
+// with t_i = i / (N - 1). For equally spaced samples both leave the interior knots equally
+// spaced (only the end spans differ), so span lookup stays O(1).
+#include <cstdint>
+
+#include "core/spline/KnotVector.h"
+
+namespace mfadvr {
+
+KnotVector knotsForSamples(int degree, int controlCount, std::int64_t sampleCount);
+
+}  // namespace mfadvr
