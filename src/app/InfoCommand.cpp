@@ -14,7 +14,10 @@ nlohmann::json infoJson(const Model& m, const std::string& path) {
   const TensorBSpline& s = m.spline();
   const Provenance& p = m.provenance();
   nlohmann::json knots = nlohmann::json::array();
-  for (int a = 0; a < 3; ++a) knots.push_back(s.knots(a).isUniform() ? "uniform" : "non-uniform");
+  for (int a = 0; a < 3; ++a)
+    knots.push_back(s.knots(a).isUniform()             ? "uniform"
+                    : s.knots(a).hasRegularInterior() ? "regular-interior"
+                                                      : "non-uniform");
   return {{"file", path},
           {"file_bytes", std::filesystem::file_size(path)},
           {"format_version", kModelFormatVersion},

@@ -26,7 +26,8 @@ std::string slurp(const std::filesystem::path& p) {
 }
 
 Result run(const std::string& args) {
-  const auto dir = test::scratchDir().parent_path();
+  const auto dir = std::filesystem::path(MFADVR_TEST_TMP_DIR) / "cli-output";
+  std::filesystem::create_directories(dir);
   const auto outFile = dir / (std::to_string(::getpid()) + ".stdout");
   const auto errFile = dir / (std::to_string(::getpid()) + ".stderr");
   const std::string cmd = std::string(MFADVR_EXE) + " " + args + " >" + outFile.string() +

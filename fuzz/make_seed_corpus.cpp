@@ -1,0 +1,26 @@
+// Writes seed inputs for the fuzzers: small valid models (uniform and non-uniform knots, several
+// degrees) and a point list, so that mutations start from the interesting structure.
+#include <filesystem>
+#include <fstream>
+
+#include "core/analytic/BuiltinFunction.h"
+#include "core/encode/StructuredEncoder.h"
+#include "core/model/ModelFile.h"
+
+int main(int argc, char** argv) {
+  if (argc != 3) return 2;
+  const std::filesystem::path models = argv[1], points = argv[2];
+  std::filesystem::create_directories(models);
+  std::filesystem::create_directories(points);
+  int i = 0;
+  for (mfadvr::Degree3 p : {mfadvr::Degree3{1, 1, 1}, mfadvr::Degree3{3, 2, 2}}) {
+    mfadvr::StructuredFitOptions o;
+    o.degree = p;
+    o.controlCounts = {4, 3, 3};
+    const auto m = mfadvr::encodeStructured(
+        mfadvr::sampleBuiltinSpec("builtin:marschner-lobb:6x5x4"), o);
+    mfadvr::saveModel(m, models / ("seed" + std::to_string(i++) + ".mfa"));
+  }
+  std::ofstream(points / "seed.txt") << "x,y,z\n0 0 0\n1.5, -2e-3, 4\n# c\n";
+  return 0;
+}

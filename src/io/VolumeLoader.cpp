@@ -1,0 +1,85 @@
+#include "io/VolumeLoader.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+
+#include "core/analytic/BuiltinFunction.h"
+#include "core/util/Error.h"
+#include "io/RawVolumeReader.h"
+#include "io/VtkVolumeReader.h"
+
+namespace mfadvr {
+namespace {
+
+std::string lowerExtension(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext;
+}
+
+// Checked up front so that every format reports a missing or unreadable file the same way,
+// before VTK readers get a chance to fail with less clear text.
+void requireReadableFile(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec))
+    throw Error("cannot open " + path + ": it is a directory, expected a volume file");
+  std::FILE* f = std::fopen(path.c_str(), "rb");
+  if (!f) throw Error("cannot open " + path + ": " + std::strerror(errno));
+  std::fclose(f);
+}
+
+StructuredGrid readFile(const std::string& path, const std::string& field) {
+  const std::string ext = lowerExtension(path);
+  if (ext == ".raw") {
+    if (!field.empty())
+      throw Error(path + ": a raw file holds one unnamed field, so a field name ('" + field +
+                  "') cannot be chosen");
+    return readRawVolume(path);
+  }
+  if (ext == ".nrrd" || ext == ".nhdr") return readVtkVolume(path, VtkVolumeFormat::kNrrd, field);
+  if (ext == ".vti") return readVtkVolume(path, VtkVolumeFormat::kXmlImageData, field);
+  if (ext == ".vtk") return readVtkVolume(path, VtkVolumeFormat::kLegacyStructuredPoints, field);
+  if (ext == ".mha" || ext == ".mhd")
+    return readVtkVolume(path, VtkVolumeFormat::kMetaImage, field);
+  if (ext == ".vtu" || ext == ".vtp" || ext == ".vts" || ext == ".vtr") {
+    throw Error(path + ": '" + ext +
+                "' files hold VTK unstructured, polygonal, curvilinear or rectilinear grids, "
+                "but this input needs samples on a regular grid; supported inputs:\n" +
+                supportedVolumeFormats());
+  }
+  throw Error(path + ": unknown volume format '" +
+              (ext.empty() ? std::string("(no extension)") : ext) + "'; supported inputs:\n" +
+              supportedVolumeFormats());
+}
+
+}  // namespace
+
+StructuredGrid loadStructuredVolume(const std::string& input, const VolumeLoadOptions& options) {
+  if (isBuiltinSpec(input)) return sampleBuiltinSpec(input);
+
+  requireReadableFile(input);
+  StructuredGrid grid = readFile(input, options.field);
+  if (options.spacing) grid.spacing = *options.spacing;
+  if (options.origin) grid.origin = *options.origin;
+  grid.source = input;
+  grid.validate();
+  return grid;
+}
+
+std::string supportedVolumeFormats() {
+  return "  NAME_XxYxZ_TYPE.raw  headerless raw, x fastest, little-endian; TYPE: uint8, int8,\n"
+         "                       uint16, int16, uint32, int32, float32, float64\n"
+         "                       (e.g. fuel_64x64x64_uint8.raw)\n"
+         "  .nrrd, .nhdr         NRRD (raw, ascii or gzip encoding)\n"
+         "  .vti                 VTK XML image data\n"
+         "  .vtk                 legacy VTK, DATASET STRUCTURED_POINTS only\n"
+         "  .mha, .mhd           MetaImage\n"
+         "  builtin:NAME[:N|:NXxNYxNZ]  analytic field sampled on [-1,1]^3\n";
+}
+
+}  // namespace mfadvr

@@ -1,0 +1,414 @@
+#include "io/VtkVolumeReader.h"
+
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <mutex>
+#include <regex>
+#include <sstream>
+#include <type_traits>
+#include <vector>
+
+#include <vtkAbstractArray.h>
+#include <vtkAlgorithm.h>
+#include <vtkCellData.h>
+#include <vtkDataArray.h>
+#include <vtkDataObjectTypes.h>
+#include <vtkDataSetReader.h>
+#include <vtkErrorCode.h>
+#include <vtkImageData.h>
+#include <vtkLogger.h>
+#include <vtkMatrix3x3.h>
+#include <vtkMetaImageReader.h>
+#include <vtkNew.h>
+#include <vtkNrrdReader.h>
+#include <vtkObjectFactory.h>
+#include <vtkOutputWindow.h>
+#include <vtkPointData.h>
+#include <vtkSmartPointer.h>
+#include <vtkStructuredPoints.h>
+#include <vtkStructuredPointsReader.h>
+#include <vtkType.h>
+#include <vtkXMLImageDataReader.h>
+
+#include "core/util/Error.h"
+
+namespace mfadvr {
+namespace {
+
+// VTK readers report failure by printing, not by throwing; this window keeps the text so that
+// it ends up in the mfadvr::Error instead of on the user's terminal.
+class CollectingOutputWindow : public vtkOutputWindow {
+ public:
+  static CollectingOutputWindow* New();
+  vtkTypeMacro(CollectingOutputWindow, vtkOutputWindow);
+
+  void DisplayText(const char* text) override {
+    if (!text) return;
+    // Warnings (e.g. NRRD fields VTK ignores) do not stop a read; dropping them keeps the
+    // terminal quiet.
+    if (GetCurrentMessageType() == MESSAGE_TYPE_ERROR) addCleaned(errors, text);
+  }
+
+  std::vector<std::string> errors;
+
+ protected:
+  CollectingOutputWindow() = default;
+
+ private:
+  // VTK's text is "ERROR: In SOURCE.cxx, line N\nClass (0xADDR): message\n[object dump]";
+  // only the message helps a user.
+  static void addCleaned(std::vector<std::string>& into, const std::string& text) {
+    std::istringstream lines(text);
+    std::string line;
+    std::string message;
+    while (std::getline(lines, line)) {
+      if (line.rfind("ERROR: In ", 0) == 0 || line.rfind("Warning: In ", 0) == 0) continue;
+      if (line.rfind("Generic Warning: In ", 0) == 0) continue;
+      if (line.empty()) continue;
+      message = line;
+      break;
+    }
+    static const std::regex address(R"( \(0x[0-9a-fA-F]+\))");
+    message = std::regex_replace(message, address, "");
+    // The executive's follow-up only repeats that the reader failed.
+    if (message.empty() || message.find("returned failure for request") != std::string::npos)
+      return;
+    if (!into.empty() && into.back() == message) return;
+    into.push_back(message);
+  }
+};
+vtkStandardNewMacro(CollectingOutputWindow);
+
+// Routes VTK's messages (and std::cerr, which MetaIO writes to directly) into a
+// CollectingOutputWindow for one read. VTK's output window and logger are process-wide, so
+// reads are serialised.
+class VtkMessageCapture {
+ public:
+  VtkMessageCapture() : lock_(mutex()) {
+    previousWindow_ = vtkOutputWindow::GetInstance();
+    if (previousWindow_) previousWindow_->Register(nullptr);
+    vtkOutputWindow::SetInstance(window_);
+    // vtkLogger prints errors to stderr on its own, besides the output window. It has no getter
+    // for the stderr level; the overall cutoff equals it unless a log file asks for more.
+    previousVerbosity_ = vtkLogger::GetCurrentVerbosityCutoff();
+    vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
+    previousCerr_ = std::cerr.rdbuf(cerrText_.rdbuf());
+  }
+  ~VtkMessageCapture() {
+    std::cerr.rdbuf(previousCerr_);
+    vtkLogger::SetStderrVerbosity(previousVerbosity_);
+    vtkOutputWindow::SetInstance(previousWindow_);
+    if (previousWindow_) previousWindow_->UnRegister(nullptr);
+  }
+  VtkMessageCapture(const VtkMessageCapture&) = delete;
+  VtkMessageCapture& operator=(const VtkMessageCapture&) = delete;
+
+  bool hasErrors() const { return !window_->errors.empty(); }
+
+  // All collected error text on one line, in the order it came; "" when there is none.
+  std::string errorText() const {
+    std::string out;
+    for (const auto& e : window_->errors) out += (out.empty() ? "" : "; ") + e;
+    std::istringstream lines(cerrText_.str());
+    std::string line;
+    while (std::getline(lines, line)) {
+      if (!line.empty()) out += (out.empty() ? "" : "; ") + line;
+    }
+    return out;
+  }
+
+ private:
+  static std::mutex& mutex() {
+    static std::mutex m;
+    return m;
+  }
+
+  std::lock_guard<std::mutex> lock_;
+  vtkNew<CollectingOutputWindow> window_;
+  vtkOutputWindow* previousWindow_ = nullptr;
+  vtkLogger::Verbosity previousVerbosity_ = vtkLogger::VERBOSITY_INFO;
+  std::ostringstream cerrText_;
+  std::streambuf* previousCerr_ = nullptr;
+};
+
+const char* formatName(VtkVolumeFormat format) {
+  switch (format) {
+    case VtkVolumeFormat::kNrrd:
+      return "NRRD";
+    case VtkVolumeFormat::kXmlImageData:
+      return "VTK XML image data (.vti)";
+    case VtkVolumeFormat::kLegacyStructuredPoints:
+      return "legacy VTK structured points";
+    case VtkVolumeFormat::kMetaImage:
+      return "MetaImage";
+  }
+  return "volume";
+}
+
+// What a readable file of each format looks like, for the end of a read error.
+const char* formatExpectation(VtkVolumeFormat format) {
+  switch (format) {
+    case VtkVolumeFormat::kNrrd:
+      return "a NRRD header (first line NRRD0001..NRRD0005) with type, dimension, sizes and "
+             "raw, ascii or gzip encoding";
+    case VtkVolumeFormat::kXmlImageData:
+      return "a VTK XML file <VTKFile type=\"ImageData\"> with point data";
+    case VtkVolumeFormat::kLegacyStructuredPoints:
+      return "a legacy VTK file ('# vtk DataFile Version') with DATASET STRUCTURED_POINTS";
+    case VtkVolumeFormat::kMetaImage:
+      return "a MetaImage header (ObjectType = Image, NDims, DimSize, ElementType, "
+             "ElementDataFile) and its data";
+  }
+  return "a volume file";
+}
+
+[[noreturn]] void throwReadFailure(const std::string& path, VtkVolumeFormat format,
+                                   const VtkMessageCapture& capture, vtkAlgorithm* reader,
+                                   const std::string& fallback) {
+  std::string why = capture.errorText();
+  if (why.empty() && reader && reader->GetErrorCode() != vtkErrorCode::NoError)
+    why = "the reader failed (VTK error code " + std::to_string(reader->GetErrorCode()) + ")";
+  if (why.empty()) why = fallback;
+  throw Error("cannot read " + path + " as " + formatName(format) + ": " + why + " (expected " +
+              formatExpectation(format) + ")");
+}
+
+// Legacy files name their dataset type in the header; say which one it is instead of VTK's
+// "Cannot read dataset type".
+void requireStructuredPoints(const std::string& path, const VtkMessageCapture& capture) {
+  vtkNew<vtkDataSetReader> probe;
+  probe->SetFileName(path.c_str());
+  const int type = probe->ReadOutputType();
+  if (type < 0) {
+    throwReadFailure(path, VtkVolumeFormat::kLegacyStructuredPoints, capture, nullptr,
+                     "not a legacy VTK data file (expected a '# vtk DataFile Version' header)");
+  }
+  if (type != VTK_STRUCTURED_POINTS && type != VTK_IMAGE_DATA) {
+    const char* found = vtkDataObjectTypes::GetClassNameFromTypeId(type);
+    throw Error(path +
+                ": this input needs a regular grid, i.e. a legacy VTK file with DATASET "
+                "STRUCTURED_POINTS, but the file holds a " +
+                std::string(found ? found : "dataset of unknown type") +
+                "; resample it onto a regular grid first (e.g. vtkResampleToImage in ParaView)");
+  }
+}
+
+// MetaIO leaks (and says little) when a detached data file is missing, so look for it first.
+// Only the one header line is read; LOCAL, LIST and file patterns are left to VTK.
+void requireMetaImageDataFile(const std::string& path) {
+  std::ifstream header(path, std::ios::binary);
+  std::string line;
+  while (std::getline(header, line)) {
+    const auto eq = line.find('=');
+    if (eq == std::string::npos) continue;
+    const auto trim = [](std::string t) {
+      const auto first = t.find_first_not_of(" \t\r");
+      const auto last = t.find_last_not_of(" \t\r");
+      return first == std::string::npos ? std::string() : t.substr(first, last - first + 1);
+    };
+    if (trim(line.substr(0, eq)) != "ElementDataFile") continue;
+    const std::string dataFile = trim(line.substr(eq + 1));
+    if (dataFile == "LOCAL" || dataFile == "LIST" || dataFile.find(' ') != std::string::npos ||
+        dataFile.find('%') != std::string::npos)
+      return;
+    const auto resolved = std::filesystem::path(path).parent_path() / dataFile;
+    std::error_code ec;
+    if (!std::filesystem::exists(resolved, ec)) {
+      throw Error("cannot read " + path + " as MetaImage: its data file " + resolved.string() +
+                  " (ElementDataFile = " + dataFile + ") does not exist");
+    }
+    return;  // ElementDataFile is the last header line.
+  }
+}
+
+vtkSmartPointer<vtkImageData> runReader(const std::string& path, VtkVolumeFormat format,
+                                        const VtkMessageCapture& capture) {
+  vtkSmartPointer<vtkAlgorithm> reader;
+  switch (format) {
+    case VtkVolumeFormat::kNrrd: {
+      auto r = vtkSmartPointer<vtkNrrdReader>::New();
+      r->SetFileName(path.c_str());
+      reader = r;
+      break;
+    }
+    case VtkVolumeFormat::kXmlImageData: {
+      auto r = vtkSmartPointer<vtkXMLImageDataReader>::New();
+      r->SetFileName(path.c_str());
+      reader = r;
+      break;
+    }
+    case VtkVolumeFormat::kLegacyStructuredPoints: {
+      requireStructuredPoints(path, capture);
+      auto r = vtkSmartPointer<vtkStructuredPointsReader>::New();
+      r->SetFileName(path.c_str());
+      // By default only the first SCALARS block is read; the field may name another.
+      r->ReadAllScalarsOn();
+      r->ReadAllVectorsOn();
+      r->ReadAllColorScalarsOn();
+      r->ReadAllFieldsOn();
+      reader = r;
+      break;
+    }
+    case VtkVolumeFormat::kMetaImage: {
+      requireMetaImageDataFile(path);
+      auto r = vtkSmartPointer<vtkMetaImageReader>::New();
+      r->SetFileName(path.c_str());
+      reader = r;
+      break;
+    }
+  }
+  reader->Update();
+  auto* image = vtkImageData::SafeDownCast(reader->GetOutputDataObject(0));
+  if (capture.hasErrors() || reader->GetErrorCode() != vtkErrorCode::NoError || !image)
+    throwReadFailure(path, format, capture, reader, "the reader produced no image");
+  if (image->GetNumberOfPoints() == 0)
+    throwReadFailure(path, format, capture, reader, "the file holds no samples");
+  return image;
+}
+
+std::string sampleTypeName(vtkDataArray* array) {
+  const std::string bits = std::to_string(array->GetDataTypeSize() * 8);
+  switch (array->GetDataType()) {
+    case VTK_FLOAT:
+    case VTK_DOUBLE:
+      return "float" + bits;
+    case VTK_CHAR:
+      return (std::is_signed_v<char> ? "int" : "uint") + bits;
+    case VTK_SIGNED_CHAR:
+    case VTK_SHORT:
+    case VTK_INT:
+    case VTK_LONG:
+    case VTK_LONG_LONG:
+    case VTK_ID_TYPE:
+      return "int" + bits;
+    case VTK_UNSIGNED_CHAR:
+    case VTK_UNSIGNED_SHORT:
+    case VTK_UNSIGNED_INT:
+    case VTK_UNSIGNED_LONG:
+    case VTK_UNSIGNED_LONG_LONG:
+      return "uint" + bits;
+    default:
+      return "";
+  }
+}
+
+std::string describeArrays(vtkFieldData* data) {
+  std::string out;
+  for (int i = 0; i < data->GetNumberOfArrays(); ++i) {
+    vtkAbstractArray* a = data->GetAbstractArray(i);
+    if (!a) continue;
+    std::string entry = a->GetName() ? std::string("'") + a->GetName() + "'" : "(unnamed)";
+    if (a->GetNumberOfComponents() != 1)
+      entry += " (" + std::to_string(a->GetNumberOfComponents()) + " components)";
+    out += (out.empty() ? "" : ", ") + entry;
+  }
+  return out.empty() ? "none" : out;
+}
+
+vtkDataArray* selectArray(const std::string& path, VtkVolumeFormat format, vtkImageData* image,
+                          const std::string& field) {
+  vtkPointData* points = image->GetPointData();
+  vtkDataArray* array = nullptr;
+  if (field.empty()) {
+    array = points->GetScalars();
+    for (int i = 0; !array && i < points->GetNumberOfArrays(); ++i) array = points->GetArray(i);
+    if (!array) {
+      throw Error(path + ": no point-data arrays to read (cell data: " +
+                  describeArrays(image->GetCellData()) +
+                  "); the encoder needs one scalar value per grid point");
+    }
+  } else {
+    array = points->GetArray(field.c_str());
+    if (!array) {
+      std::string msg = path + ": no point-data array named '" + field + "'";
+      if (image->GetCellData()->GetAbstractArray(field.c_str()))
+        msg += " (there is a cell-data array of that name, but samples must sit on grid points)";
+      throw Error(msg + "; point-data arrays in the file: " + describeArrays(points));
+    }
+  }
+  const int components = array->GetNumberOfComponents();
+  if (components != 1 && format == VtkVolumeFormat::kNrrd) {
+    // NRRD has no notion of components; VTK's reader guesses them from the axis sizes.
+    throw Error(path + ": VTK's NRRD reader takes the first axis (" + std::to_string(components) +
+                " samples) for vector components, as it does for a first axis of 9 samples or "
+                "fewer and for a 4th axis; a scalar volume needs 3 axes and at least 10 samples "
+                "along x");
+  }
+  if (components != 1) {
+    throw Error(path + ": array '" + std::string(array->GetName() ? array->GetName() : "") +
+                "' has " + std::to_string(components) +
+                " components per sample, but a scalar field (1 component) is expected; "
+                "point-data arrays in the file: " +
+                describeArrays(points));
+  }
+  return array;
+}
+
+template <typename T>
+void copyValues(const T* in, size_t count, double* out) {
+  for (size_t n = 0; n < count; ++n) out[n] = static_cast<double>(in[n]);
+}
+
+StructuredGrid toGrid(const std::string& path, VtkVolumeFormat format, vtkImageData* image,
+                      const std::string& field) {
+  if (vtkMatrix3x3* direction = image->GetDirectionMatrix(); direction && !direction->IsIdentity())
+    throw Error(path +
+                ": the grid axes are rotated or flipped (direction matrix is not the "
+                "identity); only axis-aligned grids are supported");
+  vtkDataArray* array = selectArray(path, format, image, field);
+  const std::string type = sampleTypeName(array);
+  if (type.empty()) {
+    throw Error(path + ": array '" + std::string(array->GetName() ? array->GetName() : "") +
+                "' has sample type " + array->GetDataTypeAsString() +
+                "; expected an integer or floating-point type");
+  }
+
+  StructuredGrid grid;
+  int dims[3];
+  int extent[6];
+  double origin[3];
+  double spacing[3];
+  image->GetDimensions(dims);
+  image->GetExtent(extent);
+  image->GetOrigin(origin);
+  image->GetSpacing(spacing);
+  for (int a = 0; a < 3; ++a) {
+    grid.dims[a] = dims[a];
+    // VTK's origin is the position of index 0, which need not be the first sample.
+    grid.origin[a] = origin[a] + extent[2 * a] * spacing[a];
+    grid.spacing[a] = spacing[a];
+  }
+  if (array->GetNumberOfTuples() != grid.sampleCount()) {
+    throw Error(path + ": array '" + std::string(array->GetName() ? array->GetName() : "") +
+                "' has " + std::to_string(array->GetNumberOfTuples()) + " values for " +
+                std::to_string(grid.sampleCount()) + " grid points");
+  }
+  grid.source = path;
+  grid.fieldName = array->GetName() ? array->GetName() : "";
+  grid.sampleType = type;
+  grid.inputBytes = grid.sampleCount() * array->GetDataTypeSize();
+  grid.values.resize(static_cast<size_t>(grid.sampleCount()));
+  // VTK's point order is x fastest, like StructuredGrid's.
+  switch (array->GetDataType()) {
+    vtkTemplateMacro(copyValues(static_cast<const VTK_TT*>(array->GetVoidPointer(0)),
+                                grid.values.size(), grid.values.data()));
+    default:
+      throw Error(path + ": unsupported sample type " + array->GetDataTypeAsString());
+  }
+  return grid;
+}
+
+}  // namespace
+
+StructuredGrid readVtkVolume(const std::string& path, VtkVolumeFormat format,
+                             const std::string& field) {
+  vtkSmartPointer<vtkImageData> image;
+  {
+    VtkMessageCapture capture;
+    image = runReader(path, format, capture);
+  }
+  return toGrid(path, format, image, field);
+}
+
+}  // namespace mfadvr

@@ -1,0 +1,427 @@
+// Formats read through VTK (.vti, legacy .vtk, .mha/.mhd, .nrrd/.nhdr): small files written
+// here by hand, so that the tests pin the formats themselves rather than VTK's writers.
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <limits>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <zlib.h>
+
+#include "TestSupport.h"
+#include "core/util/Error.h"
+#include "io/VolumeLoader.h"
+
+namespace mfadvr {
+namespace {
+
+// The grid every hand-written file describes: 10x4x3 samples, anisotropic spacing. (VTK's NRRD
+// reader takes a fastest axis of 9 samples or fewer for vector components.)
+const Index3 kDims{10, 4, 3};
+const Vec3d kOrigin(1.5, -2.0, 3.0);
+const Vec3d kSpacing(0.5, 0.25, 2.0);
+constexpr int kCount = 10 * 4 * 3;
+
+// Exactly representable in float32, so every format round-trips them bit for bit.
+float density(int n) {
+  const int i = n % 10, j = (n / 10) % 4, k = n / 40;
+  return 0.25f * i - 1.5f * j + 10.0f * k;
+}
+std::int16_t label(int n) {
+  const int i = n % 10, j = (n / 10) % 4, k = n / 40;
+  return static_cast<std::int16_t>(i + 10 * j - 100 * k);
+}
+
+template <typename T>
+void appendBytes(std::string& out, T value, std::endian order) {
+  unsigned char bytes[sizeof(T)];
+  std::memcpy(bytes, &value, sizeof(T));
+  if (order != std::endian::native) std::reverse(bytes, bytes + sizeof(T));
+  out.append(reinterpret_cast<const char*>(bytes), sizeof(T));
+}
+
+std::string densityBytes(std::endian order) {
+  std::string out;
+  for (int n = 0; n < kCount; ++n) appendBytes(out, density(n), order);
+  return out;
+}
+
+std::string labelBytes(std::endian order) {
+  std::string out;
+  for (int n = 0; n < kCount; ++n) appendBytes(out, label(n), order);
+  return out;
+}
+
+std::string writeFile(const std::filesystem::path& path, const std::string& content) {
+  std::ofstream(path, std::ios::binary) << content;
+  return path.string();
+}
+
+template <typename F>
+void expectError(F&& f, const std::vector<std::string>& parts) {
+  try {
+    f();
+    FAIL() << "no mfadvr::Error thrown";
+  } catch (const Error& e) {
+    for (const auto& p : parts)
+      EXPECT_NE(std::string(e.what()).find(p), std::string::npos)
+          << "missing '" << p << "' in: " << e.what();
+  }
+}
+
+void expectDensityGrid(const StructuredGrid& g, const Vec3d& origin = kOrigin) {
+  EXPECT_EQ(g.dims, kDims);
+  EXPECT_EQ(g.origin, origin);
+  EXPECT_EQ(g.spacing, kSpacing);
+  EXPECT_EQ(g.sampleType, "float32");
+  EXPECT_EQ(g.inputBytes, kCount * 4);
+  ASSERT_EQ(g.values.size(), static_cast<size_t>(kCount));
+  for (int n = 0; n < kCount; ++n) EXPECT_EQ(g.values[n], density(n)) << n;
+}
+
+void expectLabelGrid(const StructuredGrid& g) {
+  EXPECT_EQ(g.dims, kDims);
+  EXPECT_EQ(g.origin, kOrigin);
+  EXPECT_EQ(g.spacing, kSpacing);
+  EXPECT_EQ(g.sampleType, "int16");
+  EXPECT_EQ(g.inputBytes, kCount * 2);
+  ASSERT_EQ(g.values.size(), static_cast<size_t>(kCount));
+  for (int n = 0; n < kCount; ++n) EXPECT_EQ(g.values[n], label(n)) << n;
+}
+
+// ---- VTK XML image data ----------------------------------------------------------------------
+
+std::string asciiDensity() {
+  std::ostringstream s;
+  for (int n = 0; n < kCount; ++n) s << density(n) << ' ';
+  return s.str();
+}
+std::string asciiLabel() {
+  std::ostringstream s;
+  for (int n = 0; n < kCount; ++n) s << label(n) << ' ';
+  return s.str();
+}
+std::string asciiVectors() {
+  std::ostringstream s;
+  for (int n = 0; n < 3 * kCount; ++n) s << n << ' ';
+  return s.str();
+}
+
+std::string cellValues() {
+  std::string s;
+  for (int n = 0; n < (kDims[0] - 1) * (kDims[1] - 1) * (kDims[2] - 1); ++n) s += "1 ";
+  return s;
+}
+
+// `firstIndex` shifts the extent: VTK's origin is then the position of index 0, not of the
+// first sample.
+std::string vtiText(int firstIndex = 0, const std::string& extraImageAttributes = "") {
+  std::ostringstream extent;
+  for (int a = 0; a < 3; ++a)
+    extent << (a ? " " : "") << firstIndex << ' ' << firstIndex + kDims[a] - 1;
+  const Vec3d origin = kOrigin - firstIndex * kSpacing;
+  std::ostringstream s;
+  s << "<?xml version=\"1.0\"?>\n"
+    << "<VTKFile type=\"ImageData\" version=\"1.0\" byte_order=\"LittleEndian\">\n"
+    << "  <ImageData WholeExtent=\"" << extent.str() << "\" Origin=\"" << origin[0] << ' '
+    << origin[1] << ' ' << origin[2] << "\" Spacing=\"" << kSpacing[0] << ' ' << kSpacing[1] << ' '
+    << kSpacing[2] << "\" " << extraImageAttributes << ">\n"
+    << "    <Piece Extent=\"" << extent.str() << "\">\n"
+    << "      <PointData Scalars=\"label\">\n"
+    << "        <DataArray type=\"Float32\" Name=\"density\" format=\"ascii\">" << asciiDensity()
+    << "</DataArray>\n"
+    << "        <DataArray type=\"Int16\" Name=\"label\" format=\"ascii\">" << asciiLabel()
+    << "</DataArray>\n"
+    << "        <DataArray type=\"Float64\" Name=\"velocity\" NumberOfComponents=\"3\" "
+       "format=\"ascii\">"
+    << asciiVectors() << "</DataArray>\n"
+    << "      </PointData>\n"
+    << "      <CellData>\n"
+    << "        <DataArray type=\"Float32\" Name=\"pressure\" format=\"ascii\">" << cellValues()
+    << "</DataArray>\n"
+    << "      </CellData>\n"
+    << "    </Piece>\n"
+    << "  </ImageData>\n"
+    << "</VTKFile>\n";
+  return s.str();
+}
+
+TEST(VtiReader, ActiveScalarsByDefault) {
+  const auto path = writeFile(test::scratchDir() / "v.vti", vtiText());
+  const StructuredGrid g = loadStructuredVolume(path);
+  expectLabelGrid(g);
+  EXPECT_EQ(g.fieldName, "label");
+  EXPECT_EQ(g.source, path);
+}
+
+TEST(VtiReader, FieldByName) {
+  const auto path = writeFile(test::scratchDir() / "v.vti", vtiText());
+  VolumeLoadOptions options;
+  options.field = "density";
+  const StructuredGrid g = loadStructuredVolume(path, options);
+  expectDensityGrid(g);
+  EXPECT_EQ(g.fieldName, "density");
+}
+
+TEST(VtiReader, ExtentNotStartingAtZeroShiftsTheOrigin) {
+  const auto path = writeFile(test::scratchDir() / "v.vti", vtiText(3));
+  VolumeLoadOptions options;
+  options.field = "density";
+  expectDensityGrid(loadStructuredVolume(path, options));
+}
+
+TEST(VtiReader, OptionsOverrideTheFile) {
+  const auto path = writeFile(test::scratchDir() / "v.vti", vtiText());
+  VolumeLoadOptions options;
+  options.origin = Vec3d(0, 0, 0);
+  options.spacing = Vec3d(1, 1, 1);
+  const StructuredGrid g = loadStructuredVolume(path, options);
+  EXPECT_EQ(g.origin, Vec3d::Zero());
+  EXPECT_EQ(g.spacing, Vec3d::Ones());
+}
+
+TEST(VtiReader, MissingFieldListsTheArrays) {
+  const auto path = writeFile(test::scratchDir() / "v.vti", vtiText());
+  VolumeLoadOptions options;
+  options.field = "temperature";
+  expectError([&] { loadStructuredVolume(path, options); },
+              {path, "'temperature'", "'density'", "'label'", "'velocity' (3 components)"});
+}
+
+TEST(VtiReader, CellFieldIsNamedAsSuch) {
+  const auto path = writeFile(test::scratchDir() / "v.vti", vtiText());
+  VolumeLoadOptions options;
+  options.field = "pressure";
+  expectError([&] { loadStructuredVolume(path, options); }, {path, "cell-data", "'pressure'"});
+}
+
+TEST(VtiReader, VectorFieldIsAnError) {
+  const auto path = writeFile(test::scratchDir() / "v.vti", vtiText());
+  VolumeLoadOptions options;
+  options.field = "velocity";
+  expectError([&] { loadStructuredVolume(path, options); }, {path, "3 components", "scalar"});
+}
+
+TEST(VtiReader, RotatedGridIsAnError) {
+  const auto path =
+      writeFile(test::scratchDir() / "v.vti", vtiText(0, "Direction=\"0 1 0 -1 0 0 0 0 1\""));
+  expectError([&] { loadStructuredVolume(path); }, {path, "direction"});
+}
+
+TEST(VtiReader, MalformedFileIsAnError) {
+  const auto path = writeFile(test::scratchDir() / "v.vti", "<VTKFile type=\"ImageData\"");
+  expectError([&] { loadStructuredVolume(path); }, {"cannot read " + path, "XML"});
+}
+
+TEST(VtiReader, OtherXmlDatasetIsAnError) {
+  const auto data = test::dataFile("bluntfin_tets.vtu");
+  if (data.empty()) GTEST_SKIP() << "bluntfin_tets.vtu not in " << test::dataDir();
+  // An unstructured grid renamed to .vti: the image reader must refuse it, not crash.
+  const auto path = (test::scratchDir() / "bluntfin.vti").string();
+  std::filesystem::copy_file(data, path);
+  expectError([&] { loadStructuredVolume(path); }, {"cannot read " + path});
+}
+
+// ---- legacy VTK ----------------------------------------------------------------------------
+
+std::string legacyHeader(const std::string& encoding) {
+  std::ostringstream s;
+  s << "# vtk DataFile Version 3.0\nhand-written test volume\n"
+    << encoding << "\n"
+    << "DATASET STRUCTURED_POINTS\nDIMENSIONS 10 4 3\nORIGIN 1.5 -2 3\nSPACING 0.5 0.25 2\n"
+    << "POINT_DATA " << kCount << "\n";
+  return s.str();
+}
+
+TEST(LegacyVtkReader, AsciiStructuredPoints) {
+  const std::string text = legacyHeader("ASCII") +
+                           "SCALARS density float 1\nLOOKUP_TABLE default\n" + asciiDensity() +
+                           "\nSCALARS label short 1\nLOOKUP_TABLE default\n" + asciiLabel() + "\n";
+  const auto path = writeFile(test::scratchDir() / "v.vtk", text);
+  const StructuredGrid first = loadStructuredVolume(path);
+  expectDensityGrid(first);
+  EXPECT_EQ(first.fieldName, "density");
+
+  // The second SCALARS block is only there when the reader is told to read all of them.
+  VolumeLoadOptions options;
+  options.field = "label";
+  const StructuredGrid second = loadStructuredVolume(path, options);
+  expectLabelGrid(second);
+  EXPECT_EQ(second.fieldName, "label");
+}
+
+TEST(LegacyVtkReader, BinaryStructuredPoints) {
+  // Legacy binary data is big-endian whatever the host.
+  const std::string text = legacyHeader("BINARY") +
+                           "SCALARS label short 1\nLOOKUP_TABLE default\n" +
+                           labelBytes(std::endian::big) + "\n";
+  const auto path = writeFile(test::scratchDir() / "v.vtk", text);
+  expectLabelGrid(loadStructuredVolume(path));
+}
+
+TEST(LegacyVtkReader, MissingFieldListsTheArrays) {
+  const std::string text = legacyHeader("ASCII") +
+                           "SCALARS density float 1\nLOOKUP_TABLE default\n" + asciiDensity() +
+                           "\n";
+  const auto path = writeFile(test::scratchDir() / "v.vtk", text);
+  VolumeLoadOptions options;
+  options.field = "label";
+  expectError([&] { loadStructuredVolume(path, options); }, {path, "'label'", "'density'"});
+}
+
+TEST(LegacyVtkReader, UnstructuredGridNeedsStructuredPoints) {
+  const auto path = test::dataFile("spx.vtk");
+  if (path.empty()) GTEST_SKIP() << "spx.vtk not in " << test::dataDir();
+  expectError([&] { loadStructuredVolume(path.string()); },
+              {path.string(), "STRUCTURED_POINTS", "vtkUnstructuredGrid"});
+}
+
+TEST(LegacyVtkReader, PolyDataNeedsStructuredPoints) {
+  const auto path = writeFile(test::scratchDir() / "p.vtk",
+                              "# vtk DataFile Version 3.0\npoints\nASCII\nDATASET POLYDATA\n"
+                              "POINTS 1 float\n0 0 0\n");
+  expectError([&] { loadStructuredVolume(path); }, {path, "STRUCTURED_POINTS", "vtkPolyData"});
+}
+
+TEST(LegacyVtkReader, NotAVtkFileIsAnError) {
+  const auto path = writeFile(test::scratchDir() / "v.vtk", "hello\n");
+  expectError([&] { loadStructuredVolume(path); }, {"cannot read " + path});
+}
+
+// ---- MetaImage ---------------------------------------------------------------------------
+
+std::string metaHeader(const std::string& type, const std::string& dataFile) {
+  return "ObjectType = Image\nNDims = 3\nBinaryData = True\nBinaryDataByteOrderMSB = False\n"
+         "DimSize = 10 4 3\nElementSpacing = 0.5 0.25 2\nOffset = 1.5 -2 3\nElementType = " +
+         type + "\nElementDataFile = " + dataFile + "\n";
+}
+
+TEST(MetaImageReader, ReadsMhaWithLocalData) {
+  const auto path = writeFile(test::scratchDir() / "v.mha",
+                              metaHeader("MET_SHORT", "LOCAL") + labelBytes(std::endian::little));
+  expectLabelGrid(loadStructuredVolume(path));
+}
+
+TEST(MetaImageReader, ReadsMhdWithDetachedData) {
+  const auto dir = test::scratchDir();
+  writeFile(dir / "v.data", densityBytes(std::endian::little));
+  const auto path = writeFile(dir / "v.mhd", metaHeader("MET_FLOAT", "v.data"));
+  expectDensityGrid(loadStructuredVolume(path));
+}
+
+TEST(MetaImageReader, MissingDataFileIsAnError) {
+  const auto path =
+      writeFile(test::scratchDir() / "v.mhd", metaHeader("MET_FLOAT", "nowhere.data"));
+  expectError([&] { loadStructuredVolume(path); }, {"cannot read " + path, "nowhere.data"});
+}
+
+// ---- NRRD ----------------------------------------------------------------------------------
+
+std::string nrrdHeader(const std::string& type, const std::string& encoding,
+                       const std::string& extra = "") {
+  return "NRRD0004\n# hand-written test volume\ntype: " + type +
+         "\ndimension: 3\nsizes: 10 4 3\nspace: 3D-right-handed\n"
+         "space directions: (0.5,0,0) (0,0.25,0) (0,0,2)\nspace origin: (1.5,-2,3)\n"
+         "encoding: " +
+         encoding + "\nendian: little\n" + extra;
+}
+
+std::string gzipped(const std::string& bytes) {
+  z_stream zs{};
+  // windowBits 15 + 16 asks zlib for a gzip wrapper, which is what NRRD's "gzip" means.
+  EXPECT_EQ(deflateInit2(&zs, Z_BEST_COMPRESSION, Z_DEFLATED, 15 + 16, 8, Z_DEFAULT_STRATEGY),
+            Z_OK);
+  std::string out(deflateBound(&zs, bytes.size()) + 64, '\0');
+  zs.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(bytes.data()));
+  zs.avail_in = static_cast<uInt>(bytes.size());
+  zs.next_out = reinterpret_cast<Bytef*>(out.data());
+  zs.avail_out = static_cast<uInt>(out.size());
+  EXPECT_EQ(deflate(&zs, Z_FINISH), Z_STREAM_END);
+  out.resize(zs.total_out);
+  deflateEnd(&zs);
+  return out;
+}
+
+TEST(NrrdReader, RawEncoding) {
+  const auto path = writeFile(test::scratchDir() / "v.nrrd", nrrdHeader("float", "raw") + "\n" +
+                                                                 densityBytes(std::endian::little));
+  expectDensityGrid(loadStructuredVolume(path));
+}
+
+TEST(NrrdReader, GzipEncoding) {
+  const auto path =
+      writeFile(test::scratchDir() / "v.nrrd",
+                nrrdHeader("short", "gzip") + "\n" + gzipped(labelBytes(std::endian::little)));
+  expectLabelGrid(loadStructuredVolume(path));
+}
+
+TEST(NrrdReader, SpacingsWithoutSpace) {
+  const auto path = writeFile(test::scratchDir() / "v.nrrd",
+                              "NRRD0004\ntype: float\ndimension: 3\nsizes: 10 4 3\n"
+                              "spacings: 0.5 0.25 2\nencoding: raw\nendian: little\n\n" +
+                                  densityBytes(std::endian::little));
+  expectDensityGrid(loadStructuredVolume(path), Vec3d::Zero());
+}
+
+TEST(NrrdReader, DetachedHeader) {
+  const auto dir = test::scratchDir();
+  writeFile(dir / "v.raw.gz", gzipped(densityBytes(std::endian::little)));
+  const auto path = writeFile(dir / "v.nhdr", nrrdHeader("float", "gzip", "data file: v.raw.gz\n"));
+  expectDensityGrid(loadStructuredVolume(path));
+}
+
+TEST(NrrdReader, MissingDetachedDataIsAnError) {
+  const auto path = writeFile(test::scratchDir() / "v.nhdr",
+                              nrrdHeader("float", "raw", "data file: nowhere.raw\n"));
+  expectError([&] { loadStructuredVolume(path); }, {"cannot read " + path, "nowhere.raw"});
+}
+
+TEST(NrrdReader, ShortFastestAxisIsAnError) {
+  std::string header = nrrdHeader("short", "raw");
+  header.replace(header.find("sizes: 10 4 3"), 13, "sizes: 4 10 3");
+  const auto path =
+      writeFile(test::scratchDir() / "v.nrrd", header + "\n" + labelBytes(std::endian::little));
+  expectError([&] { loadStructuredVolume(path); }, {path, "4 samples", "at least 10"});
+}
+
+TEST(NrrdReader, TruncatedGzipIsAnError) {
+  std::string payload = gzipped(densityBytes(std::endian::little));
+  payload.resize(payload.size() / 2);
+  const auto path =
+      writeFile(test::scratchDir() / "v.nrrd", nrrdHeader("float", "gzip") + "\n" + payload);
+  expectError([&] { loadStructuredVolume(path); }, {"cannot read " + path});
+}
+
+TEST(NrrdReader, NotANrrdIsAnError) {
+  const auto path = writeFile(test::scratchDir() / "v.nrrd", "P6\n5 4\n255\n");
+  expectError([&] { loadStructuredVolume(path); }, {"cannot read " + path, "NRRD"});
+}
+
+TEST(NrrdReader, RealBonsai) {
+  const auto path = test::dataFile("bonsai.nrrd");
+  if (path.empty()) GTEST_SKIP() << "bonsai.nrrd not in " << test::dataDir();
+  const StructuredGrid g = loadStructuredVolume(path.string());
+  EXPECT_EQ(g.dims, (Index3{256, 256, 256}));
+  EXPECT_EQ(g.sampleType, "uint8");
+  EXPECT_EQ(g.inputBytes, 256 * 256 * 256);
+  EXPECT_EQ(g.origin, Vec3d::Constant(-128.0));
+  EXPECT_EQ(g.spacing, Vec3d::Ones());
+  const auto [lo, hi] = std::minmax_element(g.values.begin(), g.values.end());
+  EXPECT_EQ(*lo, 0.0);
+  EXPECT_EQ(*hi, 255.0);
+  // Sum of the decompressed bytes, computed independently with Python's zlib.
+  double sum = 0.0;
+  for (double v : g.values) sum += v;
+  EXPECT_EQ(sum, 230038784.0);
+}
+
+}  // namespace
+}  // namespace mfadvr
