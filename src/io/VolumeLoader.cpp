@@ -60,7 +60,13 @@ StructuredGrid readFile(const std::string& path, const std::string& field) {
 }  // namespace
 
 StructuredGrid loadStructuredVolume(const std::string& input, const VolumeLoadOptions& options) {
-  if (isBuiltinSpec(input)) return sampleBuiltinSpec(input);
+  if (isBuiltinSpec(input)) {
+    // A built-in is defined on [-1,1]^3; moving its samples would detach it from its truth.
+    if (options.spacing || options.origin || !options.field.empty())
+      throw Error(input + ": --spacing, --origin and --field apply to files, not to built-in "
+                          "functions (choose the grid with builtin:NAME:NXxNYxNZ)");
+    return sampleBuiltinSpec(input);
+  }
 
   requireReadableFile(input);
   StructuredGrid grid = readFile(input, options.field);

@@ -29,6 +29,10 @@ TEST(VolumeLoader, BuiltinSpec) {
   const StructuredGrid g = loadStructuredVolume("builtin:gaussian-beam:8");
   EXPECT_EQ(g.dims, (Index3{8, 8, 8}));
   EXPECT_EQ(g.values.size(), 512u);
+  VolumeLoadOptions moved;
+  moved.spacing = Vec3d(1, 1, 1);
+  expectError([&] { loadStructuredVolume("builtin:gaussian-beam:8", moved); },
+              {"builtin:gaussian-beam:8", "not to built-in functions"});
 }
 
 TEST(VolumeLoader, MissingFile) {

@@ -102,11 +102,17 @@ class AxisFitter {
   }
 
   void operator()(const Eigen::Map<const Eigen::MatrixXd>& lines, Eigen::MatrixXd& out) const {
+    // rhs = N^T f, one column (one contiguous grid line) at a time.
     const int w = s_.degree + 1;
     Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(s_.controlCount, lines.cols());
-    for (std::int64_t i = 0; i < s_.samples; ++i) {
-      const double* wi = &s_.weights[static_cast<size_t>(i * w)];
-      for (int r = 0; r < w; ++r) rhs.row(s_.first[i] + r) += wi[r] * lines.row(i);
+    for (Eigen::Index b = 0; b < lines.cols(); ++b) {
+      const double* f = lines.col(b).data();
+      double* r = rhs.col(b).data();
+      for (std::int64_t i = 0; i < s_.samples; ++i) {
+        const double* wi = &s_.weights[static_cast<size_t>(i * w)];
+        double* ri = r + s_.first[i];
+        for (int k = 0; k < w; ++k) ri[k] += wi[k] * f[i];
+      }
     }
     out = llt_.solve(rhs);
   }
@@ -124,10 +130,16 @@ class AxisEvaluator {
   explicit AxisEvaluator(const AxisSampling& s) : s_(s) {}
   void operator()(const Eigen::Map<const Eigen::MatrixXd>& coeffs, Eigen::MatrixXd& out) const {
     const int w = s_.degree + 1;
-    out.setZero();
-    for (std::int64_t i = 0; i < s_.samples; ++i) {
-      const double* wi = &s_.weights[static_cast<size_t>(i * w)];
-      for (int r = 0; r < w; ++r) out.row(i) += wi[r] * coeffs.row(s_.first[i] + r);
+    for (Eigen::Index b = 0; b < coeffs.cols(); ++b) {
+      const double* c = coeffs.col(b).data();
+      double* y = out.col(b).data();
+      for (std::int64_t i = 0; i < s_.samples; ++i) {
+        const double* wi = &s_.weights[static_cast<size_t>(i * w)];
+        const double* ci = c + s_.first[i];
+        double v = 0.0;
+        for (int k = 0; k < w; ++k) v += wi[k] * ci[k];
+        y[i] = v;
+      }
     }
   }
 
