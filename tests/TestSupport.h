@@ -3,8 +3,11 @@
 #include <cstdlib>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
+
+#include "core/util/Error.h"
 
 namespace mfadvr::test {
 
@@ -28,6 +31,19 @@ inline std::filesystem::path scratchDir() {
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;
+}
+
+// Fails the test unless `f` throws mfadvr::Error whose message contains every one of `parts`.
+template <typename F>
+void expectError(F&& f, const std::vector<std::string>& parts) {
+  try {
+    f();
+    FAIL() << "no mfadvr::Error thrown";
+  } catch (const Error& e) {
+    for (const auto& p : parts)
+      EXPECT_NE(std::string(e.what()).find(p), std::string::npos)
+          << "missing '" << p << "' in: " << e.what();
+  }
 }
 
 }  // namespace mfadvr::test

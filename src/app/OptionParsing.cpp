@@ -22,44 +22,43 @@ std::vector<std::string> splitCommas(const std::string& text) {
   return parts;
 }
 
+// One value (repeated on all axes) or three comma-separated values of type T.
+template <class T>
+std::array<T, 3> parseValues(const std::string& option, const std::string& text, const char* what) {
+  const auto parts = splitCommas(text);
+  if (parts.size() != 1 && parts.size() != 3)
+    throw CLI::ValidationError(option, std::string("expected one ") + what +
+                                           " or three comma-separated " + what + "s, got '" + text +
+                                           "'");
+  std::array<T, 3> out{};
+  for (size_t i = 0; i < parts.size(); ++i) {
+    const std::string& s = parts[i];
+    T v{};
+    const auto r = std::from_chars(s.data(), s.data() + s.size(), v);
+    bool ok = !s.empty() && r.ec == std::errc() && r.ptr == s.data() + s.size();
+    if constexpr (std::is_floating_point_v<T>) ok = ok && std::isfinite(v);
+    if (!ok)
+      throw CLI::ValidationError(
+          option,
+          "'" + s + "' is not " + (std::is_floating_point_v<T> ? "a finite number" : "an integer"));
+    out[i] = v;
+  }
+  if (parts.size() == 1) out[1] = out[2] = out[0];
+  return out;
+}
+
 }  // namespace
 
 std::array<double, 3> parseTriple(const std::string& option, const std::string& text) {
-  const auto parts = splitCommas(text);
-  if (parts.size() != 1 && parts.size() != 3)
-    throw CLI::ValidationError(option, "expected one value or three comma-separated values, got '" +
-                                           text + "'");
-  std::array<double, 3> out{};
-  for (size_t i = 0; i < parts.size(); ++i) {
-    const std::string& s = parts[i];
-    double v = 0.0;
-    const auto r = std::from_chars(s.data(), s.data() + s.size(), v);
-    if (s.empty() || r.ec != std::errc() || r.ptr != s.data() + s.size() || !std::isfinite(v))
-      throw CLI::ValidationError(option, "'" + s + "' is not a finite number");
-    out[i] = v;
-  }
-  if (parts.size() == 1) out[1] = out[2] = out[0];
-  return out;
+  return parseValues<double>(option, text, "number");
 }
 
 std::array<long, 3> parseIntTriple(const std::string& option, const std::string& text) {
-  const auto parts = splitCommas(text);
-  if (parts.size() != 1 && parts.size() != 3)
-    throw CLI::ValidationError(option, "expected one integer or three comma-separated integers, got '" +
-                                           text + "'");
-  std::array<long, 3> out{};
-  for (size_t i = 0; i < parts.size(); ++i) {
-    const std::string& s = parts[i];
-    long v = 0;
-    const auto r = std::from_chars(s.data(), s.data() + s.size(), v);
-    if (s.empty() || r.ec != std::errc() || r.ptr != s.data() + s.size())
-      throw CLI::ValidationError(option, "'" + s + "' is not an integer");
-    out[i] = v;
-  }
-  if (parts.size() == 1) out[1] = out[2] = out[0];
-  return out;
+  return parseValues<long>(option, text, "integer");
 }
 
-bool wantProgress(bool quiet) { return !quiet && isatty(STDERR_FILENO); }
+bool wantProgress(bool quiet) {
+  return !quiet && isatty(STDERR_FILENO);
+}
 
 }  // namespace mfadvr::app

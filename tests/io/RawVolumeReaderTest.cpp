@@ -20,6 +20,8 @@
 namespace mfadvr {
 namespace {
 
+using test::expectError;
+
 template <typename T>
 std::string writeRaw(const std::filesystem::path& dir, const std::string& name,
                      const std::vector<T>& values) {
@@ -32,19 +34,6 @@ std::string writeRaw(const std::filesystem::path& dir, const std::string& name,
     out.write(reinterpret_cast<const char*>(bytes), sizeof(T));
   }
   return path;
-}
-
-// Fails the test unless `f` throws mfadvr::Error whose message contains every one of `parts`.
-template <typename F>
-void expectError(F&& f, const std::vector<std::string>& parts) {
-  try {
-    f();
-    FAIL() << "no mfadvr::Error thrown";
-  } catch (const Error& e) {
-    for (const auto& p : parts)
-      EXPECT_NE(std::string(e.what()).find(p), std::string::npos)
-          << "missing '" << p << "' in: " << e.what();
-  }
 }
 
 TEST(RawVolumeName, ParsesTheConvention) {

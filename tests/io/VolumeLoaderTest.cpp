@@ -13,17 +13,7 @@
 namespace mfadvr {
 namespace {
 
-template <typename F>
-void expectError(F&& f, const std::vector<std::string>& parts) {
-  try {
-    f();
-    FAIL() << "no mfadvr::Error thrown";
-  } catch (const Error& e) {
-    for (const auto& p : parts)
-      EXPECT_NE(std::string(e.what()).find(p), std::string::npos)
-          << "missing '" << p << "' in: " << e.what();
-  }
-}
+using test::expectError;
 
 TEST(VolumeLoader, BuiltinSpec) {
   const StructuredGrid g = loadStructuredVolume("builtin:gaussian-beam:8");

@@ -23,6 +23,8 @@
 namespace mfadvr {
 namespace {
 
+using test::expectError;
+
 // The grid every hand-written file describes: 10x4x3 samples, anisotropic spacing. (VTK's NRRD
 // reader takes a fastest axis of 9 samples or fewer for vector components.)
 const Index3 kDims{10, 4, 3};
@@ -63,18 +65,6 @@ std::string labelBytes(std::endian order) {
 std::string writeFile(const std::filesystem::path& path, const std::string& content) {
   std::ofstream(path, std::ios::binary) << content;
   return path.string();
-}
-
-template <typename F>
-void expectError(F&& f, const std::vector<std::string>& parts) {
-  try {
-    f();
-    FAIL() << "no mfadvr::Error thrown";
-  } catch (const Error& e) {
-    for (const auto& p : parts)
-      EXPECT_NE(std::string(e.what()).find(p), std::string::npos)
-          << "missing '" << p << "' in: " << e.what();
-  }
 }
 
 void expectDensityGrid(const StructuredGrid& g, const Vec3d& origin = kOrigin) {
