@@ -38,7 +38,10 @@ Command addEncodeCommand(CLI::App& app) {
   auto run = [o]() -> int {
     StructuredFitOptions fit;
     const auto p = parseIntTriple("--degree", o->degree);
-    for (int a = 0; a < 3; ++a) fit.degree[a] = static_cast<int>(p[a]);
+    for (int a = 0; a < 3; ++a) {
+      if (p[a] < -1000 || p[a] > 1000) throw CLI::ValidationError("--degree", "degree out of range");
+      fit.degree[a] = static_cast<int>(p[a]);  // the encoder explains the valid range
+    }
     if (!o->ctrl.empty()) {
       const auto n = parseIntTriple("--ctrl", o->ctrl);
       for (int a = 0; a < 3; ++a) {

@@ -1,4 +1,5 @@
 // mfadvr query MODEL (--points FILE | X Y Z) [--derivatives 0|1|2] [-o OUT.csv]
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -46,6 +47,9 @@ Command addQueryCommand(CLI::App& app) {
               }
               points = parsePointList(text.str(), o->pointsFile);
             } else if (o->xyz.size() == 3) {
+              for (double v : o->xyz)
+                if (!std::isfinite(v))
+                  throw CLI::ValidationError("x y z", "coordinates must be finite");
               points.emplace_back(o->xyz[0], o->xyz[1], o->xyz[2]);
             } else {
               throw CLI::ValidationError("query", "give a point as X Y Z or a file with --points");

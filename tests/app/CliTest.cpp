@@ -58,6 +58,7 @@ TEST(Cli, UsageErrorsExitTwo) {
   EXPECT_EQ(run("encode builtin:gaussian-beam:8 --degree 1,2").status, 2);  // two values
   EXPECT_EQ(run("encode builtin:gaussian-beam:8 --ctrl x").status, 2);
   EXPECT_EQ(run("query m.mfa --derivatives 3").status, 2);
+  EXPECT_EQ(run("encode builtin:gaussian-beam:8 --degree 99999999999").status, 2);
 }
 
 TEST(Cli, EncodeInfoQueryRoundTrip) {

@@ -31,6 +31,8 @@ TEST(KnotVector, RejectsBadParameters) {
   EXPECT_THROW(KnotVector::fromKnots(2, {0, 0, 0, 0.7, 0.5, 1, 1, 1}), Error);  // decreasing
   EXPECT_THROW(KnotVector::fromKnots(2, {0, 0, 0, .5, .5, .5, 1, 1, 1}), Error);  // multiplicity
   EXPECT_NO_THROW(KnotVector::fromKnots(2, {0, 0, 0, .5, .5, 1, 1, 1}));
+  EXPECT_THROW(KnotVector::fromKnots(2, {0, 0, 0, 0, 1, 1, 1}), Error);  // empty end span
+  EXPECT_THROW(KnotVector::fromKnots(2, {0, 0, 0, 1, 1, 1, 1}), Error);
 }
 
 // The O(1) uniform lookup must agree with the definition u_s <= u < u_{s+1} everywhere,

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
 #include <random>
 #include <thread>
 
@@ -55,6 +57,15 @@ TEST(TensorBSpline, PartitionOfUnity) {
       for (float v : h.hessian) EXPECT_NEAR(v, 0.0f, 2e-2f);
     }
   }
+}
+
+// Coordinates outside [0,1] clamp onto the box; NaN gives a finite answer, not a crash.
+TEST(TensorBSpline, OutOfRangeAndNaNCoordinates) {
+  const TensorBSpline s = randomSpline({3, 3, 3}, {6, 6, 6}, 1);
+  EXPECT_EQ(s.value(Vec3d(-5, 0.5, 7)), s.value(Vec3d(0, 0.5, 1)));
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_TRUE(std::isfinite(s.value(Vec3d(nan, 0.5, 0.5))));
+  EXPECT_TRUE(s.valueGradient(Vec3d(0.5, nan, nan)).gradient.allFinite());
 }
 
 // The degree-specialized and generic evaluators must agree, and all three query kinds must

@@ -61,6 +61,9 @@ KnotVector KnotVector::fromKnots(int degree, std::vector<double> knots) {
     if (knots[i] != 0.0 || knots[m - 1 - i] != 1.0)
       throw Error("knot vector is not clamped to [0,1]");
   }
+  // Exactly p+1 end knots: more would leave empty spans at the ends of [0,1].
+  if (knots[degree + 1] <= 0.0 || knots[m - degree - 2] >= 1.0)
+    throw Error("knot vector has more than degree + 1 knots at 0 or at 1");
   int run = 1;
   for (long i = 1; i < m; ++i) {
     if (!(knots[i] >= knots[i - 1]) || !std::isfinite(knots[i]))

@@ -32,7 +32,7 @@ class KnotVector {
   // The span s in [p, n-1] with u_s <= u < u_{s+1}; u is clamped to [0,1] first and u = 1
   // belongs to the last non-empty span.
   int findSpan(double u) const {
-    if (u <= 0.0) return degree_;
+    if (!(u > 0.0)) return degree_;  // also NaN
     const int last = controlCount() - 1;
     if (u >= 1.0) return last;
     if (regular_) {

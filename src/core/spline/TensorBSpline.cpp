@@ -9,7 +9,8 @@
 namespace mfadvr {
 namespace {
 
-inline double clamp01(double u) { return u < 0.0 ? 0.0 : (u > 1.0 ? 1.0 : u); }
+// NaN maps to 0 so that a bad coordinate yields a finite answer instead of undefined behaviour.
+inline double clamp01(double u) { return !(u > 0.0) ? 0.0 : (u > 1.0 ? 1.0 : u); }
 
 // Value (and, with kGradient, the three parametric partials) by separable contraction: the
 // x sums of each (j,k) row are shared by the value and the y/z partials, so the gradient costs
