@@ -4,8 +4,8 @@
 //   build/release/bench/mfadvr_bench --benchmark_filter=Query --benchmark_repetitions=5
 //       --benchmark_report_aggregates_only=true   (one command line)
 #include <benchmark/benchmark.h>
-#include <tbb/task_arena.h>
 #include <tbb/info.h>
+#include <tbb/task_arena.h>
 
 #include <map>
 #include <memory>
@@ -27,8 +27,8 @@ const Model& modelFor(int degree, int n) {
     std::vector<float> ctrl(static_cast<size_t>(n) * n * n);
     for (float& c : ctrl) c = uni(rng);
     const KnotVector k = KnotVector::clampedUniform(degree, n);
-    slot = std::make_unique<Model>(TensorBSpline({k, k, k}, std::move(ctrl)), DomainBox{}, 0.0,
-                                   1.0);
+    slot =
+        std::make_unique<Model>(TensorBSpline({k, k, k}, std::move(ctrl)), DomainBox{}, 0.0, 1.0);
   }
   return *slot;
 }
@@ -67,8 +67,8 @@ enum class Kind { kValue, kValueGradient };
 void query(benchmark::State& state, Kind kind, Order order) {
   const int degree = static_cast<int>(state.range(0));
   const int n = static_cast<int>(state.range(1));
-  const int threads = state.range(2) == 0 ? tbb::info::default_concurrency()
-                                          : static_cast<int>(state.range(2));
+  const int threads =
+      state.range(2) == 0 ? tbb::info::default_concurrency() : static_cast<int>(state.range(2));
   const Model& m = modelFor(degree, n);
   const auto& pts = order == Order::kRandom ? randomPoints() : rayPoints();
   std::vector<float> values(pts.size());

@@ -2,8 +2,8 @@
 #include <cstdint>
 #include <string_view>
 
-#include "core/util/PointList.h"
 #include "core/util/Error.h"
+#include "core/util/PointList.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, size_t size) {
   try {

@@ -17,8 +17,8 @@ int main(int argc, char** argv) {
     mfadvr::StructuredFitOptions o;
     o.degree = p;
     o.controlCounts = {4, 3, 3};
-    const auto m = mfadvr::encodeStructured(
-        mfadvr::sampleBuiltinSpec("builtin:marschner-lobb:6x5x4"), o);
+    const auto m =
+        mfadvr::encodeStructured(mfadvr::sampleBuiltinSpec("builtin:marschner-lobb:6x5x4"), o);
     mfadvr::saveModel(m, models / ("seed" + std::to_string(i++) + ".mfa"));
   }
   std::ofstream(points / "seed.txt") << "x,y,z\n0 0 0\n1.5, -2e-3, 4\n# c\n";

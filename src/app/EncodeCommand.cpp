@@ -30,7 +30,8 @@ Command addEncodeCommand(CLI::App& app) {
                   "Control points N or NX,NY,NZ per axis (default: as many as samples, which "
                   "interpolates; fewer gives a smoothing least-squares fit)");
   sub->add_option("--spacing", o->spacing, "Sample spacing S or SX,SY,SZ (overrides the file's)");
-  sub->add_option("--origin", o->origin, "Position of the first sample X,Y,Z (overrides the file's)");
+  sub->add_option("--origin", o->origin,
+                  "Position of the first sample X,Y,Z (overrides the file's)");
   sub->add_option("--field", o->field, "Scalar array to encode (default: the active/first one)");
   sub->add_flag("--json", o->json, "Print the report as JSON");
   sub->add_flag("-q,--quiet", o->quiet, "No progress on stderr");
@@ -39,7 +40,8 @@ Command addEncodeCommand(CLI::App& app) {
     StructuredFitOptions fit;
     const auto p = parseIntTriple("--degree", o->degree);
     for (int a = 0; a < 3; ++a) {
-      if (p[a] < -1000 || p[a] > 1000) throw CLI::ValidationError("--degree", "degree out of range");
+      if (p[a] < -1000 || p[a] > 1000)
+        throw CLI::ValidationError("--degree", "degree out of range");
       fit.degree[a] = static_cast<int>(p[a]);  // the encoder explains the valid range
     }
     if (!o->ctrl.empty()) {
@@ -72,8 +74,10 @@ Command addEncodeCommand(CLI::App& app) {
     FitReport report;
     const Model model = encodeStructured(grid, fit, &report);
     if (!o->output.empty()) saveModel(model, o->output);
-    if (o->json) std::cout << fitReportJson(report, o->output).dump(2) << "\n";
-    else std::cout << formatFitReport(report, o->output);
+    if (o->json)
+      std::cout << fitReportJson(report, o->output).dump(2) << "\n";
+    else
+      std::cout << formatFitReport(report, o->output);
     return 0;
   };
   return {sub, run};

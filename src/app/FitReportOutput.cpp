@@ -25,8 +25,8 @@ std::string fmt(const char* f, double v) {
 std::string formatFitReport(const FitReport& r, const std::string& modelPath) {
   std::ostringstream o;
   o << "source          " << r.source << "\n";
-  o << "samples         " << r.samples[0] << " x " << r.samples[1] << " x " << r.samples[2]
-    << "  (" << groupDigits(r.inputBytes) << " bytes)\n";
+  o << "samples         " << r.samples[0] << " x " << r.samples[1] << " x " << r.samples[2] << "  ("
+    << groupDigits(r.inputBytes) << " bytes)\n";
   o << "value range     " << fmt("%.6g", r.valueMin) << " .. " << fmt("%.6g", r.valueMax) << "\n";
   o << "degree          " << r.degree[0] << " " << r.degree[1] << " " << r.degree[2] << "\n";
   o << "control points  " << r.controlCounts[0] << " x " << r.controlCounts[1] << " x "
@@ -38,7 +38,8 @@ std::string formatFitReport(const FitReport& r, const std::string& modelPath) {
     << " of the value range)\n";
   o << "model size      " << groupDigits(r.modelBytes) << " bytes"
     << (modelPath.empty() ? std::string("  (not written: no -o)") : "  -> " + modelPath) << "\n";
-  o << "compression     " << fmt("%.2f", r.compressionRatio()) << " : 1  (input bytes / model bytes)\n";
+  o << "compression     " << fmt("%.2f", r.compressionRatio())
+    << " : 1  (input bytes / model bytes)\n";
   return o.str();
 }
 

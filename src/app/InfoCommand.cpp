@@ -15,7 +15,7 @@ nlohmann::json infoJson(const Model& m, const std::string& path) {
   const Provenance& p = m.provenance();
   nlohmann::json knots = nlohmann::json::array();
   for (int a = 0; a < 3; ++a)
-    knots.push_back(s.knots(a).isUniform()             ? "uniform"
+    knots.push_back(s.knots(a).isUniform()            ? "uniform"
                     : s.knots(a).hasRegularInterior() ? "regular-interior"
                                                       : "non-uniform");
   return {{"file", path},
@@ -67,8 +67,8 @@ Command addInfoCommand(CLI::App& app) {
                 << kModelFormatVersion << ")\n";
             out << "degree          " << j["degree"][0] << " " << j["degree"][1] << " "
                 << j["degree"][2] << "\n";
-            out << "control points  " << j["control_counts"][0] << " x "
-                << j["control_counts"][1] << " x " << j["control_counts"][2] << "\n";
+            out << "control points  " << j["control_counts"][0] << " x " << j["control_counts"][1]
+                << " x " << j["control_counts"][2] << "\n";
             out << "knots           " << j["knots"][0].get<std::string>() << ", "
                 << j["knots"][1].get<std::string>() << ", " << j["knots"][2].get<std::string>()
                 << "\n";

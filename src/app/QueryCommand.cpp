@@ -82,8 +82,10 @@ Command addQueryCommand(CLI::App& app) {
             if (outside > 0)
               std::cerr << "mfadvr query: warning: " << outside << " of " << points.size()
                         << " points lie outside the model's domain box and were clamped onto it\n";
-            if (o->output.empty()) std::cout << csv;
-            else writeFileAtomically(o->output, csv);
+            if (o->output.empty())
+              std::cout << csv;
+            else
+              writeFileAtomically(o->output, csv);
             return 0;
           }};
 }

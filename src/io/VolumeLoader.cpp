@@ -63,8 +63,9 @@ StructuredGrid loadStructuredVolume(const std::string& input, const VolumeLoadOp
   if (isBuiltinSpec(input)) {
     // A built-in is defined on [-1,1]^3; moving its samples would detach it from its truth.
     if (options.spacing || options.origin || !options.field.empty())
-      throw Error(input + ": --spacing, --origin and --field apply to files, not to built-in "
-                          "functions (choose the grid with builtin:NAME:NXxNYxNZ)");
+      throw Error(input +
+                  ": --spacing, --origin and --field apply to files, not to built-in "
+                  "functions (choose the grid with builtin:NAME:NXxNYxNZ)");
     return sampleBuiltinSpec(input);
   }
 

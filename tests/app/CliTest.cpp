@@ -30,8 +30,8 @@ Result run(const std::string& args) {
   std::filesystem::create_directories(dir);
   const auto outFile = dir / (std::to_string(::getpid()) + ".stdout");
   const auto errFile = dir / (std::to_string(::getpid()) + ".stderr");
-  const std::string cmd = std::string(MFADVR_EXE) + " " + args + " >" + outFile.string() +
-                          " 2>" + errFile.string();
+  const std::string cmd =
+      std::string(MFADVR_EXE) + " " + args + " >" + outFile.string() + " 2>" + errFile.string();
   const int raw = std::system(cmd.c_str());
   Result r;
   r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
@@ -54,7 +54,7 @@ TEST(Cli, VersionAndHelp) {
 TEST(Cli, UsageErrorsExitTwo) {
   EXPECT_EQ(run("").status, 2);
   EXPECT_EQ(run("frobnicate").status, 2);
-  EXPECT_EQ(run("encode").status, 2);                                      // missing input
+  EXPECT_EQ(run("encode").status, 2);                                       // missing input
   EXPECT_EQ(run("encode builtin:gaussian-beam:8 --degree 1,2").status, 2);  // two values
   EXPECT_EQ(run("encode builtin:gaussian-beam:8 --ctrl x").status, 2);
   EXPECT_EQ(run("query m.mfa --derivatives 3").status, 2);
@@ -64,8 +64,8 @@ TEST(Cli, UsageErrorsExitTwo) {
 TEST(Cli, EncodeInfoQueryRoundTrip) {
   const auto dir = test::scratchDir();
   const std::string model = (dir / "beam.mfa").string();
-  Result r = run("encode builtin:gaussian-beam:24x20x16 --degree 3,2,3 --ctrl 12,10,8 -o " +
-                 model + " --json");
+  Result r = run("encode builtin:gaussian-beam:24x20x16 --degree 3,2,3 --ctrl 12,10,8 -o " + model +
+                 " --json");
   ASSERT_EQ(r.status, 0) << r.err;
   const auto report = nlohmann::json::parse(r.out);
   EXPECT_EQ(report["samples"], nlohmann::json({24, 20, 16}));

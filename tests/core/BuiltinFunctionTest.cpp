@@ -43,7 +43,7 @@ TEST(BuiltinFunction, KnownValues) {
   // At a corner l = 1: 255 exp(-1 / (2/9)) = 255 exp(-4.5).
   EXPECT_NEAR(beam->value(Vec3d::Ones()), 255.0 * std::exp(-4.5), 1e-9);
   const auto beams = makeBuiltin("gaussian-beams");
-  EXPECT_NEAR(beams->value(Vec3d(-0.5, -0.5, 0)), 255.0, 0.5);     // largest beam
+  EXPECT_NEAR(beams->value(Vec3d(-0.5, -0.5, 0)), 255.0, 0.5);      // largest beam
   EXPECT_NEAR(beams->value(Vec3d(0.8125, 0.8125, 0)), 255.0, 0.5);  // smallest beam
 }
 
@@ -53,9 +53,9 @@ TEST(BuiltinFunction, SpecParsing) {
   EXPECT_EQ(parseBuiltinSpec("builtin:gaussian-beams").dims, (Index3{128, 128, 128}));
   EXPECT_EQ(parseBuiltinSpec("builtin:gaussian-beam:16").dims, (Index3{16, 16, 16}));
   EXPECT_EQ(parseBuiltinSpec("builtin:gaussian-beam:8x9x10").dims, (Index3{8, 9, 10}));
-  for (const char* bad : {"builtin:", "builtin:nope", "builtin:gaussian-beam:1",
-                          "builtin:gaussian-beam:8x9", "builtin:gaussian-beam:99999999",
-                          "builtin:gaussian-beam:8x", "builtin:gaussian-beam:-4"})
+  for (const char* bad :
+       {"builtin:", "builtin:nope", "builtin:gaussian-beam:1", "builtin:gaussian-beam:8x9",
+        "builtin:gaussian-beam:99999999", "builtin:gaussian-beam:8x", "builtin:gaussian-beam:-4"})
     EXPECT_THROW(parseBuiltinSpec(bad), Error) << bad;
 }
 

@@ -27,8 +27,8 @@ TEST(KnotVector, RejectsBadParameters) {
   EXPECT_THROW(KnotVector::clampedUniform(0, 5), Error);
   EXPECT_THROW(KnotVector::clampedUniform(8, 20), Error);
   EXPECT_THROW(KnotVector::clampedUniform(3, 3), Error);
-  EXPECT_THROW(KnotVector::fromKnots(2, {0, 0, 0.5, 1, 1, 1}), Error);        // not clamped
-  EXPECT_THROW(KnotVector::fromKnots(2, {0, 0, 0, 0.7, 0.5, 1, 1, 1}), Error);  // decreasing
+  EXPECT_THROW(KnotVector::fromKnots(2, {0, 0, 0.5, 1, 1, 1}), Error);            // not clamped
+  EXPECT_THROW(KnotVector::fromKnots(2, {0, 0, 0, 0.7, 0.5, 1, 1, 1}), Error);    // decreasing
   EXPECT_THROW(KnotVector::fromKnots(2, {0, 0, 0, .5, .5, .5, 1, 1, 1}), Error);  // multiplicity
   EXPECT_NO_THROW(KnotVector::fromKnots(2, {0, 0, 0, .5, .5, 1, 1, 1}));
   EXPECT_THROW(KnotVector::fromKnots(2, {0, 0, 0, 0, 1, 1, 1}), Error);  // empty end span

@@ -23,7 +23,9 @@ Model smallModel() {
   return encodeStructured(g, o);
 }
 
-std::vector<std::uint8_t> bytesOf(const std::string& s) { return {s.begin(), s.end()}; }
+std::vector<std::uint8_t> bytesOf(const std::string& s) {
+  return {s.begin(), s.end()};
+}
 
 void fixChecksum(std::vector<std::uint8_t>& b) {
   const std::uint32_t c =
@@ -123,8 +125,8 @@ TEST(ModelFile, ClearMessages) {
 
 // Rewrites the JSON header (keeping the checksum valid) so that validation past the checksum is
 // exercised: absurd sizes must not allocate, bad values must be rejected.
-std::vector<std::uint8_t> withHeader(const std::vector<std::uint8_t>& full,
-                                     const std::string& from, const std::string& to) {
+std::vector<std::uint8_t> withHeader(const std::vector<std::uint8_t>& full, const std::string& from,
+                                     const std::string& to) {
   std::uint32_t hlen;
   std::memcpy(&hlen, full.data() + 14, 4);
   std::string header(full.begin() + 18, full.begin() + 18 + hlen);
@@ -183,9 +185,14 @@ TEST(ModelFile, RandomCorruptionNeverCrashes) {
     for (int e = 0; e < edits; ++e) {
       const size_t at = rng() % b.size();
       switch (rng() % 3) {
-        case 0: b[at] = static_cast<std::uint8_t>(rng()); break;
-        case 1: b.erase(b.begin() + static_cast<long>(at)); break;
-        default: b.insert(b.begin() + static_cast<long>(at), static_cast<std::uint8_t>(rng()));
+        case 0:
+          b[at] = static_cast<std::uint8_t>(rng());
+          break;
+        case 1:
+          b.erase(b.begin() + static_cast<long>(at));
+          break;
+        default:
+          b.insert(b.begin() + static_cast<long>(at), static_cast<std::uint8_t>(rng()));
       }
     }
     if (b.size() > 4 && rng() % 2) fixChecksum(b);

@@ -89,12 +89,13 @@ TEST_P(PolynomialReproduction, ValuesGradientsHessians) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    Grids, PolynomialReproduction,
-    ::testing::Values(Case{{1, 1, 1}, {5, 4, 3}, {3, 2, 2}}, Case{{3, 2, 1}, {11, 8, 6}, {6, 5, 3}},
-                      Case{{2, 2, 2}, {9, 10, 7}, {3, 3, 3}}, Case{{3, 3, 3}, {10, 8, 7}, {0, 0, 0}},
-                      Case{{4, 3, 5}, {13, 9, 12}, {8, 6, 7}},
-                      Case{{7, 2, 3}, {12, 6, 9}, {10, 4, 0}}));
+INSTANTIATE_TEST_SUITE_P(Grids, PolynomialReproduction,
+                         ::testing::Values(Case{{1, 1, 1}, {5, 4, 3}, {3, 2, 2}},
+                                           Case{{3, 2, 1}, {11, 8, 6}, {6, 5, 3}},
+                                           Case{{2, 2, 2}, {9, 10, 7}, {3, 3, 3}},
+                                           Case{{3, 3, 3}, {10, 8, 7}, {0, 0, 0}},
+                                           Case{{4, 3, 5}, {13, 9, 12}, {8, 6, 7}},
+                                           Case{{7, 2, 3}, {12, 6, 9}, {10, 4, 0}}));
 
 }  // namespace
 }  // namespace mfadvr

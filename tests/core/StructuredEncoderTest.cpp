@@ -92,15 +92,17 @@ TEST(StructuredEncoder, ClearErrorsForBadOptions) {
   StructuredGrid flat = g;
   flat.dims = {8, 8, 1};
   flat.values.resize(64);
-  EXPECT_NE([&] {
-    try {
-      encodeStructured(flat, fitOptions({1, 1, 1}));
-    } catch (const Error& e) {
-      return std::string(e.what());
-    }
-    return std::string();
-  }().find("at least 2"),
-            std::string::npos);
+  EXPECT_NE(
+      [&] {
+        try {
+          encodeStructured(flat, fitOptions({1, 1, 1}));
+        } catch (const Error& e) {
+          return std::string(e.what());
+        }
+        return std::string();
+      }()
+          .find("at least 2"),
+      std::string::npos);
 
   StructuredGrid nan = g;
   nan.values[17] = std::numeric_limits<double>::quiet_NaN();

@@ -157,8 +157,8 @@ StructuredGrid sampleBuiltin(const BuiltinFunction& f, const Index3& dims) {
     for (std::int64_t j = 0; j < dims[1]; ++j)
       for (std::int64_t i = 0; i < dims[0]; ++i) g.at(i, j, k) = f.value(g.position(i, j, k));
   });
-  g.source = "builtin:" + f.name() + ":" + std::to_string(dims[0]) + "x" +
-             std::to_string(dims[1]) + "x" + std::to_string(dims[2]);
+  g.source = "builtin:" + f.name() + ":" + std::to_string(dims[0]) + "x" + std::to_string(dims[1]) +
+             "x" + std::to_string(dims[2]);
   g.fieldName = f.name();
   g.sampleType = "float64";
   g.inputBytes = g.sampleCount() * static_cast<std::int64_t>(sizeof(double));

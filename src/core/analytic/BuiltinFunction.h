@@ -40,7 +40,9 @@ struct BuiltinSpec {
   Index3 dims{0, 0, 0};
 };
 
-inline bool isBuiltinSpec(const std::string& input) { return input.rfind("builtin:", 0) == 0; }
+inline bool isBuiltinSpec(const std::string& input) {
+  return input.rfind("builtin:", 0) == 0;
+}
 
 // Parses builtin:NAME[:N | :NXxNYxNZ]; throws mfadvr::Error with the accepted forms.
 BuiltinSpec parseBuiltinSpec(const std::string& spec);

@@ -12,9 +12,9 @@ struct FitReport {
   Index3 samples{0, 0, 0};
   Degree3 degree{0, 0, 0};
   Index3 controlCounts{0, 0, 0};
-  double seconds = 0.0;     // wall time of the fit, error evaluation included
+  double seconds = 0.0;  // wall time of the fit, error evaluation included
   double valueMin = 0.0, valueMax = 0.0;
-  double maxError = 0.0;    // absolute, model (float32 control points) vs every input sample
+  double maxError = 0.0;  // absolute, model (float32 control points) vs every input sample
   double rmsError = 0.0;
   std::int64_t inputBytes = 0;
   std::int64_t modelBytes = 0;  // size of the .mfa file

@@ -1,8 +1,8 @@
 #include "core/encode/StructuredEncoder.h"
 
+#include <tbb/parallel_for.h>
 #include <Eigen/Sparse>
 #include <Eigen/SparseCholesky>
-#include <tbb/parallel_for.h>
 
 #include <chrono>
 #include <cmath>
@@ -16,7 +16,9 @@
 namespace mfadvr {
 namespace {
 
-const char* axisName(int a) { return a == 0 ? "x" : (a == 1 ? "y" : "z"); }
+const char* axisName(int a) {
+  return a == 0 ? "x" : (a == 1 ? "y" : "z");
+}
 
 // The non-zero basis functions at each sample of one axis: sample i touches control points
 // first[i] .. first[i] + p with weights w[i*(p+1) ..].
@@ -76,8 +78,7 @@ class AxisFitter {
     for (std::int64_t i = 0; i < s_.samples; ++i) {
       const double* wi = &s_.weights[static_cast<size_t>(i * w)];
       for (int r = 0; r < w; ++r)
-        for (int q = 0; q < w; ++q)
-          t.emplace_back(s_.first[i] + r, s_.first[i] + q, wi[r] * wi[q]);
+        for (int q = 0; q < w; ++q) t.emplace_back(s_.first[i] + r, s_.first[i] + q, wi[r] * wi[q]);
     }
     // A vanishing second-difference penalty (1e-10 of the mean diagonal) keeps the system
     // definite when sample and knot phases drift against each other (n just below N) and
@@ -120,8 +121,7 @@ class AxisFitter {
  private:
   AxisSampling s_;
   // Natural ordering keeps the band: the factor has the bandwidth of the degree.
-  Eigen::SimplicialLLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::NaturalOrdering<int>>
-      llt_;
+  Eigen::SimplicialLLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::NaturalOrdering<int>> llt_;
 };
 
 // Evaluates the spline on the grid samples of one axis: y_i = sum_r N_r(u_i) c_{first_i + r}.
@@ -147,7 +147,9 @@ class AxisEvaluator {
   const AxisSampling& s_;
 };
 
-Index3 rotate(const Index3& d, std::int64_t newLast) { return {d[1], d[2], newLast}; }
+Index3 rotate(const Index3& d, std::int64_t newLast) {
+  return {d[1], d[2], newLast};
+}
 
 std::string utcNow() {
   const std::time_t t = std::time(nullptr);

@@ -14,9 +14,9 @@ struct StructuredGrid {
   Vec3d spacing = Vec3d::Ones();  // physical distance between neighbouring samples
   std::vector<double> values;     // x fastest: values[i + nx * (j + ny * k)]
 
-  std::string source;      // where the samples came from (path or builtin spec)
-  std::string fieldName;   // scalar array name, when the format has one
-  std::string sampleType;  // storage type of the source: uint8, int16, float32, ...
+  std::string source;           // where the samples came from (path or builtin spec)
+  std::string fieldName;        // scalar array name, when the format has one
+  std::string sampleType;       // storage type of the source: uint8, int16, float32, ...
   std::int64_t inputBytes = 0;  // bytes of the samples in their source type
 
   std::int64_t sampleCount() const { return dims[0] * dims[1] * dims[2]; }

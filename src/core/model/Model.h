@@ -31,12 +31,12 @@ struct Provenance {
   std::string sampleType;      // source storage type
   Index3 sampleDims{0, 0, 0};  // input grid size (0 when scattered)
   std::int64_t inputBytes = 0;
-  std::string encoder;         // e.g. "structured-least-squares"
-  std::string created;         // UTC time, ISO 8601
+  std::string encoder;  // e.g. "structured-least-squares"
+  std::string created;  // UTC time, ISO 8601
   std::string toolVersion;
   double fitSeconds = 0.0;
-  double maxError = 0.0;       // absolute, over all input samples
-  double rmsError = 0.0;       // absolute
+  double maxError = 0.0;  // absolute, over all input samples
+  double rmsError = 0.0;  // absolute
 };
 
 class Model {

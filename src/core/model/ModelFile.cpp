@@ -27,7 +27,7 @@ constexpr std::int64_t kMaxControlPerAxis = 1 << 20;
 using nlohmann::json;
 
 json provenanceToJson(const Provenance& p) {
-  return {{"source", p.source},         {"field", p.field},
+  return {{"source", p.source},          {"field", p.field},
           {"sample_type", p.sampleType}, {"sample_dims", p.sampleDims},
           {"input_bytes", p.inputBytes}, {"encoder", p.encoder},
           {"created", p.created},        {"tool_version", p.toolVersion},
@@ -164,14 +164,15 @@ Model parseModel(std::span<const std::uint8_t> b, const std::string& name) {
   // Sizes: every factor is at most 2^20, so the products below cannot overflow int64.
   const std::int64_t knotCount = (n[0] + p[0] + 1) + (n[1] + p[1] + 1) + (n[2] + p[2] + 1);
   const std::int64_t ctrlCount = n[0] * n[1] * n[2];
-  if (ctrlCount > std::numeric_limits<std::int64_t>::max() / 8) throw bad("too many control points");
+  if (ctrlCount > std::numeric_limits<std::int64_t>::max() / 8)
+    throw bad("too many control points");
   const std::int64_t expected =
       static_cast<std::int64_t>(kPrefixBytes + headerBytes) + 8 * knotCount + 4 * ctrlCount + 4;
   if (static_cast<std::int64_t>(b.size()) != expected)
     throw bad("size is " + std::to_string(b.size()) + " bytes but the header describes " +
-              std::to_string(expected) + (static_cast<std::int64_t>(b.size()) < expected
-                                              ? " (file is truncated)"
-                                              : " (trailing bytes)"));
+              std::to_string(expected) +
+              (static_cast<std::int64_t>(b.size()) < expected ? " (file is truncated)"
+                                                              : " (trailing bytes)"));
   const auto stored = readAt<std::uint32_t>(b, b.size() - 4);
   if (crc(b.data(), b.size() - 4) != stored) throw bad("checksum mismatch (file is corrupted)");
 

@@ -36,8 +36,8 @@ KnotVector KnotVector::clampedUniform(int degree, int count) {
     throw Error("degree " + std::to_string(degree) + " is outside 1.." +
                 std::to_string(kMaxDegree));
   if (count < degree + 1)
-    throw Error("control point count " + std::to_string(count) + " is below degree + 1 = " +
-                std::to_string(degree + 1));
+    throw Error("control point count " + std::to_string(count) +
+                " is below degree + 1 = " + std::to_string(degree + 1));
   std::vector<double> k(static_cast<size_t>(count + degree + 1));
   const int spans = count - degree;
   for (int i = 0; i <= degree; ++i) {

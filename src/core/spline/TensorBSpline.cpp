@@ -10,7 +10,9 @@ namespace mfadvr {
 namespace {
 
 // NaN maps to 0 so that a bad coordinate yields a finite answer instead of undefined behaviour.
-inline double clamp01(double u) { return !(u > 0.0) ? 0.0 : (u > 1.0 ? 1.0 : u); }
+inline double clamp01(double u) {
+  return !(u > 0.0) ? 0.0 : (u > 1.0 ? 1.0 : u);
+}
 
 // Value (and, with kGradient, the three parametric partials) by separable contraction: the
 // x sums of each (j,k) row are shared by the value and the y/z partials, so the gradient costs
@@ -135,8 +137,7 @@ TensorBSpline::TensorBSpline(std::array<KnotVector, 3> knots, std::vector<float>
   const Degree3 p = degrees();
   if (p[0] == p[1] && p[1] == p[2]) {
     static constexpr auto values = valueTable(std::make_integer_sequence<int, kMaxDegree>{});
-    static constexpr auto gradients =
-        gradientTable(std::make_integer_sequence<int, kMaxDegree>{});
+    static constexpr auto gradients = gradientTable(std::make_integer_sequence<int, kMaxDegree>{});
     valueFn_ = values[p[0] - 1];
     gradientFn_ = gradients[p[0] - 1];
   } else {
@@ -217,9 +218,12 @@ TensorBSpline TensorBSpline::withInsertedKnot(int axis, double u) const {
       const std::int64_t si = strideIn[axis], so = strideOut[axis];
       for (std::int64_t i = 0; i <= m[axis] - 1; ++i) {
         double q;
-        if (i <= k - p) q = in[i * si];
-        else if (i >= k - mult + 1) q = in[(i - 1) * si];
-        else q = alpha[i] * in[i * si] + (1.0 - alpha[i]) * in[(i - 1) * si];
+        if (i <= k - p)
+          q = in[i * si];
+        else if (i >= k - mult + 1)
+          q = in[(i - 1) * si];
+        else
+          q = alpha[i] * in[i * si] + (1.0 - alpha[i]) * in[(i - 1) * si];
         o[i * so] = static_cast<float>(q);
       }
     }

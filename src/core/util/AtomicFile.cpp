@@ -17,8 +17,7 @@ void writeFileAtomically(const std::filesystem::path& path, std::string_view byt
       path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
   std::string tmpl = (dir / (path.filename().string() + ".tmp.XXXXXX")).string();
   const int fd = mkstemp(tmpl.data());
-  if (fd < 0)
-    throw Error("cannot write " + path.string() + ": " + std::strerror(errno));
+  if (fd < 0) throw Error("cannot write " + path.string() + ": " + std::strerror(errno));
   auto fail = [&](const std::string& what) {
     const int err = errno;
     ::close(fd);

@@ -10,7 +10,9 @@
 namespace mfadvr {
 namespace {
 
-bool isSeparator(char c) { return c == ',' || c == ' ' || c == '\t' || c == '\r'; }
+bool isSeparator(char c) {
+  return c == ',' || c == ' ' || c == '\t' || c == '\r';
+}
 
 // Splits a line into tokens at commas and whitespace.
 std::vector<std::string_view> tokens(std::string_view line) {
