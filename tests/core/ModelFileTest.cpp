@@ -154,6 +154,11 @@ TEST(ModelFile, SemanticValidationBehindValidChecksum) {
   EXPECT_NE(errorOf(withHeader(full, "\"degree\":[3,2,2]", "\"degree\":[9,2,2]")), "");
   EXPECT_NE(errorOf(withHeader(full, "\"degree\":[3,2,2]", "\"degree\":[-1,2,2]")), "");
   EXPECT_NE(errorOf(withHeader(full, "\"degree\":[3,2,2]", "\"degree\":\"three\"")), "");
+  // Non-integer numbers where integers belong (a float this large is not representable as int).
+  EXPECT_NE(errorOf(withHeader(full, "\"degree\":[3,2,2]", "\"degree\":[5.5e26,2,2]")), "");
+  EXPECT_NE(errorOf(withHeader(full, "\"control_counts\":[6,5,4]", "\"control_counts\":[6,5,4.0]")),
+            "");
+  EXPECT_NE(errorOf(withHeader(full, "\"input_bytes\":", "\"input_bytes\":1e300,\"x\":")), "");
   EXPECT_NE(errorOf(withHeader(full, "\"domain_max\":[1.0", "\"domain_max\":[-5.0")), "");
   EXPECT_NE(errorOf(withHeader(full, "mfadvr-model", "something-else")), "");
 

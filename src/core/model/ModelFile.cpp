@@ -35,13 +35,36 @@ json provenanceToJson(const Provenance& p) {
           {"rms_error", p.rmsError}};
 }
 
+// nlohmann's number conversions cast floating values to integers unchecked (undefined for
+// 1e30), so integer fields are read only when the JSON holds an integer.
+std::int64_t integerOr(const json& j, const char* key, std::int64_t fallback) {
+  const auto it = j.find(key);
+  if (it == j.end()) return fallback;
+  if (!it->is_number_integer())
+    throw json::type_error::create(302, std::string(key) + " must be an integer", &j);
+  return it->get<std::int64_t>();
+}
+
+Index3 integers3(const json& j, const char* key) {
+  const json& a = j.at(key);
+  if (!a.is_array() || a.size() != 3)
+    throw json::type_error::create(302, std::string(key) + " must be an array of 3", &j);
+  Index3 out{};
+  for (int i = 0; i < 3; ++i) {
+    if (!a[i].is_number_integer())
+      throw json::type_error::create(302, std::string(key) + " must hold integers", &j);
+    out[i] = a[i].get<std::int64_t>();
+  }
+  return out;
+}
+
 Provenance provenanceFromJson(const json& j) {
   Provenance p;
   p.source = j.value("source", "");
   p.field = j.value("field", "");
   p.sampleType = j.value("sample_type", "");
-  p.sampleDims = j.value("sample_dims", Index3{0, 0, 0});
-  p.inputBytes = j.value("input_bytes", std::int64_t(0));
+  p.sampleDims = j.contains("sample_dims") ? integers3(j, "sample_dims") : Index3{0, 0, 0};
+  p.inputBytes = integerOr(j, "input_bytes", 0);
   p.encoder = j.value("encoder", "");
   p.created = j.value("created", "");
   p.toolVersion = j.value("tool_version", "");
@@ -143,8 +166,13 @@ Model parseModel(std::span<const std::uint8_t> b, const std::string& name) {
   try {
     h = json::parse(b.begin() + kPrefixBytes, b.begin() + kPrefixBytes + headerBytes);
     if (h.value("format", "") != "mfadvr-model") throw bad("header is not an mfadvr-model header");
-    p = h.at("degree").get<Degree3>();
-    n = h.at("control_counts").get<Index3>();
+    const Index3 degree = integers3(h, "degree");
+    for (int a = 0; a < 3; ++a) {
+      if (degree[a] < 1 || degree[a] > kMaxDegree)
+        throw bad("degree outside 1.." + std::to_string(kMaxDegree));
+      p[a] = static_cast<int>(degree[a]);
+    }
+    n = integers3(h, "control_counts");
     lo = vec3(h, "domain_min");
     hi = vec3(h, "domain_max");
     range = h.at("value_range").get<std::array<double, 2>>();

@@ -36,9 +36,11 @@ class KnotVector {
     const int last = controlCount() - 1;
     if (u >= 1.0) return last;
     if (regular_) {
+      // Compare in double before converting: a tiny spacing makes t too large for an int.
       const double t = (u - firstInterior_) * inverseSpacing_;
-      int s = t < 0.0 ? degree_ : degree_ + 1 + static_cast<int>(t);
-      if (s > last) s = last;
+      int s = !(t >= 0.0)                                    ? degree_
+              : t >= static_cast<double>(last - degree_ - 1) ? last
+                                                             : degree_ + 1 + static_cast<int>(t);
       // Rounding can put u one span off at a boundary.
       while (s > degree_ && u < knots_[s]) --s;
       while (s < last && u >= knots_[s + 1]) ++s;
