@@ -6,13 +6,13 @@
 #include "app/Commands.h"
 #include "app/FitReportOutput.h"
 #include "core/model/ModelFile.h"
+#include "core/model/ProvenanceJson.h"
 
 namespace mfadvr::app {
 namespace {
 
 nlohmann::json infoJson(const Model& m, const std::string& path) {
   const TensorBSpline& s = m.spline();
-  const Provenance& p = m.provenance();
   nlohmann::json knots = nlohmann::json::array();
   for (int a = 0; a < 3; ++a)
     knots.push_back(s.knots(a).isUniform()            ? "uniform"
@@ -27,18 +27,7 @@ nlohmann::json infoJson(const Model& m, const std::string& path) {
           {"domain_min", {m.domain().min[0], m.domain().min[1], m.domain().min[2]}},
           {"domain_max", {m.domain().max[0], m.domain().max[1], m.domain().max[2]}},
           {"value_range", {m.valueMin(), m.valueMax()}},
-          {"provenance",
-           {{"source", p.source},
-            {"field", p.field},
-            {"sample_type", p.sampleType},
-            {"sample_dims", p.sampleDims},
-            {"input_bytes", p.inputBytes},
-            {"encoder", p.encoder},
-            {"created", p.created},
-            {"tool_version", p.toolVersion},
-            {"fit_seconds", p.fitSeconds},
-            {"max_error", p.maxError},
-            {"rms_error", p.rmsError}}}};
+          {"provenance", provenanceToJson(m.provenance())}};
 }
 
 }  // namespace

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "core/model/ProvenanceJson.h"
 #include "core/util/AtomicFile.h"
 #include "core/util/Error.h"
 
@@ -25,15 +26,6 @@ constexpr std::uint32_t kMaxHeaderBytes = 1u << 20;
 constexpr std::int64_t kMaxControlPerAxis = 1 << 20;
 
 using nlohmann::json;
-
-json provenanceToJson(const Provenance& p) {
-  return {{"source", p.source},          {"field", p.field},
-          {"sample_type", p.sampleType}, {"sample_dims", p.sampleDims},
-          {"input_bytes", p.inputBytes}, {"encoder", p.encoder},
-          {"created", p.created},        {"tool_version", p.toolVersion},
-          {"fit_seconds", p.fitSeconds}, {"max_error", p.maxError},
-          {"rms_error", p.rmsError}};
-}
 
 // nlohmann's number conversions cast floating values to integers unchecked (undefined for
 // 1e30), so integer fields are read only when the JSON holds an integer.
