@@ -14,5 +14,7 @@ struct Command {
 Command addEncodeCommand(CLI::App& app);
 Command addInfoCommand(CLI::App& app);
 Command addQueryCommand(CLI::App& app);
+Command addRenderCommand(CLI::App& app);
+Command addDemoCommand(CLI::App& app);
 
 }  // namespace mfadvr::app

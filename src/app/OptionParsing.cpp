@@ -22,6 +22,19 @@ std::vector<std::string> splitCommas(const std::string& text) {
   return parts;
 }
 
+template <class T>
+T parseValue(const std::string& option, const std::string& s) {
+  T v{};
+  const auto r = std::from_chars(s.data(), s.data() + s.size(), v);
+  bool ok = !s.empty() && r.ec == std::errc() && r.ptr == s.data() + s.size();
+  if constexpr (std::is_floating_point_v<T>) ok = ok && std::isfinite(v);
+  if (!ok)
+    throw CLI::ValidationError(
+        option,
+        "'" + s + "' is not " + (std::is_floating_point_v<T> ? "a finite number" : "an integer"));
+  return v;
+}
+
 // One value (repeated on all axes) or three comma-separated values of type T.
 template <class T>
 std::array<T, 3> parseValues(const std::string& option, const std::string& text, const char* what) {
@@ -31,23 +44,27 @@ std::array<T, 3> parseValues(const std::string& option, const std::string& text,
                                            " or three comma-separated " + what + "s, got '" + text +
                                            "'");
   std::array<T, 3> out{};
-  for (size_t i = 0; i < parts.size(); ++i) {
-    const std::string& s = parts[i];
-    T v{};
-    const auto r = std::from_chars(s.data(), s.data() + s.size(), v);
-    bool ok = !s.empty() && r.ec == std::errc() && r.ptr == s.data() + s.size();
-    if constexpr (std::is_floating_point_v<T>) ok = ok && std::isfinite(v);
-    if (!ok)
-      throw CLI::ValidationError(
-          option,
-          "'" + s + "' is not " + (std::is_floating_point_v<T> ? "a finite number" : "an integer"));
-    out[i] = v;
-  }
+  for (size_t i = 0; i < parts.size(); ++i) out[i] = parseValue<T>(option, parts[i]);
   if (parts.size() == 1) out[1] = out[2] = out[0];
   return out;
 }
 
 }  // namespace
+
+std::vector<double> parseNumberList(const std::string& option, const std::string& text,
+                                    size_t minCount, size_t maxCount) {
+  const auto parts = splitCommas(text);
+  if (parts.size() < minCount || parts.size() > maxCount) {
+    const std::string count = minCount == maxCount
+                                  ? std::to_string(minCount)
+                                  : std::to_string(minCount) + " to " + std::to_string(maxCount);
+    throw CLI::ValidationError(option, "expected " + count + " comma-separated numbers, got '" +
+                                           text + "'");
+  }
+  std::vector<double> out;
+  for (const auto& p : parts) out.push_back(parseValue<double>(option, p));
+  return out;
+}
 
 std::array<double, 3> parseTriple(const std::string& option, const std::string& text) {
   return parseValues<double>(option, text, "number");

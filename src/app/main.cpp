@@ -1,4 +1,4 @@
-// mfadvr: encode volumes into MFA models, inspect and query them.
+// mfadvr: encode volumes into MFA models, inspect, query and render them.
 #include <CLI/CLI.hpp>
 #include <iostream>
 
@@ -16,7 +16,9 @@ int main(int argc, char** argv) {
 
   const mfadvr::app::Command commands[] = {mfadvr::app::addEncodeCommand(app),
                                            mfadvr::app::addInfoCommand(app),
-                                           mfadvr::app::addQueryCommand(app)};
+                                           mfadvr::app::addQueryCommand(app),
+                                           mfadvr::app::addRenderCommand(app),
+                                           mfadvr::app::addDemoCommand(app)};
 
   try {
     app.parse(argc, argv);

@@ -1,0 +1,244 @@
+#include "app/RenderOptions.h"
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <fstream>
+
+#include "app/OptionParsing.h"
+#include "core/util/Error.h"
+
+namespace mfadvr::app {
+
+namespace {
+
+Vec3d toVec(const std::vector<double>& v) { return Vec3d(v[0], v[1], v[2]); }
+
+Vec3d parseVec(const std::string& option, const std::string& text) {
+  return toVec(parseNumberList(option, text, 3, 3));
+}
+
+// Reads a camera in VTK's terms from JSON: position, focal_point, view_up, view_angle,
+// parallel_projection, parallel_scale (all optional).
+void readCameraFile(const std::string& path, Camera& camera, bool& hasPosition) {
+  std::ifstream in(path);
+  if (!in) throw Error("cannot open camera file " + path);
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(in);
+  } catch (const nlohmann::json::exception& e) {
+    throw Error("camera file " + path + " is not valid JSON: " + e.what());
+  }
+  if (!j.is_object()) throw Error("camera file " + path + " must hold a JSON object");
+  auto vec = [&](const char* key, Vec3d& out) {
+    if (!j.contains(key)) return false;
+    const auto& a = j[key];
+    if (!a.is_array() || a.size() != 3 || !a[0].is_number() || !a[1].is_number() ||
+        !a[2].is_number())
+      throw Error("camera file " + path + ": '" + key + "' must be an array of 3 numbers");
+    out = Vec3d(a[0].get<double>(), a[1].get<double>(), a[2].get<double>());
+    return true;
+  };
+  auto number = [&](const char* key, double& out) {
+    if (!j.contains(key)) return;
+    if (!j[key].is_number()) throw Error("camera file " + path + ": '" + key + "' must be a number");
+    out = j[key].get<double>();
+  };
+  for (const auto& [key, value] : j.items()) {
+    static const char* known[] = {"position",  "focal_point",         "view_up",
+                                  "view_angle", "parallel_projection", "parallel_scale"};
+    if (std::find_if(std::begin(known), std::end(known), [&](const char* k) { return key == k; }) ==
+        std::end(known))
+      throw Error("camera file " + path + ": unknown key '" + key +
+                  "' (known: position, focal_point, view_up, view_angle, parallel_projection, "
+                  "parallel_scale)");
+    (void)value;
+  }
+  hasPosition = vec("position", camera.position);
+  vec("focal_point", camera.focalPoint);
+  vec("view_up", camera.viewUp);
+  number("view_angle", camera.viewAngle);
+  number("parallel_scale", camera.parallelScale);
+  if (j.contains("parallel_projection")) {
+    if (!j["parallel_projection"].is_boolean())
+      throw Error("camera file " + path + ": 'parallel_projection' must be true or false");
+    camera.parallelProjection = j["parallel_projection"].get<bool>();
+  }
+}
+
+}  // namespace
+
+void parseImageSize(const std::string& text, int& width, int& height) {
+  const auto x = text.find('x');
+  auto bad = [&] {
+    return CLI::ValidationError("--size", "expected WIDTHxHEIGHT (e.g. 1000x1000), got '" + text +
+                                              "'");
+  };
+  if (x == std::string::npos) throw bad();
+  try {
+    size_t used = 0;
+    const std::string w = text.substr(0, x), h = text.substr(x + 1);
+    width = std::stoi(w, &used);
+    if (used != w.size()) throw bad();
+    height = std::stoi(h, &used);
+    if (used != h.size()) throw bad();
+  } catch (const std::logic_error&) {
+    throw bad();
+  }
+  if (width < 1 || height < 1 || width > 32768 || height > 32768)
+    throw CLI::ValidationError("--size", "width and height must be 1..32768");
+}
+
+void RenderOptions::addTo(CLI::App* sub) {
+  sub->add_option("--size", size, "Image size WIDTHxHEIGHT")->capture_default_str()->group("Image");
+  sub->add_option("--background", background, "Background colour R,G,B in [0,1]")
+      ->capture_default_str()
+      ->group("Image");
+  sub->add_option("--threads", threads, "Render threads (0: all cores; the image is the same)")
+      ->check(CLI::NonNegativeNumber)
+      ->group("Image");
+
+  const char* cam = "Camera (VTK semantics)";
+  sub->add_option("--camera", cameraFile,
+                  "JSON file with position, focal_point, view_up, view_angle, "
+                  "parallel_projection, parallel_scale (any subset)")
+      ->group(cam);
+  sub->add_option("--position", position, "Camera position X,Y,Z (default: framed like "
+                                          "ResetCamera, looking down -z)")
+      ->group(cam);
+  sub->add_option("--focal-point", focalPoint, "Camera focal point X,Y,Z")->group(cam);
+  sub->add_option("--view-up", viewUp, "Camera view-up X,Y,Z")->group(cam);
+  sub->add_option("--view-angle", viewAngle, "Vertical view angle, degrees")
+      ->capture_default_str()
+      ->group(cam);
+  sub->add_flag("--parallel", parallel, "Parallel (orthographic) projection")->group(cam);
+  sub->add_option("--parallel-scale", parallelScale,
+                  "Half the view height in world units (default: framed)")
+      ->group(cam);
+  sub->add_option("--azimuth", azimuth, "Rotate about view-up, degrees (after framing)")
+      ->group(cam);
+  sub->add_option("--elevation", elevation, "Rotate up about the right axis, degrees")->group(cam);
+  sub->add_option("--zoom", zoom, "Zoom factor (>1 magnifies)")->group(cam);
+
+  const char* tfGroup = "Transfer function (docs/transfer-functions.md)";
+  sub->add_option("--tf", tf,
+                  "Opacity: ramp, step:ISO, ... (normalized to the value range), inline "
+                  "'x:a,x:a,...', or a JSON file (ours or a ParaView preset) [default: ramp]")
+      ->group(tfGroup);
+  sub->add_option("--colormap", colormap,
+                  "Colour: grayscale, cool-to-warm, viridis, red, white, ..., inline "
+                  "'x:r:g:b,...', or a JSON file [default: the TF file's colours, else "
+                  "cool-to-warm]")
+      ->group(tfGroup);
+  sub->add_option("--range", range,
+                  "Value range MIN,MAX that normalized TF points map onto (default: the data's)")
+      ->group(tfGroup);
+  sub->add_option("--unit-distance", unitDistance,
+                  "Opacity unit distance, world units (default: the TF file's, else the "
+                  "smallest data spacing)")
+      ->group(tfGroup);
+
+  const char* shading = "Shading (Blinn-Phong)";
+  sub->add_flag("--shade", shade, "Shade with the field's gradient")->group(shading);
+  sub->add_option("--ambient", ambient, "Ambient coefficient")->capture_default_str()->group(shading);
+  sub->add_option("--diffuse", diffuse, "Diffuse coefficient")->capture_default_str()->group(shading);
+  sub->add_option("--specular", specular, "Specular coefficient")
+      ->capture_default_str()
+      ->group(shading);
+  sub->add_option("--specular-power", specularPower, "Specular power")
+      ->capture_default_str()
+      ->group(shading);
+  sub->add_option("--light", lights,
+                  "Extra directional light DX,DY,DZ[,INTENSITY]: the direction it shines in, "
+                  "world coordinates (repeatable)")
+      ->group(shading);
+  sub->add_flag("--no-headlight", noHeadlight, "No light at the camera")->group(shading);
+
+  const char* sampling = "Sampling";
+  sub->add_option("--step", step,
+                  "Sample distance along rays, world units (default: half the smallest data "
+                  "spacing)")
+      ->group(sampling);
+  sub->add_option("--ert", ert,
+                  "Early ray termination opacity (>= 1 disables it)")
+      ->capture_default_str()
+      ->group(sampling);
+}
+
+RenderSettings RenderOptions::settingsFor(const LoadedScene& scene) const {
+  RenderSettings s;
+  parseImageSize(size, s.width, s.height);
+  s.threads = threads;
+  s.background = parseVec("--background", background).cast<float>();
+  if ((s.background.array() < 0.0f).any() || (s.background.array() > 1.0f).any())
+    throw CLI::ValidationError("--background", "components must lie in [0, 1]");
+
+  // Camera: VTK's default direction, framed on the box, then the user's explicit values, then
+  // the relative moves.
+  Camera& c = s.camera;
+  c.viewAngle = viewAngle;  // before framing: the distance depends on it
+  c.resetToBounds(scene.boxMin, scene.boxMax);
+  bool explicitPosition = false;
+  if (!cameraFile.empty()) readCameraFile(cameraFile, c, explicitPosition);
+  if (!position.empty()) {
+    c.position = parseVec("--position", position);
+    explicitPosition = true;
+  }
+  if (!focalPoint.empty()) c.focalPoint = parseVec("--focal-point", focalPoint);
+  if (!viewUp.empty()) c.viewUp = parseVec("--view-up", viewUp);
+  if (parallel) c.parallelProjection = true;
+  if (parallelScale != 0.0) c.parallelScale = parallelScale;
+  if (!explicitPosition && (!focalPoint.empty() || !viewUp.empty())) {
+    // A direction was changed without a position: keep the framing distance along the new one.
+    const double distance = (c.position - c.focalPoint).norm();
+    c.position = c.focalPoint + distance * Vec3d(0, 0, 1);
+  }
+  c.validate();
+  if (azimuth != 0.0) c.azimuth(azimuth);
+  if (elevation != 0.0) c.elevation(elevation);
+  if (zoom != 1.0) {
+    if (!(zoom > 0.0)) throw CLI::ValidationError("--zoom", "must be positive");
+    c.zoom(zoom);
+  }
+  c.validate();
+
+  // Transfer function, resolved against the common value range.
+  const TransferFunction tfSpec = parseTransferFunction(tf, colormap);
+  double lo = scene.valueMin, hi = scene.valueMax;
+  if (!range.empty()) {
+    const auto r = parseNumberList("--range", range, 2, 2);
+    if (!(r[1] > r[0])) throw CLI::ValidationError("--range", "MAX must exceed MIN");
+    lo = r[0];
+    hi = r[1];
+  }
+  s.transferFunction = tfSpec.resolved(lo, hi);
+  const double smallestSpacing = scene.spacing.minCoeff();
+  if (unitDistance < 0.0 || !std::isfinite(unitDistance))
+    throw CLI::ValidationError("--unit-distance", "must be positive");
+  s.opacityUnitDistance = unitDistance > 0.0      ? unitDistance
+                          : tfSpec.unitDistance > 0 ? tfSpec.unitDistance
+                                                    : smallestSpacing;
+  if (step < 0.0 || !std::isfinite(step)) throw CLI::ValidationError("--step", "must be positive");
+  s.sampleDistance = step > 0.0 ? step : 0.5 * smallestSpacing;
+  s.earlyTerminationOpacity = ert;
+
+  s.shade = shade;
+  s.lighting.ambient = ambient;
+  s.lighting.diffuse = diffuse;
+  s.lighting.specular = specular;
+  s.lighting.specularPower = specularPower;
+  s.lighting.headlight = !noHeadlight;
+  for (const auto& text : lights) {
+    const auto v = parseNumberList("--light", text, 3, 4);
+    DirectionalLight l;
+    l.direction = Vec3d(v[0], v[1], v[2]);
+    if (v.size() == 4) l.intensity = static_cast<float>(v[3]);
+    s.lighting.lights.push_back(l);
+  }
+  if (shade && s.lighting.lights.empty() && !s.lighting.headlight)
+    throw CLI::ValidationError("--no-headlight", "shading needs a light: add --light");
+  s.validate();
+  return s;
+}
+
+}  // namespace mfadvr::app

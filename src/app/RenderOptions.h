@@ -1,0 +1,38 @@
+#pragma once
+// The scene options shared by the commands that render (render, demo): image size, camera,
+// transfer function, shading, sampling. Registered on a CLI11 subcommand, then turned into
+// RenderSettings for a loaded scene (its box frames the default camera; its spacing gives the
+// default step; its value range anchors normalized transfer functions).
+#include <CLI/CLI.hpp>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "app/SceneLoader.h"
+#include "core/render/RenderSettings.h"
+
+namespace mfadvr::app {
+
+struct RenderOptions {
+  std::string size = "512x512";
+  std::string cameraFile, position, focalPoint, viewUp, range, background = "0,0,0";
+  double viewAngle = 30.0, parallelScale = 0.0, azimuth = 0.0, elevation = 0.0, zoom = 1.0;
+  bool parallel = false;
+  std::string tf, colormap;
+  double unitDistance = 0.0, step = 0.0, ert = 0.99;
+  bool shade = false, noHeadlight = false;
+  float ambient = 0.3f, diffuse = 0.7f, specular = 0.2f, specularPower = 10.0f;
+  std::vector<std::string> lights;
+  int threads = 0;
+
+  // Adds the options to `sub`.
+  void addTo(CLI::App* sub);
+  // Builds validated settings (throws CLI::ValidationError for malformed values and
+  // mfadvr::Error for bad files or impossible scenes).
+  RenderSettings settingsFor(const LoadedScene& scene) const;
+};
+
+// "WxH" -> width, height.
+void parseImageSize(const std::string& text, int& width, int& height);
+
+}  // namespace mfadvr::app

@@ -1,0 +1,91 @@
+#include "app/SceneLoader.h"
+
+#include <algorithm>
+#include <chrono>
+#include <iostream>
+
+#include "core/model/ModelFile.h"
+#include "core/util/Error.h"
+
+namespace mfadvr::app {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+void takeGridFacts(LoadedScene& s) {
+  const StructuredGrid& g = *s.grid;
+  s.boxMin = g.boxMin();
+  s.boxMax = g.boxMax();
+  s.spacing = g.spacing;
+  const auto [lo, hi] = std::minmax_element(g.values.begin(), g.values.end());
+  s.valueMin = *lo;
+  s.valueMax = *hi;
+}
+
+}  // namespace
+
+bool isModelFile(const std::string& path) {
+  return path.size() > 4 && path.compare(path.size() - 4, 4, ".mfa") == 0;
+}
+
+SceneData LoadedScene::view() const {
+  SceneData d;
+  d.model = model ? &*model : nullptr;
+  d.grid = grid ? &*grid : nullptr;
+  d.truth = truth.get();
+  d.differenceStep = spacing;
+  return d;
+}
+
+LoadedScene loadScene(const std::string& input, const SceneNeeds& needs,
+                      const SceneLoadOptions& options) {
+  LoadedScene s;
+  s.input = input;
+  const auto start = Clock::now();
+  if (isModelFile(input)) {
+    s.model = loadModel(input);
+    const Model& m = *s.model;
+    s.boxMin = m.domain().min;
+    s.boxMax = m.domain().max;
+    s.valueMin = m.valueMin();
+    s.valueMax = m.valueMax();
+    const Provenance& p = m.provenance();
+    const Index3 counts = m.spline().counts();
+    for (int a = 0; a < 3; ++a) {
+      // The data spacing when the model records its grid, else the control-point spacing.
+      const std::int64_t n = p.sampleDims[a] > 1 ? p.sampleDims[a] : counts[a];
+      s.spacing[a] = (s.boxMax[a] - s.boxMin[a]) / double(std::max<std::int64_t>(n - 1, 1));
+    }
+    if (isBuiltinSpec(p.source)) {
+      // A model of a built-in function: the truth is known, and its samples can be recomputed.
+      s.truth = makeBuiltin(parseBuiltinSpec(p.source).name);
+      if (needs.grid && p.sampleDims[0] > 0) s.grid = sampleBuiltin(*s.truth, p.sampleDims);
+    }
+    if (needs.grid && !s.grid)
+      throw Error("grid methods need the samples, which a model file does not hold; render the "
+                  "volume file it was encoded from (" + p.source + ") instead");
+    s.loadSeconds = since(start);
+    return s;
+  }
+  if (options.progress) std::cerr << "reading " << input << "\n";
+  s.grid = loadStructuredVolume(input, options.volume);
+  if (isBuiltinSpec(input)) s.truth = makeBuiltin(parseBuiltinSpec(input).name);
+  takeGridFacts(s);
+  s.loadSeconds = since(start);
+  if (needs.model) {
+    const auto encodeStart = Clock::now();
+    StructuredFitOptions fit = options.fit;
+    if (options.progress)
+      fit.progress = [](double f, const std::string& stage) {
+        std::cerr << "\r  encoding: " << static_cast<int>(f * 100) << "% (" << stage << ")   "
+                  << (f >= 1.0 ? "\n" : "") << std::flush;
+      };
+    s.model = encodeStructured(*s.grid, fit);
+    s.encodeSeconds = since(encodeStart);
+  }
+  return s;
+}
+
+}  // namespace mfadvr::app

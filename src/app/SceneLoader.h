@@ -1,0 +1,47 @@
+#pragma once
+// Turns a render command's INPUT into what the methods reconstruct from: a model (loaded, or
+// encoded on the fly from a volume), the grid samples, and the analytic truth when the input is
+// a built-in function (or a model encoded from one).
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "core/analytic/BuiltinFunction.h"
+#include "core/encode/StructuredEncoder.h"
+#include "core/model/Model.h"
+#include "core/render/ReconstructionMethod.h"
+#include "io/VolumeLoader.h"
+
+namespace mfadvr::app {
+
+struct SceneNeeds {
+  bool model = false;  // some method is mfa
+  bool grid = false;   // some method filters the grid
+};
+
+struct LoadedScene {
+  std::string input;
+  std::optional<Model> model;
+  std::optional<StructuredGrid> grid;
+  std::unique_ptr<BuiltinFunction> truth;
+  Vec3d boxMin = Vec3d::Zero(), boxMax = Vec3d::Ones();
+  Vec3d spacing = Vec3d::Ones();  // of the data samples: default step and difference step
+  double valueMin = 0.0, valueMax = 1.0;  // of the data samples: what the TF is relative to
+  double loadSeconds = 0.0, encodeSeconds = 0.0;
+
+  SceneData view() const;
+};
+
+struct SceneLoadOptions {
+  VolumeLoadOptions volume;
+  StructuredFitOptions fit;  // when a volume must be encoded for the mfa method
+  bool progress = false;
+};
+
+// Throws mfadvr::Error when the input cannot provide what `needs` asks for.
+LoadedScene loadScene(const std::string& input, const SceneNeeds& needs,
+                      const SceneLoadOptions& options);
+
+bool isModelFile(const std::string& path);
+
+}  // namespace mfadvr::app

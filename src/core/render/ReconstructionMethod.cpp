@@ -1,0 +1,131 @@
+#include "core/render/ReconstructionMethod.h"
+
+#include <chrono>
+
+#include "core/field/AnalyticField.h"
+#include "core/field/DerivedFields.h"
+#include "core/field/GridField.h"
+#include "core/field/GridFilters.h"
+#include "core/field/ModelField.h"
+#include "core/render/RayCaster.h"
+#include "core/util/Error.h"
+
+namespace mfadvr {
+
+namespace {
+
+struct NamedMethod {
+  ReconstructionMethod method;
+  const char* name;
+};
+constexpr NamedMethod kMethods[] = {
+    {ReconstructionMethod::Mfa, "mfa"},
+    {ReconstructionMethod::Truth, "truth"},
+    {ReconstructionMethod::Nearest, "nearest"},
+    {ReconstructionMethod::Trilinear, "trilinear"},
+    {ReconstructionMethod::Tricubic, "tricubic"},
+    {ReconstructionMethod::CatmullRom, "catmull-rom"},
+    {ReconstructionMethod::BSpline, "bspline"},
+};
+
+using Clock = std::chrono::steady_clock;
+
+// Calls fn(field) with the field of `method`, built from the scene.
+template <class Fn>
+void withField(const SceneData& scene, ReconstructionMethod method, Fn&& fn) {
+  auto needGrid = [&]() -> const StructuredGrid& {
+    if (!scene.grid)
+      throw Error("method '" + methodName(method) +
+                  "' reconstructs from grid samples; give a volume file or a builtin spec "
+                  "(or a model encoded from a builtin) as input");
+    return *scene.grid;
+  };
+  switch (method) {
+    case ReconstructionMethod::Mfa:
+      if (!scene.model) throw Error("method 'mfa' needs a model");
+      return fn(ModelField(*scene.model));
+    case ReconstructionMethod::Truth:
+      if (!scene.truth)
+        throw Error("method 'truth' needs an analytic function: give a builtin spec as input, "
+                    "or a model encoded from one");
+      return fn(AnalyticField(*scene.truth));
+    case ReconstructionMethod::Nearest:
+      return fn(GridField<NearestFilter>(needGrid()));
+    case ReconstructionMethod::Trilinear:
+      return fn(GridField<TrilinearFilter>(needGrid()));
+    case ReconstructionMethod::Tricubic:
+      return fn(GridField<TricubicFilter>(needGrid()));
+    case ReconstructionMethod::CatmullRom:
+      return fn(GridField<CatmullRomFilter>(needGrid()));
+    case ReconstructionMethod::BSpline:
+      return fn(GridField<BSplineFilter>(needGrid()));
+  }
+  throw Error("unknown reconstruction method");
+}
+
+}  // namespace
+
+std::vector<std::string> reconstructionMethodNames() {
+  std::vector<std::string> names;
+  for (const auto& m : kMethods) names.emplace_back(m.name);
+  return names;
+}
+
+std::string methodName(ReconstructionMethod m) {
+  for (const auto& n : kMethods)
+    if (n.method == m) return n.name;
+  return "?";
+}
+
+ReconstructionMethod parseReconstructionMethod(const std::string& name) {
+  for (const auto& m : kMethods)
+    if (name == m.name) return m.method;
+  std::string list;
+  for (const auto& m : kMethods) list += std::string(list.empty() ? "" : ", ") + m.name;
+  throw Error("unknown method '" + name + "'; choose one of: " + list);
+}
+
+bool isGridMethod(ReconstructionMethod m) {
+  return m != ReconstructionMethod::Mfa && m != ReconstructionMethod::Truth;
+}
+
+Image renderMethod(const SceneData& scene, const MethodSpec& spec, const RenderSettings& settings,
+                   MethodRenderStats* stats) {
+  settings.validate();
+  if (spec.gradient == GradientMode::CentralDifference &&
+      !(scene.differenceStep.array() > 0.0).all())
+    throw Error("central differences need a positive step");
+  const auto setupStart = Clock::now();
+  Image image;
+  auto render = [&](const auto& field) {
+    if (stats) stats->setupSeconds = std::chrono::duration<double>(Clock::now() - setupStart).count();
+    image = renderVolume(field, settings, stats);
+  };
+  auto withGradientMode = [&](const auto& field) {
+    if (spec.gradient == GradientMode::CentralDifference)
+      render(CentralDifferenceField(field, scene.differenceStep));
+    else
+      render(field);
+  };
+  if (!spec.gradientFrom) {
+    withField(scene, spec.method, withGradientMode);
+    return image;
+  }
+  // Gradient test: value from the truth, gradient from the method under test. Only the truth
+  // supplies values here, which keeps the number of ray-caster instantiations small.
+  if (spec.method != ReconstructionMethod::Truth)
+    throw Error("a gradient from another method is only supported with the value from 'truth'");
+  if (!scene.truth)
+    throw Error("the gradient test needs the analytic function: give a builtin spec as input, "
+                "or a model encoded from one");
+  const AnalyticField truth(*scene.truth);
+  withField(scene, *spec.gradientFrom, [&](const auto& gradientField) {
+    if (spec.gradient == GradientMode::CentralDifference)
+      render(GradientFromField(truth, CentralDifferenceField(gradientField, scene.differenceStep)));
+    else
+      render(GradientFromField(truth, gradientField));
+  });
+  return image;
+}
+
+}  // namespace mfadvr

@@ -1,0 +1,56 @@
+#pragma once
+// The reconstruction methods the renderer offers, by name, and one call that renders any of them
+// through the same RayCaster (the template is instantiated here, once per method).
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/analytic/BuiltinFunction.h"
+#include "core/grid/StructuredGrid.h"
+#include "core/image/Image.h"
+#include "core/model/Model.h"
+#include "core/render/RenderSettings.h"
+
+namespace mfadvr {
+
+enum class ReconstructionMethod { Mfa, Truth, Nearest, Trilinear, Tricubic, CatmullRom, BSpline };
+
+// mfa, truth, nearest, trilinear, tricubic, catmull-rom, bspline.
+std::vector<std::string> reconstructionMethodNames();
+std::string methodName(ReconstructionMethod m);
+// Throws mfadvr::Error listing the names.
+ReconstructionMethod parseReconstructionMethod(const std::string& name);
+bool isGridMethod(ReconstructionMethod m);
+
+enum class GradientMode {
+  Analytic,          // the derivative of the reconstructed function
+  CentralDifference  // central differences of its values, one data spacing apart
+};
+
+struct MethodSpec {
+  ReconstructionMethod method = ReconstructionMethod::Mfa;
+  GradientMode gradient = GradientMode::Analytic;
+  // The paper's gradient test (Table 1): the value comes from `method` (normally the truth),
+  // the gradient from this method.
+  std::optional<ReconstructionMethod> gradientFrom;
+};
+
+// What a scene can be reconstructed from; a method needs its piece (mfa: model, grid methods:
+// grid, truth: truth). Pointers are borrowed.
+struct SceneData {
+  const Model* model = nullptr;
+  const StructuredGrid* grid = nullptr;
+  const BuiltinFunction* truth = nullptr;
+  // Step of central differences, physical units per axis (normally the data spacing).
+  Vec3d differenceStep = Vec3d::Constant(0.01);
+};
+
+struct MethodRenderStats : RenderStats {
+  double setupSeconds = 0.0;  // building the field (padding, prefiltering); 0 for mfa and truth
+};
+
+// Throws mfadvr::Error when the scene lacks what the method needs.
+Image renderMethod(const SceneData& scene, const MethodSpec& spec, const RenderSettings& settings,
+                   MethodRenderStats* stats = nullptr);
+
+}  // namespace mfadvr

@@ -1,0 +1,29 @@
+#include "core/render/RenderSettings.h"
+
+#include <cmath>
+#include <string>
+
+#include "core/util/Error.h"
+
+namespace mfadvr {
+
+void RenderSettings::validate() const {
+  if (width <= 0 || height <= 0 || width > 32768 || height > 32768)
+    throw Error("image size must be between 1x1 and 32768x32768, got " + std::to_string(width) +
+                "x" + std::to_string(height));
+  camera.validate();
+  transferFunction.validate();
+  if (transferFunction.space != TfSpace::Data)
+    throw Error("internal: the transfer function must be resolved to data values before rendering");
+  if (!(opacityUnitDistance > 0.0) || !std::isfinite(opacityUnitDistance))
+    throw Error("opacity unit distance must be positive");
+  if (!(sampleDistance > 0.0) || !std::isfinite(sampleDistance))
+    throw Error("sample distance must be positive");
+  if (!(earlyTerminationOpacity > 0.0) || !std::isfinite(earlyTerminationOpacity))
+    throw Error("early ray termination opacity must be in (0, 1] (or above 1 to disable it)");
+  if (!background.allFinite()) throw Error("background colour must be finite");
+  if (threads < 0) throw Error("thread count must be >= 0 (0: all cores)");
+  if (shade) lighting.validate();
+}
+
+}  // namespace mfadvr

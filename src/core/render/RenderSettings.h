@@ -1,0 +1,44 @@
+#pragma once
+// Everything about a render except the field: image size, camera, transfer function, shading,
+// sampling and compositing. The same settings render every reconstruction method.
+#include <functional>
+
+#include "core/render/Camera.h"
+#include "core/render/Lighting.h"
+#include "core/render/TransferFunction.h"
+
+namespace mfadvr {
+
+struct RenderSettings {
+  int width = 512, height = 512;
+  Camera camera;
+  // Must be resolved to data values (TransferFunction::resolved) against the value range that
+  // is common to every method being compared.
+  TransferFunction transferFunction;
+  // Opacities are per this many world units (VTK's ScalarOpacityUnitDistance); must be > 0.
+  double opacityUnitDistance = 1.0;
+  bool shade = false;
+  Lighting lighting;
+  // Distance between samples along a ray, world units; must be > 0.
+  double sampleDistance = 1.0;
+  // Stop a ray once its accumulated opacity reaches this (>= 1 disables early termination).
+  double earlyTerminationOpacity = 0.99;
+  Vec3f background = Vec3f::Zero();
+  // Worker threads; 0 uses all cores. The image does not depend on it.
+  int threads = 0;
+  // Called now and then with the finished fraction (0..1], from one thread at a time.
+  std::function<void(double)> progress;
+
+  // Throws mfadvr::Error naming the first bad setting.
+  void validate() const;
+};
+
+struct RenderStats {
+  double seconds = 0.0;          // wall time of the ray casting
+  std::int64_t rays = 0;         // pixels
+  std::int64_t raysHit = 0;      // rays that crossed the box
+  std::int64_t samples = 0;      // field samples taken
+  std::int64_t terminated = 0;   // rays stopped early
+};
+
+}  // namespace mfadvr
