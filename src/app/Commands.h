@@ -14,5 +14,6 @@ struct Command {
 Command addEncodeCommand(CLI::App& app);
 Command addInfoCommand(CLI::App& app);
 Command addQueryCommand(CLI::App& app);
+Command addCompareCommand(CLI::App& app);
 
 }  // namespace mfadvr::app

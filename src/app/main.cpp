@@ -14,9 +14,9 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.fallthrough(false);
 
-  const mfadvr::app::Command commands[] = {mfadvr::app::addEncodeCommand(app),
-                                           mfadvr::app::addInfoCommand(app),
-                                           mfadvr::app::addQueryCommand(app)};
+  const mfadvr::app::Command commands[] = {
+      mfadvr::app::addEncodeCommand(app), mfadvr::app::addInfoCommand(app),
+      mfadvr::app::addQueryCommand(app), mfadvr::app::addCompareCommand(app)};
 
   try {
     app.parse(argc, argv);
