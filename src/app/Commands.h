@@ -16,5 +16,6 @@ Command addInfoCommand(CLI::App& app);
 Command addQueryCommand(CLI::App& app);
 Command addRenderCommand(CLI::App& app);
 Command addDemoCommand(CLI::App& app);
+Command addCompareCommand(CLI::App& app);
 
 }  // namespace mfadvr::app

@@ -14,11 +14,10 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.fallthrough(false);
 
-  const mfadvr::app::Command commands[] = {mfadvr::app::addEncodeCommand(app),
-                                           mfadvr::app::addInfoCommand(app),
-                                           mfadvr::app::addQueryCommand(app),
-                                           mfadvr::app::addRenderCommand(app),
-                                           mfadvr::app::addDemoCommand(app)};
+  const mfadvr::app::Command commands[] = {
+      mfadvr::app::addEncodeCommand(app),  mfadvr::app::addInfoCommand(app),
+      mfadvr::app::addQueryCommand(app),   mfadvr::app::addRenderCommand(app),
+      mfadvr::app::addCompareCommand(app), mfadvr::app::addDemoCommand(app)};
 
   try {
     app.parse(argc, argv);
