@@ -10,6 +10,7 @@
 #include "core/image/ImageMetrics.h"
 #include "core/render/RayCaster.h"
 #include "core/render/ReconstructionMethod.h"
+#include "core/util/Error.h"
 
 namespace mfadvr {
 namespace {
