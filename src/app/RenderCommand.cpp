@@ -43,9 +43,11 @@ Command addRenderCommand(CLI::App& app) {
       ->required();
   sub->add_option("--method", o->method,
                   "Reconstruction: " + methodList() +
-                      " [default: mfa; a volume input is encoded first with --degree/--ctrl]");
+                      " [default: mfa; a volume input is encoded first with --degree/--ctrl]")
+      ->check(CLI::IsMember(reconstructionMethodNames()));
   sub->add_option("--gradient-from", o->gradientFrom,
-                  "Gradient test (paper Table 1): value from the truth, gradient from this method");
+                  "Gradient test (paper Table 1): value from the truth, gradient from this method")
+      ->check(CLI::IsMember(reconstructionMethodNames()));
   sub->add_option("--gradient", o->gradient,
                   "analytic (derivative of the reconstruction) or central (central differences "
                   "one data spacing apart)")

@@ -1,7 +1,6 @@
 // End-to-end tests of the `mfadvr` program: exit codes, outputs, and that failures leave no
 // partial output behind.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <cstdio>
 #include <fstream>
@@ -9,36 +8,14 @@
 #include <sstream>
 
 #include "TestSupport.h"
+#include "app/CliRunner.h"
 
 namespace mfadvr {
 namespace {
 
-struct Result {
-  int status = -1;
-  std::string out, err;
-};
-
-std::string slurp(const std::filesystem::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-Result run(const std::string& args) {
-  const auto dir = std::filesystem::path(MFADVR_TEST_TMP_DIR) / "cli-output";
-  std::filesystem::create_directories(dir);
-  const auto outFile = dir / (std::to_string(::getpid()) + ".stdout");
-  const auto errFile = dir / (std::to_string(::getpid()) + ".stderr");
-  const std::string cmd =
-      std::string(MFADVR_EXE) + " " + args + " >" + outFile.string() + " 2>" + errFile.string();
-  const int raw = std::system(cmd.c_str());
-  Result r;
-  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  r.out = slurp(outFile);
-  r.err = slurp(errFile);
-  return r;
-}
+using Result = test::CliResult;
+using test::slurp;
+Result run(const std::string& args) { return test::runMfadvr(args); }
 
 TEST(Cli, VersionAndHelp) {
   Result r = run("--version");

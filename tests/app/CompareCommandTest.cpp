@@ -1,43 +1,20 @@
 // End-to-end tests of `mfadvr compare`: text and JSON output, exit codes, the difference image.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "TestSupport.h"
+#include "app/CliRunner.h"
 #include "core/image/PngFile.h"
 
 namespace mfadvr {
 namespace {
 
-struct Result {
-  int status = -1;
-  std::string out, err;
-};
-
-std::string slurp(const std::filesystem::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-Result run(const std::string& args) {
-  const auto dir = std::filesystem::path(MFADVR_TEST_TMP_DIR) / "cli-compare-output";
-  std::filesystem::create_directories(dir);
-  const auto outFile = dir / (std::to_string(::getpid()) + ".stdout");
-  const auto errFile = dir / (std::to_string(::getpid()) + ".stderr");
-  const std::string cmd =
-      std::string(MFADVR_EXE) + " " + args + " >" + outFile.string() + " 2>" + errFile.string();
-  const int raw = std::system(cmd.c_str());
-  Result r;
-  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  r.out = slurp(outFile);
-  r.err = slurp(errFile);
-  return r;
-}
+using Result = test::CliResult;
+using test::slurp;
+Result run(const std::string& args) { return test::runMfadvr(args); }
 
 Image8 gradient(int w, int h, int channels, int offset) {
   Image8 im{w, h, channels, std::vector<std::uint8_t>(static_cast<size_t>(w) * h * channels)};

@@ -1,0 +1,133 @@
+// End-to-end tests of `mfadvr render` and `mfadvr demo`.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "TestSupport.h"
+#include "app/CliRunner.h"
+#include "core/image/PngFile.h"
+
+namespace mfadvr {
+namespace {
+
+using test::runMfadvr;
+
+TEST(CliRender, EveryMethodRendersABuiltin) {
+  const auto dir = test::scratchDir();
+  for (const char* method :
+       {"mfa", "truth", "nearest", "trilinear", "tricubic", "catmull-rom", "bspline"}) {
+    const std::string png = (dir / (std::string(method) + ".png")).string();
+    const auto r = runMfadvr(std::string("render builtin:marschner-lobb:12 --size 40x30 --shade "
+                                         "--method ") +
+                             method + " -o " + png + " --json");
+    ASSERT_EQ(r.status, 0) << method << ": " << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["method"], method);
+    EXPECT_EQ(j["width"], 40);
+    EXPECT_EQ(j["height"], 30);
+    EXPECT_GT(j["samples"].get<long>(), 0);
+    EXPECT_GT(j["rays_hit"].get<long>(), 0);
+    const Image8 image = readPng(png);
+    EXPECT_EQ(image.width, 40);
+    EXPECT_EQ(image.height, 30);
+    EXPECT_EQ(image.channels, 3);
+    // Not a blank image: some pixel differs from the black background.
+    bool lit = false;
+    for (auto v : image.data) lit |= v > 20;
+    EXPECT_TRUE(lit) << method;
+  }
+}
+
+TEST(CliRender, ImagesIndependentOfThreadsAndFloatOutput) {
+  const auto dir = test::scratchDir();
+  const std::string common =
+      "render builtin:gaussian-beam:16 --method tricubic --size 33x17 --shade --azimuth 20 -q ";
+  ASSERT_EQ(runMfadvr(common + "--threads 1 -o " + (dir / "a.png").string()).status, 0);
+  ASSERT_EQ(runMfadvr(common + "--threads 2 --alpha -o " + (dir / "b.png").string() + " --float " +
+                      (dir / "b.nrrd").string())
+                .status,
+            0);
+  const Image8 a = readPng((dir / "a.png").string()), b = readPng((dir / "b.png").string());
+  ASSERT_EQ(b.channels, 4);
+  for (size_t p = 0; p < size_t(33 * 17); ++p)
+    for (int c = 0; c < 3; ++c) ASSERT_EQ(a.data[p * 3 + c], b.data[p * 4 + c]);
+  EXPECT_TRUE(std::filesystem::exists(dir / "b.nrrd"));
+}
+
+TEST(CliRender, ModelOfABuiltinKnowsItsTruthAndSamples) {
+  const auto dir = test::scratchDir();
+  const std::string model = (dir / "ml.mfa").string();
+  ASSERT_EQ(runMfadvr("encode builtin:marschner-lobb:14 -o " + model).status, 0);
+  for (const char* args : {"--method mfa", "--method truth", "--method trilinear",
+                           "--gradient-from mfa", "--gradient-from bspline --gradient central"}) {
+    const auto r = runMfadvr("render " + model + " --size 24x24 --shade -q " + args + " -o " +
+                             (dir / "x.png").string());
+    EXPECT_EQ(r.status, 0) << args << ": " << r.err;
+  }
+}
+
+TEST(CliRender, CameraFileAndOptions) {
+  const auto dir = test::scratchDir();
+  const auto camera = dir / "camera.json";
+  std::ofstream(camera) << R"({"position": [0, 0, -6], "focal_point": [0, 0, 0],
+                              "view_up": [0, 1, 0], "view_angle": 40})";
+  auto r = runMfadvr("render builtin:gaussian-beam:12 --size 20x20 -q --camera " +
+                     camera.string() + " -o " + (dir / "a.png").string());
+  EXPECT_EQ(r.status, 0) << r.err;
+  r = runMfadvr("render builtin:gaussian-beam:12 --size 20x20 -q --parallel --zoom 2 --elevation 90 "
+                "--tf step:0.3 --colormap viridis --light 1,0,0,0.5 --shade --background 1,1,1 "
+                "--step 0.05 --unit-distance 0.2 --ert 1.5 --range 0,300 -o " +
+                (dir / "b.png").string());
+  EXPECT_EQ(r.status, 0) << r.err;
+  std::ofstream(dir / "bad-camera.json") << R"({"positon": [0, 0, 5]})";
+  r = runMfadvr("render builtin:gaussian-beam:12 --size 20x20 --camera " +
+                (dir / "bad-camera.json").string() + " -o " + (dir / "c.png").string());
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("positon"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "c.png"));
+}
+
+TEST(CliRender, BadArgumentsFailCleanly) {
+  const auto dir = test::scratchDir();
+  const std::string out = " -o " + (dir / "x.png").string();
+  const std::string in = "render builtin:gaussian-beam:8 --size 16x16";
+  EXPECT_EQ(runMfadvr(in + " --method cubic" + out).status, 2);
+  EXPECT_EQ(runMfadvr(in + " --size 0x10" + out).status, 2);
+  EXPECT_EQ(runMfadvr(in + " --size 10" + out).status, 2);
+  EXPECT_EQ(runMfadvr(in + " --position 1,2" + out).status, 2);
+  EXPECT_EQ(runMfadvr(in + " --background 2,0,0" + out).status, 2);
+  EXPECT_EQ(runMfadvr(in + " --method mfa --gradient-from trilinear" + out).status, 2);
+  EXPECT_EQ(runMfadvr(in + " --step -1" + out).status, 2);
+  EXPECT_EQ(runMfadvr(in).status, 2);  // no output
+  auto r = runMfadvr(in + " --tf nonsense" + out);
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("ramp"), std::string::npos) << r.err;  // lists the accepted forms
+  r = runMfadvr(in + " --position 0,0,0 --focal-point 0,0,0" + out);
+  EXPECT_EQ(r.status, 1);
+  r = runMfadvr("render " + (dir / "missing.mfa").string() + out);
+  EXPECT_EQ(r.status, 1);
+  // A model cannot offer grid methods unless it came from a builtin.
+  r = runMfadvr("render " + (dir / "missing.nrrd").string() + out);
+  EXPECT_EQ(r.status, 1);
+  EXPECT_FALSE(std::filesystem::exists(dir / "x.png"));
+}
+
+TEST(CliDemo, WritesImagesMontageAndMetrics) {
+  const auto dir = test::scratchDir() / "demo";
+  const auto r = runMfadvr("demo --size 96x96 --json --out " + dir.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  for (const char* f : {"truth.png", "mfa.png", "trilinear.png", "montage.png", "model.mfa",
+                        "summary.json"})
+    EXPECT_TRUE(std::filesystem::exists(dir / f)) << f;
+  const Image8 montage = readPng((dir / "montage.png").string());
+  EXPECT_EQ(montage.width, 3 * 96 + 2 * 8);
+  ASSERT_EQ(j["methods"].size(), 3u);
+  EXPECT_EQ(j["methods"][0]["method"], "truth");
+  EXPECT_TRUE(j["methods"][0]["psnr"].is_null());  // identical to itself
+  const double mfa = j["methods"][1]["psnr"], trilinear = j["methods"][2]["psnr"];
+  EXPECT_GT(mfa, trilinear);
+}
+
+}  // namespace
+}  // namespace mfadvr
