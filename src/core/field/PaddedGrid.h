@@ -38,7 +38,11 @@ class PaddedGrid {
   // Continuous index of physical point x, clamped to [0, n-1] per axis.
   Vec3d continuousIndex(const Vec3d& x) const {
     Vec3d u = (x - origin_).cwiseProduct(invSpacing_);
-    for (int a = 0; a < 3; ++a) u[a] = std::fmin(std::fmax(u[a], 0.0), double(dims_[a] - 1));
+    // Ternaries rather than std::fmin/fmax, which are library calls when NaN rules apply.
+    for (int a = 0; a < 3; ++a) {
+      const double hi = double(dims_[a] - 1);
+      u[a] = u[a] > 0.0 ? (u[a] < hi ? u[a] : hi) : 0.0;
+    }
     return u;
   }
   // Cell of a continuous index: i in [0, n-2] and the fraction t in [0, 1].

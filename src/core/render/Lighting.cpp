@@ -31,6 +31,7 @@ Shader::Shader(const Lighting& lighting, const Vec3d& cameraDirection)
       specularK_(lighting.specular),
       power_(lighting.specularPower) {
   lighting.validate();
+  if (power_ == std::floor(power_) && power_ <= 1024.0f) integerPower_ = static_cast<int>(power_);
   auto add = [&](const Vec3d& travel, const Vec3f& color) {
     toLight_[count_] = (-travel.normalized()).cast<float>();
     lightColor_[count_] = color;

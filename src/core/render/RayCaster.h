@@ -26,6 +26,7 @@
 
 #include "core/field/Field.h"
 #include "core/image/Image.h"
+#include "core/render/OpacityCorrection.h"
 #include "core/render/RenderSettings.h"
 
 namespace mfadvr {
@@ -54,8 +55,10 @@ template <Field F>
 class RayCaster {
  public:
   RayCaster(const F& field, const RenderSettings& settings)
-      : field_(field), s_(settings), rays_((settings.validate(), settings.camera),
-                                           settings.width, settings.height) {}
+      : field_(field),
+        s_(settings),
+        rays_((settings.validate(), settings.camera), settings.width, settings.height),
+        correction_(settings.sampleDistance / settings.opacityUnitDistance) {}
 
   Image render(RenderStats* stats = nullptr) const {
     using Clock = std::chrono::steady_clock;
@@ -129,7 +132,6 @@ class RayCaster {
       tEnter = std::max(tEnter, 0.0);
       const TransferFunction& tf = s_.transferFunction;
       const double dt = s_.sampleDistance;
-      const float fullExponent = static_cast<float>(dt / s_.opacityUnitDistance);
       // The tolerance keeps a rounding error from adding a step of zero length.
       const std::int64_t steps =
           static_cast<std::int64_t>(std::ceil((tExit - tEnter) / dt - 1e-6));
@@ -149,9 +151,8 @@ class RayCaster {
           vg.value = sampler.value(p);
         const float a = tf.opacityAt(vg.value);
         if (!(a > 0.0f)) continue;
-        const float exponent = length == dt ? fullExponent
-                                            : static_cast<float>(length / s_.opacityUnitDistance);
-        const float corrected = a >= 1.0f ? 1.0f : 1.0f - std::pow(1.0f - a, exponent);
+        const float corrected =
+            length == dt ? correction_.full(a) : correction_.partial(a, length / dt);
         Vec3f c = tf.colorAt(vg.value);
         if (s_.shade) c = shader.shade(c, vg.gradient);
         const float w = (1.0f - alpha) * corrected;
@@ -173,6 +174,7 @@ class RayCaster {
   const F& field_;
   const RenderSettings& s_;
   RayGenerator rays_;
+  OpacityCorrection correction_;
 };
 
 // Renders `field` with `settings`; stats (optional) receive the timing and counts.
