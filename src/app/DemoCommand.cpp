@@ -115,11 +115,12 @@ Command addDemoCommand(CLI::App& app) {
       std::cout << j.dump(2) << "\n";
       return 0;
     }
-    std::printf("%s: %lldx%lldx%lld samples -> degree %d, %lldx%lldx%lld control points, "
-                "encoded in %.3f s (max error %.3g)\n",
-                o->input.c_str(), (long long)grid.dims[0], (long long)grid.dims[1],
-                (long long)grid.dims[2], degrees[0], (long long)counts[0], (long long)counts[1],
-                (long long)counts[2], scene.encodeSeconds, scene.model->provenance().maxError);
+    std::printf(
+        "%s: %lldx%lldx%lld samples -> degree %d, %lldx%lldx%lld control points, "
+        "encoded in %.3f s (max error %.3g)\n",
+        o->input.c_str(), (long long)grid.dims[0], (long long)grid.dims[1], (long long)grid.dims[2],
+        degrees[0], (long long)counts[0], (long long)counts[1], (long long)counts[2],
+        scene.encodeSeconds, scene.model->provenance().maxError);
     std::printf("%dx%d images, step %.4g, shaded; compared with the truth on 8-bit RGB:\n\n",
                 settings.width, settings.height, settings.sampleDistance);
     std::printf("  %-10s %10s %10s %8s\n", "method", "render s", "PSNR dB", "SSIM");
@@ -130,8 +131,8 @@ Command addDemoCommand(CLI::App& app) {
         std::printf("  %-10s %10.3f %10.2f %8.4f\n", methodName(r.method).c_str(), r.stats.seconds,
                     r.metrics.psnr, r.metrics.ssim);
     }
-    std::printf("\nimages: %s/{truth,mfa,trilinear}.png, montage: %s, model: %s\n",
-                o->out.c_str(), montagePath.c_str(), modelPath.c_str());
+    std::printf("\nimages: %s/{truth,mfa,trilinear}.png, montage: %s, model: %s\n", o->out.c_str(),
+                montagePath.c_str(), modelPath.c_str());
     return 0;
   };
   return {sub, run};

@@ -37,38 +37,15 @@ Command addEncodeCommand(CLI::App& app) {
   sub->add_flag("-q,--quiet", o->quiet, "No progress on stderr");
 
   auto run = [o]() -> int {
-    StructuredFitOptions fit;
-    const auto p = parseIntTriple("--degree", o->degree);
-    for (int a = 0; a < 3; ++a) {
-      if (p[a] < -1000 || p[a] > 1000)
-        throw CLI::ValidationError("--degree", "degree out of range");
-      fit.degree[a] = static_cast<int>(p[a]);  // the encoder explains the valid range
-    }
-    if (!o->ctrl.empty()) {
-      const auto n = parseIntTriple("--ctrl", o->ctrl);
-      for (int a = 0; a < 3; ++a) {
-        if (n[a] < 1) throw CLI::ValidationError("--ctrl", "counts must be positive");
-        fit.controlCounts[a] = n[a];
-      }
-    }
-    VolumeLoadOptions load;
-    if (!o->spacing.empty()) {
-      const auto s = parseTriple("--spacing", o->spacing);
-      load.spacing = Vec3d(s[0], s[1], s[2]);
-    }
-    if (!o->origin.empty()) {
-      const auto s = parseTriple("--origin", o->origin);
-      load.origin = Vec3d(s[0], s[1], s[2]);
-    }
-    load.field = o->field;
+    StructuredFitOptions fit = parseFitOptions(o->degree, o->ctrl);
+    const VolumeLoadOptions load = parseVolumeLoadOptions(o->spacing, o->origin, o->field);
 
     const bool progress = wantProgress(o->quiet || o->json);
     if (progress) std::cerr << "reading " << o->input << "\n";
     const StructuredGrid grid = loadStructuredVolume(o->input, load);
     if (progress) {
       fit.progress = [](double f, const std::string& stage) {
-        std::cerr << "\r  encoding: " << static_cast<int>(f * 100) << "% (" << stage << ")   "
-                  << (f >= 1.0 ? "\n" : "") << std::flush;
+        printProgress("encoding", f, stage);
       };
     }
     FitReport report;

@@ -4,6 +4,7 @@
 
 #include <CLI/CLI.hpp>
 #include <charconv>
+#include <iostream>
 #include <cmath>
 #include <vector>
 
@@ -58,8 +59,8 @@ std::vector<double> parseNumberList(const std::string& option, const std::string
     const std::string count = minCount == maxCount
                                   ? std::to_string(minCount)
                                   : std::to_string(minCount) + " to " + std::to_string(maxCount);
-    throw CLI::ValidationError(option, "expected " + count + " comma-separated numbers, got '" +
-                                           text + "'");
+    throw CLI::ValidationError(
+        option, "expected " + count + " comma-separated numbers, got '" + text + "'");
   }
   std::vector<double> out;
   for (const auto& p : parts) out.push_back(parseValue<double>(option, p));
@@ -72,6 +73,44 @@ std::array<double, 3> parseTriple(const std::string& option, const std::string& 
 
 std::array<long, 3> parseIntTriple(const std::string& option, const std::string& text) {
   return parseValues<long>(option, text, "integer");
+}
+
+StructuredFitOptions parseFitOptions(const std::string& degree, const std::string& ctrl) {
+  StructuredFitOptions fit;
+  const auto p = parseIntTriple("--degree", degree);
+  for (int a = 0; a < 3; ++a) {
+    if (p[a] < -1000 || p[a] > 1000) throw CLI::ValidationError("--degree", "degree out of range");
+    fit.degree[a] = static_cast<int>(p[a]);  // the encoder explains the valid range
+  }
+  if (!ctrl.empty()) {
+    const auto n = parseIntTriple("--ctrl", ctrl);
+    for (int a = 0; a < 3; ++a) {
+      if (n[a] < 1) throw CLI::ValidationError("--ctrl", "counts must be positive");
+      fit.controlCounts[a] = n[a];
+    }
+  }
+  return fit;
+}
+
+VolumeLoadOptions parseVolumeLoadOptions(const std::string& spacing, const std::string& origin,
+                                         const std::string& field) {
+  VolumeLoadOptions load;
+  if (!spacing.empty()) {
+    const auto s = parseTriple("--spacing", spacing);
+    load.spacing = Vec3d(s[0], s[1], s[2]);
+  }
+  if (!origin.empty()) {
+    const auto s = parseTriple("--origin", origin);
+    load.origin = Vec3d(s[0], s[1], s[2]);
+  }
+  load.field = field;
+  return load;
+}
+
+void printProgress(const char* what, double fraction, const std::string& stage) {
+  std::cerr << "\r  " << what << ": " << static_cast<int>(fraction * 100) << "%"
+            << (stage.empty() ? "" : " (" + stage + ")") << "   " << (fraction >= 1.0 ? "\n" : "")
+            << std::flush;
 }
 
 bool wantProgress(bool quiet) {

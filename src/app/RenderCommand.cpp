@@ -83,8 +83,8 @@ Command addRenderCommand(CLI::App& app) {
     } else if (!o->method.empty()) {
       spec.method = parseReconstructionMethod(o->method);
     }
-    spec.gradient = o->gradient == "central" ? GradientMode::CentralDifference
-                                             : GradientMode::Analytic;
+    spec.gradient =
+        o->gradient == "central" ? GradientMode::CentralDifference : GradientMode::Analytic;
     SceneNeeds needs;
     for (auto m : {std::optional(spec.method), spec.gradientFrom}) {
       if (!m) continue;
@@ -93,27 +93,8 @@ Command addRenderCommand(CLI::App& app) {
     }
 
     SceneLoadOptions load;
-    const auto p = parseIntTriple("--degree", o->degree);
-    for (int a = 0; a < 3; ++a) {
-      if (p[a] < -1000 || p[a] > 1000) throw CLI::ValidationError("--degree", "out of range");
-      load.fit.degree[a] = static_cast<int>(p[a]);
-    }
-    if (!o->ctrl.empty()) {
-      const auto n = parseIntTriple("--ctrl", o->ctrl);
-      for (int a = 0; a < 3; ++a) {
-        if (n[a] < 1) throw CLI::ValidationError("--ctrl", "counts must be positive");
-        load.fit.controlCounts[a] = n[a];
-      }
-    }
-    if (!o->spacing.empty()) {
-      const auto s = parseTriple("--spacing", o->spacing);
-      load.volume.spacing = Vec3d(s[0], s[1], s[2]);
-    }
-    if (!o->origin.empty()) {
-      const auto s = parseTriple("--origin", o->origin);
-      load.volume.origin = Vec3d(s[0], s[1], s[2]);
-    }
-    load.volume.field = o->field;
+    load.fit = parseFitOptions(o->degree, o->ctrl);
+    load.volume = parseVolumeLoadOptions(o->spacing, o->origin, o->field);
     const bool progress = wantProgress(o->quiet || o->json);
     load.progress = progress;
 
@@ -121,8 +102,7 @@ Command addRenderCommand(CLI::App& app) {
     RenderSettings settings = o->render.settingsFor(scene);
     if (progress)
       settings.progress = [](double f) {
-        std::cerr << "\r  rendering: " << static_cast<int>(f * 100) << "%   "
-                  << (f >= 1.0 ? "\n" : "") << std::flush;
+        printProgress("rendering", f);
       };
     MethodRenderStats stats;
     const Image image = renderMethod(scene.view(), spec, settings, &stats);
@@ -163,7 +143,8 @@ Command addRenderCommand(CLI::App& app) {
                   settings.width, settings.height, settings.sampleDistance,
                   settings.shade ? "shaded" : "unshaded");
       std::printf("  render %.3f s (%.1f M samples, %.1f M samples/s)", stats.seconds,
-                  stats.samples / 1e6, stats.seconds > 0 ? stats.samples / stats.seconds / 1e6 : 0.0);
+                  stats.samples / 1e6,
+                  stats.seconds > 0 ? stats.samples / stats.seconds / 1e6 : 0.0);
       if (scene.encodeSeconds > 0) std::printf(", encode %.3f s", scene.encodeSeconds);
       if (stats.setupSeconds > 0.001) std::printf(", setup %.3f s", stats.setupSeconds);
       std::printf(", total %.3f s\n", total);

@@ -12,7 +12,9 @@ namespace mfadvr::app {
 
 namespace {
 
-Vec3d toVec(const std::vector<double>& v) { return Vec3d(v[0], v[1], v[2]); }
+Vec3d toVec(const std::vector<double>& v) {
+  return Vec3d(v[0], v[1], v[2]);
+}
 
 Vec3d parseVec(const std::string& option, const std::string& text) {
   return toVec(parseNumberList(option, text, 3, 3));
@@ -41,11 +43,12 @@ void readCameraFile(const std::string& path, Camera& camera, bool& hasPosition) 
   };
   auto number = [&](const char* key, double& out) {
     if (!j.contains(key)) return;
-    if (!j[key].is_number()) throw Error("camera file " + path + ": '" + key + "' must be a number");
+    if (!j[key].is_number())
+      throw Error("camera file " + path + ": '" + key + "' must be a number");
     out = j[key].get<double>();
   };
   for (const auto& [key, value] : j.items()) {
-    static const char* known[] = {"position",  "focal_point",         "view_up",
+    static const char* known[] = {"position",   "focal_point",         "view_up",
                                   "view_angle", "parallel_projection", "parallel_scale"};
     if (std::find_if(std::begin(known), std::end(known), [&](const char* k) { return key == k; }) ==
         std::end(known))
@@ -71,8 +74,8 @@ void readCameraFile(const std::string& path, Camera& camera, bool& hasPosition) 
 void parseImageSize(const std::string& text, int& width, int& height) {
   const auto x = text.find('x');
   auto bad = [&] {
-    return CLI::ValidationError("--size", "expected WIDTHxHEIGHT (e.g. 1000x1000), got '" + text +
-                                              "'");
+    return CLI::ValidationError("--size",
+                                "expected WIDTHxHEIGHT (e.g. 1000x1000), got '" + text + "'");
   };
   if (x == std::string::npos) throw bad();
   try {
@@ -103,8 +106,9 @@ void RenderOptions::addTo(CLI::App* sub) {
                   "JSON file with position, focal_point, view_up, view_angle, "
                   "parallel_projection, parallel_scale (any subset)")
       ->group(cam);
-  sub->add_option("--position", position, "Camera position X,Y,Z (default: framed like "
-                                          "ResetCamera, looking down -z)")
+  sub->add_option("--position", position,
+                  "Camera position X,Y,Z (default: framed like "
+                  "ResetCamera, looking down -z)")
       ->group(cam);
   sub->add_option("--focal-point", focalPoint, "Camera focal point X,Y,Z")->group(cam);
   sub->add_option("--view-up", viewUp, "Camera view-up X,Y,Z")->group(cam);
@@ -140,8 +144,12 @@ void RenderOptions::addTo(CLI::App* sub) {
 
   const char* shading = "Shading (Blinn-Phong)";
   sub->add_flag("--shade", shade, "Shade with the field's gradient")->group(shading);
-  sub->add_option("--ambient", ambient, "Ambient coefficient")->capture_default_str()->group(shading);
-  sub->add_option("--diffuse", diffuse, "Diffuse coefficient")->capture_default_str()->group(shading);
+  sub->add_option("--ambient", ambient, "Ambient coefficient")
+      ->capture_default_str()
+      ->group(shading);
+  sub->add_option("--diffuse", diffuse, "Diffuse coefficient")
+      ->capture_default_str()
+      ->group(shading);
   sub->add_option("--specular", specular, "Specular coefficient")
       ->capture_default_str()
       ->group(shading);
@@ -159,8 +167,7 @@ void RenderOptions::addTo(CLI::App* sub) {
                   "Sample distance along rays, world units (default: half the smallest data "
                   "spacing)")
       ->group(sampling);
-  sub->add_option("--ert", ert,
-                  "Early ray termination opacity (>= 1 disables it)")
+  sub->add_option("--ert", ert, "Early ray termination opacity (>= 1 disables it)")
       ->capture_default_str()
       ->group(sampling);
 }
@@ -215,7 +222,7 @@ RenderSettings RenderOptions::settingsFor(const LoadedScene& scene) const {
   const double smallestSpacing = scene.spacing.minCoeff();
   if (unitDistance < 0.0 || !std::isfinite(unitDistance))
     throw CLI::ValidationError("--unit-distance", "must be positive");
-  s.opacityUnitDistance = unitDistance > 0.0      ? unitDistance
+  s.opacityUnitDistance = unitDistance > 0.0        ? unitDistance
                           : tfSpec.unitDistance > 0 ? tfSpec.unitDistance
                                                     : smallestSpacing;
   if (step < 0.0 || !std::isfinite(step)) throw CLI::ValidationError("--step", "must be positive");

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <iostream>
 
+#include "app/OptionParsing.h"
 #include "core/model/ModelFile.h"
 #include "core/util/Error.h"
 
@@ -12,7 +13,9 @@ namespace mfadvr::app {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+double since(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
 
 void takeGridFacts(LoadedScene& s) {
   const StructuredGrid& g = *s.grid;
@@ -64,8 +67,10 @@ LoadedScene loadScene(const std::string& input, const SceneNeeds& needs,
       if (needs.grid && p.sampleDims[0] > 0) s.grid = sampleBuiltin(*s.truth, p.sampleDims);
     }
     if (needs.grid && !s.grid)
-      throw Error("grid methods need the samples, which a model file does not hold; render the "
-                  "volume file it was encoded from (" + p.source + ") instead");
+      throw Error(
+          "grid methods need the samples, which a model file does not hold; render the "
+          "volume file it was encoded from (" +
+          p.source + ") instead");
     s.loadSeconds = since(start);
     return s;
   }
@@ -79,8 +84,7 @@ LoadedScene loadScene(const std::string& input, const SceneNeeds& needs,
     StructuredFitOptions fit = options.fit;
     if (options.progress)
       fit.progress = [](double f, const std::string& stage) {
-        std::cerr << "\r  encoding: " << static_cast<int>(f * 100) << "% (" << stage << ")   "
-                  << (f >= 1.0 ? "\n" : "") << std::flush;
+        printProgress("encoding", f, stage);
       };
     s.model = encodeStructured(*s.grid, fit);
     s.encodeSeconds = since(encodeStart);

@@ -25,7 +25,7 @@ struct LoadedScene {
   std::optional<StructuredGrid> grid;
   std::unique_ptr<BuiltinFunction> truth;
   Vec3d boxMin = Vec3d::Zero(), boxMax = Vec3d::Ones();
-  Vec3d spacing = Vec3d::Ones();  // of the data samples: default step and difference step
+  Vec3d spacing = Vec3d::Ones();          // of the data samples: default step and difference step
   double valueMin = 0.0, valueMax = 1.0;  // of the data samples: what the TF is relative to
   double loadSeconds = 0.0, encodeSeconds = 0.0;
 

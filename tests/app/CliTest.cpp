@@ -15,7 +15,9 @@ namespace {
 
 using Result = test::CliResult;
 using test::slurp;
-Result run(const std::string& args) { return test::runMfadvr(args); }
+Result run(const std::string& args) {
+  return test::runMfadvr(args);
+}
 
 TEST(Cli, VersionAndHelp) {
   Result r = run("--version");

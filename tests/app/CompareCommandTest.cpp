@@ -14,7 +14,9 @@ namespace {
 
 using Result = test::CliResult;
 using test::slurp;
-Result run(const std::string& args) { return test::runMfadvr(args); }
+Result run(const std::string& args) {
+  return test::runMfadvr(args);
+}
 
 Image8 gradient(int w, int h, int channels, int offset) {
   Image8 im{w, h, channels, std::vector<std::uint8_t>(static_cast<size_t>(w) * h * channels)};

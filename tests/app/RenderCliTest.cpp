@@ -71,13 +71,14 @@ TEST(CliRender, CameraFileAndOptions) {
   const auto camera = dir / "camera.json";
   std::ofstream(camera) << R"({"position": [0, 0, -6], "focal_point": [0, 0, 0],
                               "view_up": [0, 1, 0], "view_angle": 40})";
-  auto r = runMfadvr("render builtin:gaussian-beam:12 --size 20x20 -q --camera " +
-                     camera.string() + " -o " + (dir / "a.png").string());
+  auto r = runMfadvr("render builtin:gaussian-beam:12 --size 20x20 -q --camera " + camera.string() +
+                     " -o " + (dir / "a.png").string());
   EXPECT_EQ(r.status, 0) << r.err;
-  r = runMfadvr("render builtin:gaussian-beam:12 --size 20x20 -q --parallel --zoom 2 --elevation 90 "
-                "--tf step:0.3 --colormap viridis --light 1,0,0,0.5 --shade --background 1,1,1 "
-                "--step 0.05 --unit-distance 0.2 --ert 1.5 --range 0,300 -o " +
-                (dir / "b.png").string());
+  r = runMfadvr(
+      "render builtin:gaussian-beam:12 --size 20x20 -q --parallel --zoom 2 --elevation 90 "
+      "--tf step:0.3 --colormap viridis --light 1,0,0,0.5 --shade --background 1,1,1 "
+      "--step 0.05 --unit-distance 0.2 --ert 1.5 --range 0,300 -o " +
+      (dir / "b.png").string());
   EXPECT_EQ(r.status, 0) << r.err;
   std::ofstream(dir / "bad-camera.json") << R"({"positon": [0, 0, 5]})";
   r = runMfadvr("render builtin:gaussian-beam:12 --size 20x20 --camera " +
@@ -117,8 +118,8 @@ TEST(CliDemo, WritesImagesMontageAndMetrics) {
   const auto r = runMfadvr("demo --size 96x96 --json --out " + dir.string());
   ASSERT_EQ(r.status, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
-  for (const char* f : {"truth.png", "mfa.png", "trilinear.png", "montage.png", "model.mfa",
-                        "summary.json"})
+  for (const char* f :
+       {"truth.png", "mfa.png", "trilinear.png", "montage.png", "model.mfa", "summary.json"})
     EXPECT_TRUE(std::filesystem::exists(dir / f)) << f;
   const Image8 montage = readPng((dir / "montage.png").string());
   EXPECT_EQ(montage.width, 3 * 96 + 2 * 8);

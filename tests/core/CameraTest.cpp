@@ -11,7 +11,8 @@ namespace mfadvr {
 namespace {
 
 void expectVec(const Vec3d& a, const Vec3d& b, double tol = 1e-9) {
-  for (int i = 0; i < 3; ++i) EXPECT_NEAR(a[i], b[i], tol) << a.transpose() << " vs " << b.transpose();
+  for (int i = 0; i < 3; ++i)
+    EXPECT_NEAR(a[i], b[i], tol) << a.transpose() << " vs " << b.transpose();
 }
 
 TEST(Camera, ResetFramesTheBoxLikeVtk) {
@@ -56,8 +57,8 @@ TEST(Camera, RaysThroughPixelCentres) {
   expectVec(d, Vec3d(0, 0, -1));
   perspective.ray(1, 0, o, d);  // the top row looks up: vertical view angle 30 over 3 rows
   EXPECT_GT(d[1], 0.0);
-  EXPECT_NEAR(std::atan2(d[1], -d[2]), std::atan(std::tan(15.0 * std::numbers::pi / 180) * 2.0 / 3.0),
-              1e-12);
+  EXPECT_NEAR(std::atan2(d[1], -d[2]),
+              std::atan(std::tan(15.0 * std::numbers::pi / 180) * 2.0 / 3.0), 1e-12);
   perspective.ray(2, 1, o, d);  // right of the image is +x
   EXPECT_GT(d[0], 0.0);
 

@@ -27,7 +27,9 @@ StructuredGrid makeGrid(const Index3& dims, const Vec3d& origin, const Vec3d& sp
   return g;
 }
 
-double linear(const Vec3d& x) { return 1.0 + 2.0 * x[0] - 3.0 * x[1] + 0.5 * x[2]; }
+double linear(const Vec3d& x) {
+  return 1.0 + 2.0 * x[0] - 3.0 * x[1] + 0.5 * x[2];
+}
 
 std::vector<Vec3d> randomPoints(const Vec3d& lo, const Vec3d& hi, int n, unsigned seed) {
   std::mt19937 rng(seed);
@@ -82,7 +84,8 @@ void expectInterpolates(const StructuredGrid& g) {
 StructuredGrid randomGrid(const Index3& dims, unsigned seed) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
-  return makeGrid(dims, Vec3d(0.25, -1, 0), Vec3d(0.7, 0.3, 1.1), [&](const Vec3d&) { return u(rng); });
+  return makeGrid(dims, Vec3d(0.25, -1, 0), Vec3d(0.7, 0.3, 1.1),
+                  [&](const Vec3d&) { return u(rng); });
 }
 
 TEST(GridFilters, InterpolateTheSamples) {
@@ -116,7 +119,8 @@ void expectGradientMatchesValues(const StructuredGrid& g) {
   std::mt19937 rng(2);
   std::uniform_real_distribution<double> u(0.05, 0.95);
   for (int n = 0; n < 200; ++n) {
-    const Vec3d x = field.boxMin() + Vec3d(u(rng), u(rng), u(rng)).cwiseProduct(field.boxMax() - field.boxMin());
+    const Vec3d x = field.boxMin() +
+                    Vec3d(u(rng), u(rng), u(rng)).cwiseProduct(field.boxMax() - field.boxMin());
     const ValueGradient vg = s.valueGradient(x);
     for (int d = 0; d < 3; ++d) {
       Vec3d p = x, m = x;
@@ -129,9 +133,9 @@ void expectGradientMatchesValues(const StructuredGrid& g) {
 }
 
 TEST(GridFilters, AnalyticGradientsMatchTheirValues) {
-  const StructuredGrid g = makeGrid({9, 8, 7}, Vec3d(0, 0, 0), Vec3d(0.5, 0.6, 0.7), [](const Vec3d& x) {
-    return std::sin(x[0]) * std::cos(0.7 * x[1]) + 0.3 * x[2] * x[2];
-  });
+  const StructuredGrid g = makeGrid(
+      {9, 8, 7}, Vec3d(0, 0, 0), Vec3d(0.5, 0.6, 0.7),
+      [](const Vec3d& x) { return std::sin(x[0]) * std::cos(0.7 * x[1]) + 0.3 * x[2] * x[2]; });
   expectGradientMatchesValues<TrilinearFilter>(g);
   expectGradientMatchesValues<CatmullRomFilter>(g);
   expectGradientMatchesValues<TricubicFilter>(g);

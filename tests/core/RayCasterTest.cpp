@@ -66,7 +66,8 @@ TEST(RayCaster, ConstantSlabIsExactlyBeerLambert) {
           EXPECT_NEAR(p[3], 1 - transmittance, 2e-6);
         }
       EXPECT_EQ(stats.raysHit, s.width * s.height);
-      EXPECT_EQ(stats.samples, stats.raysHit * static_cast<std::int64_t>(std::ceil(2.0 / dt - 1e-9)));
+      EXPECT_EQ(stats.samples,
+                stats.raysHit * static_cast<std::int64_t>(std::ceil(2.0 / dt - 1e-9)));
     }
   }
 }
@@ -122,7 +123,8 @@ RenderSettings mlSettings(int size) {
 
 double maxAbsDifference(const Image& a, const Image& b) {
   double worst = 0.0;
-  for (size_t i = 0; i < a.rgba.size(); ++i) worst = std::max(worst, double(std::abs(a.rgba[i] - b.rgba[i])));
+  for (size_t i = 0; i < a.rgba.size(); ++i)
+    worst = std::max(worst, double(std::abs(a.rgba[i] - b.rgba[i])));
   return worst;
 }
 
@@ -219,7 +221,8 @@ TEST(RayCaster, MfaBeatsTrilinearAgainstTheTruth) {
   MethodSpec gradientOnly;
   gradientOnly.method = ReconstructionMethod::Truth;
   gradientOnly.gradientFrom = ReconstructionMethod::Mfa;
-  const double mfaGradient = compareImages(truth, toImage8(renderMethod(scene, gradientOnly, s))).psnr;
+  const double mfaGradient =
+      compareImages(truth, toImage8(renderMethod(scene, gradientOnly, s))).psnr;
   gradientOnly.gradientFrom = ReconstructionMethod::Trilinear;
   const double trilinearGradient =
       compareImages(truth, toImage8(renderMethod(scene, gradientOnly, s))).psnr;

@@ -3,6 +3,7 @@
 #include <tbb/parallel_for.h>
 
 #include <Eigen/Dense>
+#include <cmath>
 #include <vector>
 
 namespace mfadvr {
@@ -14,25 +15,30 @@ namespace {
 // Built here as the inverse of the constraint matrix rather than typed in: row (d, c) of the
 // constraint matrix is the derivative d of each monomial at corner c. Its inverse has integer
 // entries, so rounding removes the inversion's rounding error.
-const Eigen::Matrix<double, 64, 64>& lekienMarsdenMatrix() {
-  static const Eigen::Matrix<double, 64, 64> m = [] {
+// Row-major 64x64.
+using Matrix64 = std::array<double, 64 * 64>;
+
+const Matrix64& lekienMarsdenMatrix() {
+  static const Matrix64 m = [] {
     auto monomialDerivative = [](int power, int order, int at) -> double {
       if (order == 0) return power == 0 ? 1.0 : (at == 0 ? 0.0 : 1.0);
       if (power == 0) return 0.0;
       return power == 1 ? 1.0 : (at == 0 ? 0.0 : double(power));
     };
-    Eigen::Matrix<double, 64, 64> b;
+    Eigen::MatrixXd b(64, 64);
     for (int d = 0; d < 8; ++d)
       for (int c = 0; c < 8; ++c)
         for (int k = 0; k < 4; ++k)
           for (int j = 0; j < 4; ++j)
             for (int i = 0; i < 4; ++i)
-              b(d * 8 + c, i + 4 * j + 16 * k) =
-                  monomialDerivative(i, d & 1, c & 1) *
-                  monomialDerivative(j, (d >> 1) & 1, (c >> 1) & 1) *
-                  monomialDerivative(k, (d >> 2) & 1, (c >> 2) & 1);
-    Eigen::Matrix<double, 64, 64> inv = b.fullPivLu().inverse();
-    return Eigen::Matrix<double, 64, 64>(inv.array().round());
+              b(d * 8 + c, i + 4 * j + 16 * k) = monomialDerivative(i, d & 1, c & 1) *
+                                                 monomialDerivative(j, (d >> 1) & 1, (c >> 1) & 1) *
+                                                 monomialDerivative(k, (d >> 2) & 1, (c >> 2) & 1);
+    const Eigen::MatrixXd inv = b.fullPivLu().inverse();
+    Matrix64 rounded;
+    for (int r = 0; r < 64; ++r)
+      for (int c = 0; c < 64; ++c) rounded[r * 64 + c] = std::round(inv(r, c));
+    return rounded;
   }();
   return m;
 }
@@ -42,7 +48,7 @@ const Eigen::Matrix<double, 64, 64>& lekienMarsdenMatrix() {
 void TricubicFilter::loadCell(const std::int64_t c[3]) {
   // Corner data by central differences of the samples (the ghost layer makes them one-sided on
   // the boundary), in index units: f, fx, fy, fxy, fz, fxz, fyz, fxyz (bit d: x=1, y=2, z=4).
-  Eigen::Matrix<double, 64, 1> b;
+  double b[64];
   const PaddedGrid& g = *g_;
   for (int corner = 0; corner < 8; ++corner) {
     const std::int64_t i = c[0] + (corner & 1), j = c[1] + ((corner >> 1) & 1),
@@ -54,13 +60,19 @@ void TricubicFilter::loadCell(const std::int64_t c[3]) {
       for (int sz = -oz; sz <= oz; sz += 2 * oz + (oz == 0))
         for (int sy = -oy; sy <= oy; sy += 2 * oy + (oy == 0))
           for (int sx = -ox; sx <= ox; sx += 2 * ox + (ox == 0)) {
-            const double sign = (sx < 0 ? -1.0 : 1.0) * (sy < 0 ? -1.0 : 1.0) * (sz < 0 ? -1.0 : 1.0);
+            const double sign =
+                (sx < 0 ? -1.0 : 1.0) * (sy < 0 ? -1.0 : 1.0) * (sz < 0 ? -1.0 : 1.0);
             sum += sign * g.at(i + sx, j + sy, k + sz);
           }
       b[d * 8 + corner] = sum / double(1 << (ox + oy + oz));
     }
   }
-  Eigen::Map<Eigen::Matrix<double, 64, 1>>(a_.data()) = lekienMarsdenMatrix() * b;
+  const Matrix64& m = lekienMarsdenMatrix();
+  for (int r = 0; r < 64; ++r) {
+    double sum = 0.0;
+    for (int c = 0; c < 64; ++c) sum += m[r * 64 + c] * b[c];
+    a_[r] = sum;
+  }
   for (int a = 0; a < 3; ++a) cached_[a] = c[a];
 }
 

@@ -172,8 +172,8 @@ inline ValueGradient TrilinearFilter::valueGradient(const Vec3d& x) const {
   const Vec3d& s = g_->inverseSpacing();
   ValueGradient r;
   r.value = static_cast<float>(c0 + t[2] * (c1 - c0));
-  r.gradient = Vec3f((dx0 + t[2] * (dx1 - dx0)) * s[0], (dy0 + t[2] * (dy1 - dy0)) * s[1],
-                     (c1 - c0) * s[2]);
+  r.gradient =
+      Vec3f((dx0 + t[2] * (dx1 - dx0)) * s[0], (dy0 + t[2] * (dy1 - dy0)) * s[1], (c1 - c0) * s[2]);
   return r;
 }
 

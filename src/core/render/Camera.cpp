@@ -11,7 +11,9 @@ namespace mfadvr {
 
 namespace {
 
-double radians(double degrees) { return degrees * std::numbers::pi / 180.0; }
+double radians(double degrees) {
+  return degrees * std::numbers::pi / 180.0;
+}
 
 Vec3d rotateAbout(const Vec3d& v, const Vec3d& axis, double degrees) {
   return Eigen::AngleAxisd(radians(degrees), axis.normalized()) * v;
@@ -23,7 +25,9 @@ bool nearlyParallel(const Vec3d& a, const Vec3d& b) {
 
 }  // namespace
 
-Vec3d Camera::directionOfProjection() const { return (focalPoint - position).normalized(); }
+Vec3d Camera::directionOfProjection() const {
+  return (focalPoint - position).normalized();
+}
 
 void Camera::resetToBounds(const Vec3d& boxMin, const Vec3d& boxMax) {
   Vec3d direction = directionOfProjection();

@@ -25,7 +25,7 @@ struct Lighting {
   float diffuse = 0.7f;
   float specular = 0.2f;
   float specularPower = 10.0f;
-  bool headlight = true;                // a white light travelling along the view direction
+  bool headlight = true;                 // a white light travelling along the view direction
   std::vector<DirectionalLight> lights;  // in addition to the headlight
 
   // Throws mfadvr::Error on negative or non-finite coefficients or a zero light direction.

@@ -133,8 +133,7 @@ class RayCaster {
       const TransferFunction& tf = s_.transferFunction;
       const double dt = s_.sampleDistance;
       // The tolerance keeps a rounding error from adding a step of zero length.
-      const std::int64_t steps =
-          static_cast<std::int64_t>(std::ceil((tExit - tEnter) / dt - 1e-6));
+      const std::int64_t steps = static_cast<std::int64_t>(std::ceil((tExit - tEnter) / dt - 1e-6));
       if (s_.shade) shader.setView(d.cast<float>());
       const float stop = static_cast<float>(s_.earlyTerminationOpacity);
       for (std::int64_t k = 0; k < steps; ++k) {

@@ -19,12 +19,9 @@ struct NamedMethod {
   const char* name;
 };
 constexpr NamedMethod kMethods[] = {
-    {ReconstructionMethod::Mfa, "mfa"},
-    {ReconstructionMethod::Truth, "truth"},
-    {ReconstructionMethod::Nearest, "nearest"},
-    {ReconstructionMethod::Trilinear, "trilinear"},
-    {ReconstructionMethod::Tricubic, "tricubic"},
-    {ReconstructionMethod::CatmullRom, "catmull-rom"},
+    {ReconstructionMethod::Mfa, "mfa"},           {ReconstructionMethod::Truth, "truth"},
+    {ReconstructionMethod::Nearest, "nearest"},   {ReconstructionMethod::Trilinear, "trilinear"},
+    {ReconstructionMethod::Tricubic, "tricubic"}, {ReconstructionMethod::CatmullRom, "catmull-rom"},
     {ReconstructionMethod::BSpline, "bspline"},
 };
 
@@ -46,8 +43,9 @@ void withField(const SceneData& scene, ReconstructionMethod method, Fn&& fn) {
       return fn(ModelField(*scene.model));
     case ReconstructionMethod::Truth:
       if (!scene.truth)
-        throw Error("method 'truth' needs an analytic function: give a builtin spec as input, "
-                    "or a model encoded from one");
+        throw Error(
+            "method 'truth' needs an analytic function: give a builtin spec as input, "
+            "or a model encoded from one");
       return fn(AnalyticField(*scene.truth));
     case ReconstructionMethod::Nearest:
       return fn(GridField<NearestFilter>(needGrid()));
@@ -98,7 +96,8 @@ Image renderMethod(const SceneData& scene, const MethodSpec& spec, const RenderS
   const auto setupStart = Clock::now();
   Image image;
   auto render = [&](const auto& field) {
-    if (stats) stats->setupSeconds = std::chrono::duration<double>(Clock::now() - setupStart).count();
+    if (stats)
+      stats->setupSeconds = std::chrono::duration<double>(Clock::now() - setupStart).count();
     image = renderVolume(field, settings, stats);
   };
   auto withGradientMode = [&](const auto& field) {
@@ -116,8 +115,9 @@ Image renderMethod(const SceneData& scene, const MethodSpec& spec, const RenderS
   if (spec.method != ReconstructionMethod::Truth)
     throw Error("a gradient from another method is only supported with the value from 'truth'");
   if (!scene.truth)
-    throw Error("the gradient test needs the analytic function: give a builtin spec as input, "
-                "or a model encoded from one");
+    throw Error(
+        "the gradient test needs the analytic function: give a builtin spec as input, "
+        "or a model encoded from one");
   const AnalyticField truth(*scene.truth);
   withField(scene, *spec.gradientFrom, [&](const auto& gradientField) {
     if (spec.gradient == GradientMode::CentralDifference)
