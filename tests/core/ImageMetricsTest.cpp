@@ -2,7 +2,6 @@
 // implementation of the SSIM definition.
 #include <gtest/gtest.h>
 
-#include <chrono>
 #include <cmath>
 #include <random>
 
@@ -169,18 +168,13 @@ TEST(ImageMetrics, DifferenceImageScalesAndClamps) {
   test::expectError([&] { differenceImage(a, b, INFINITY); }, {"gain"});
 }
 
-TEST(ImageMetrics, OneMegapixelComparesQuickly) {
+TEST(ImageMetrics, OneMegapixelImagesCompare) {
+  // Speed is measured by the benchmarks, not here; this checks a full-size comparison works.
   const Image8 a = pattern(1000, 1000), b = withNoise(a, 10, 5);
-  const auto t0 = std::chrono::steady_clock::now();
   const ImageComparison r = compareImages(a, b);
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   EXPECT_GT(r.ssim, 0.5);
   EXPECT_LT(r.ssim, 1.0);
-  RecordProperty("seconds", std::to_string(seconds));
-#ifdef NDEBUG
-  EXPECT_LT(seconds, 2.0);  // typically a small fraction of that; generous for loaded machines
-#endif
+  EXPECT_GT(r.mse, 0.0);
 }
 
 }  // namespace

@@ -186,6 +186,16 @@ TEST(PngFile, HugeDeclaredSizeWithLittleDataFailsWithoutAllocating) {
   test::expectError([&] { decodePng(bytes, "big.png"); }, {"big.png", "truncated"});
 }
 
+TEST(PngFile, HighlyCompressibleImagesStillRead) {
+  // All zeros compress close to deflate's limit (about 1000:1): the reader's guard against
+  // headers that claim more pixels than the data can hold must not reject them.
+  const Image8 black{2000, 1500, 4, std::vector<std::uint8_t>(2000u * 1500 * 4, 0)};
+  const std::string bytes = encodePng(black);
+  const Image8 back = decodePng(bytesOf(bytes), "black.png");
+  EXPECT_EQ(back.width, 2000);
+  EXPECT_EQ(back.data, black.data);
+}
+
 TEST(PngFile, MissingFileIsAnError) {
   const auto dir = test::scratchDir();
   const std::string path = (dir / "absent.png").string();
