@@ -8,6 +8,7 @@
 #include "core/field/DerivedFields.h"
 #include "core/field/GridField.h"
 #include "core/field/GridFilters.h"
+#include "core/field/LekienMarsden.h"
 #include "core/field/PaddedGrid.h"
 #include "core/util/Error.h"
 
@@ -171,6 +172,32 @@ TEST(GridFilters, RejectGridsWithoutCells) {
   const StructuredGrid g = makeGrid({1, 4, 4}, Vec3d(0, 0, 0), Vec3d(1, 1, 1), linear);
   EXPECT_THROW(GridField<TrilinearFilter>{g}, Error);
   EXPECT_THROW(GridField<BSplineFilter>{g}, Error);
+}
+
+}  // namespace
+}  // namespace mfadvr
+
+namespace mfadvr {
+namespace {
+
+TEST(LekienMarsden, FactoredProductEqualsTheFullMatrix) {
+  const auto& m = lekienMarsdenMatrix();
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<double> u(-2.0, 2.0);
+  for (int trial = 0; trial < 20; ++trial) {
+    double b[64], a[64];
+    for (double& v : b) v = u(rng);
+    lekienMarsdenCoefficients(b, a);
+    for (int r = 0; r < 64; ++r) {
+      double full = 0.0;
+      for (int c = 0; c < 64; ++c) full += m[r * 64 + c] * b[c];
+      ASSERT_NEAR(a[r], full, 1e-12) << "row " << r;
+    }
+  }
+  // Spot check against the published matrix: its first row picks f at corner 0, and the row of
+  // the x^1 coefficient picks fx at corner 0.
+  EXPECT_EQ(m[0 * 64 + 0], 1.0);
+  EXPECT_EQ(m[1 * 64 + 8], 1.0);
 }
 
 }  // namespace

@@ -2,77 +2,39 @@
 
 #include <tbb/parallel_for.h>
 
-#include <Eigen/Dense>
 #include <cmath>
 #include <vector>
 
+#include "core/field/LekienMarsden.h"
+
 namespace mfadvr {
 
-namespace {
-
-// Lekien & Marsden's 64x64 matrix: coefficients a (a[i + 4j + 16k] of tx^i ty^j tz^k) from the
-// corner data b (for each derivative order (dx,dy,dz) in {0,1}^3, for each corner in {0,1}^3).
-// Built here as the inverse of the constraint matrix rather than typed in: row (d, c) of the
-// constraint matrix is the derivative d of each monomial at corner c. Its inverse has integer
-// entries, so rounding removes the inversion's rounding error.
-// Row-major 64x64.
-using Matrix64 = std::array<double, 64 * 64>;
-
-const Matrix64& lekienMarsdenMatrix() {
-  static const Matrix64 m = [] {
-    auto monomialDerivative = [](int power, int order, int at) -> double {
-      if (order == 0) return power == 0 ? 1.0 : (at == 0 ? 0.0 : 1.0);
-      if (power == 0) return 0.0;
-      return power == 1 ? 1.0 : (at == 0 ? 0.0 : double(power));
-    };
-    Eigen::MatrixXd b(64, 64);
-    for (int d = 0; d < 8; ++d)
-      for (int c = 0; c < 8; ++c)
-        for (int k = 0; k < 4; ++k)
-          for (int j = 0; j < 4; ++j)
-            for (int i = 0; i < 4; ++i)
-              b(d * 8 + c, i + 4 * j + 16 * k) = monomialDerivative(i, d & 1, c & 1) *
-                                                 monomialDerivative(j, (d >> 1) & 1, (c >> 1) & 1) *
-                                                 monomialDerivative(k, (d >> 2) & 1, (c >> 2) & 1);
-    const Eigen::MatrixXd inv = b.fullPivLu().inverse();
-    Matrix64 rounded;
-    for (int r = 0; r < 64; ++r)
-      for (int c = 0; c < 64; ++c) rounded[r * 64 + c] = std::round(inv(r, c));
-    return rounded;
-  }();
-  return m;
-}
-
-}  // namespace
-
 void TricubicFilter::loadCell(const std::int64_t c[3]) {
-  // Corner data by central differences of the samples (the ghost layer makes them one-sided on
-  // the boundary), in index units: f, fx, fy, fxy, fz, fxz, fyz, fxyz (bit d: x=1, y=2, z=4).
-  double b[64];
-  const PaddedGrid& g = *g_;
-  for (int corner = 0; corner < 8; ++corner) {
-    const std::int64_t i = c[0] + (corner & 1), j = c[1] + ((corner >> 1) & 1),
-                       k = c[2] + ((corner >> 2) & 1);
-    for (int d = 0; d < 8; ++d) {
-      // Apply the central difference 0.5 (f(+1) - f(-1)) along each axis whose bit is set.
-      double sum = 0.0;
-      const int ox = d & 1, oy = (d >> 1) & 1, oz = (d >> 2) & 1;
-      for (int sz = -oz; sz <= oz; sz += 2 * oz + (oz == 0))
-        for (int sy = -oy; sy <= oy; sy += 2 * oy + (oy == 0))
-          for (int sx = -ox; sx <= ox; sx += 2 * ox + (ox == 0)) {
-            const double sign =
-                (sx < 0 ? -1.0 : 1.0) * (sy < 0 ? -1.0 : 1.0) * (sz < 0 ? -1.0 : 1.0);
-            sum += sign * g.at(i + sx, j + sy, k + sz);
-          }
-      b[d * 8 + corner] = sum / double(1 << (ox + oy + oz));
+  // The 4x4x4 samples around the cell (the ghost layer covers the boundary cells).
+  double f[4][4][4];  // [k][j][i], offsets -1..2
+  for (int k = 0; k < 4; ++k)
+    for (int j = 0; j < 4; ++j) {
+      const float* row = g_->pointer(c[0] - 1, c[1] - 1 + j, c[2] - 1 + k);
+      for (int i = 0; i < 4; ++i) f[k][j][i] = row[i];
     }
+  // Corner data by central differences, in index units: for derivative bits d (x=1, y=2, z=4),
+  // the product of 0.5 (f(+1) - f(-1)) along each set axis.
+  double b[64];
+  for (int corner = 0; corner < 8; ++corner) {
+    const int i = 1 + (corner & 1), j = 1 + ((corner >> 1) & 1), k = 1 + ((corner >> 2) & 1);
+    auto dx = [&](int kk, int jj) { return 0.5 * (f[kk][jj][i + 1] - f[kk][jj][i - 1]); };
+    auto dxy = [&](int kk) { return 0.5 * (dx(kk, j + 1) - dx(kk, j - 1)); };
+    auto dy = [&](int kk) { return 0.5 * (f[kk][j + 1][i] - f[kk][j - 1][i]); };
+    b[0 * 8 + corner] = f[k][j][i];
+    b[1 * 8 + corner] = dx(k, j);
+    b[2 * 8 + corner] = dy(k);
+    b[3 * 8 + corner] = dxy(k);
+    b[4 * 8 + corner] = 0.5 * (f[k + 1][j][i] - f[k - 1][j][i]);
+    b[5 * 8 + corner] = 0.5 * (dx(k + 1, j) - dx(k - 1, j));
+    b[6 * 8 + corner] = 0.5 * (dy(k + 1) - dy(k - 1));
+    b[7 * 8 + corner] = 0.5 * (dxy(k + 1) - dxy(k - 1));
   }
-  const Matrix64& m = lekienMarsdenMatrix();
-  for (int r = 0; r < 64; ++r) {
-    double sum = 0.0;
-    for (int c = 0; c < 64; ++c) sum += m[r * 64 + c] * b[c];
-    a_[r] = sum;
-  }
+  lekienMarsdenCoefficients(b, a_.data());
   for (int a = 0; a < 3; ++a) cached_[a] = c[a];
 }
 

@@ -1,6 +1,7 @@
 #pragma once
 // Local reconstruction filters over a PaddedGrid, each with its analytic gradient (the
-// derivative of the same piecewise polynomial that gives the value).
+// derivative of the same piecewise polynomial that gives the value). The per-sample functions
+// are forced inline so that the ray caster's loop schedules them with its own work.
 //
 //   NearestFilter     value of the nearest sample; a piecewise-constant function has no useful
 //                     derivative, so its gradient is the central difference at that sample.
@@ -24,8 +25,8 @@ class NearestFilter {
  public:
   static PaddedGrid prepare(const StructuredGrid& g) { return PaddedGrid(g); }
   explicit NearestFilter(const PaddedGrid& g) : g_(&g) {}
-  float value(const Vec3d& x) const;
-  ValueGradient valueGradient(const Vec3d& x) const;
+  [[gnu::always_inline]] float value(const Vec3d& x) const;
+  [[gnu::always_inline]] ValueGradient valueGradient(const Vec3d& x) const;
 
  private:
   const PaddedGrid* g_;
@@ -35,8 +36,8 @@ class TrilinearFilter {
  public:
   static PaddedGrid prepare(const StructuredGrid& g) { return PaddedGrid(g); }
   explicit TrilinearFilter(const PaddedGrid& g) : g_(&g) {}
-  float value(const Vec3d& x) const;
-  ValueGradient valueGradient(const Vec3d& x) const;
+  [[gnu::always_inline]] float value(const Vec3d& x) const;
+  [[gnu::always_inline]] ValueGradient valueGradient(const Vec3d& x) const;
 
  private:
   const PaddedGrid* g_;
@@ -48,8 +49,8 @@ template <class Weights>
 class Cubic4Filter {
  public:
   explicit Cubic4Filter(const PaddedGrid& g) : g_(&g) {}
-  float value(const Vec3d& x) const;
-  ValueGradient valueGradient(const Vec3d& x) const;
+  [[gnu::always_inline]] float value(const Vec3d& x) const;
+  [[gnu::always_inline]] ValueGradient valueGradient(const Vec3d& x) const;
 
  private:
   const PaddedGrid* g_;

@@ -36,7 +36,7 @@ class PaddedGrid {
   std::int64_t strideZ() const { return sz_; }
 
   // Continuous index of physical point x, clamped to [0, n-1] per axis.
-  Vec3d continuousIndex(const Vec3d& x) const {
+  [[gnu::always_inline]] Vec3d continuousIndex(const Vec3d& x) const {
     Vec3d u = (x - origin_).cwiseProduct(invSpacing_);
     // Ternaries rather than std::fmin/fmax, which are library calls when NaN rules apply.
     for (int a = 0; a < 3; ++a) {
@@ -46,7 +46,7 @@ class PaddedGrid {
     return u;
   }
   // Cell of a continuous index: i in [0, n-2] and the fraction t in [0, 1].
-  void cell(const Vec3d& u, std::int64_t i[3], double t[3]) const {
+  [[gnu::always_inline]] void cell(const Vec3d& u, std::int64_t i[3], double t[3]) const {
     for (int a = 0; a < 3; ++a) {
       std::int64_t c = static_cast<std::int64_t>(u[a]);  // u >= 0, so truncation is floor
       if (c > dims_[a] - 2) c = dims_[a] - 2;

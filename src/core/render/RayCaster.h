@@ -28,6 +28,7 @@
 #include "core/image/Image.h"
 #include "core/render/OpacityCorrection.h"
 #include "core/render/RenderSettings.h"
+#include "core/render/TransferFunctionTable.h"
 
 namespace mfadvr {
 
@@ -58,7 +59,8 @@ class RayCaster {
       : field_(field),
         s_(settings),
         rays_((settings.validate(), settings.camera), settings.width, settings.height),
-        correction_(settings.sampleDistance / settings.opacityUnitDistance) {}
+        correction_(settings.sampleDistance / settings.opacityUnitDistance),
+        table_(settings.transferFunction, correction_) {}
 
   Image render(RenderStats* stats = nullptr) const {
     using Clock = std::chrono::steady_clock;
@@ -123,14 +125,13 @@ class RayCaster {
                RayCounters& counters) const {
     Vec3d o, d;
     rays_.ray(x, y, o, d);
-    Vec3f color = Vec3f::Zero();
-    float alpha = 0.0f;
+    // Plain floats: Eigen's small-vector expressions were not inlined into this loop.
+    float red = 0.0f, green = 0.0f, blue = 0.0f, alpha = 0.0f;
     double tEnter, tExit;
     const Vec3d lo = field_.boxMin(), hi = field_.boxMax();
     if (intersectBox(o, d, lo, hi, tEnter, tExit) && tExit > std::max(tEnter, 0.0)) {
       ++counters.hits;
       tEnter = std::max(tEnter, 0.0);
-      const TransferFunction& tf = s_.transferFunction;
       const double dt = s_.sampleDistance;
       // The tolerance keeps a rounding error from adding a step of zero length.
       const std::int64_t steps = static_cast<std::int64_t>(std::ceil((tExit - tEnter) / dt - 1e-6));
@@ -140,22 +141,24 @@ class RayCaster {
         const double t = tEnter + static_cast<double>(k) * dt;
         const double length = std::min(dt, tExit - t);
         if (!(length > 0.0)) break;
-        Vec3d p = o + (t + 0.5 * length) * d;
-        p = p.cwiseMax(lo).cwiseMin(hi);
+        // Fields clamp their own lookups, so a sample a rounding error outside the box is fine.
+        const Vec3d p = o + (t + 0.5 * length) * d;
         ++counters.samples;
         ValueGradient vg;
         if (s_.shade)
           vg = sampler.valueGradient(p);
         else
           vg.value = sampler.value(p);
-        const float a = tf.opacityAt(vg.value);
-        if (!(a > 0.0f)) continue;
+        const Classification tf = table_.classify(vg.value);
+        if (!(tf.alpha > 0.0f)) continue;
         const float corrected =
-            length == dt ? correction_.full(a) : correction_.partial(a, length / dt);
-        Vec3f c = tf.colorAt(vg.value);
+            length == dt ? tf.alphaStep : correction_.partial(tf.alpha, length / dt);
+        Vec3f c = tf.rgb;
         if (s_.shade) c = shader.shade(c, vg.gradient);
         const float w = (1.0f - alpha) * corrected;
-        color += w * c;
+        red += w * c[0];
+        green += w * c[1];
+        blue += w * c[2];
         alpha += w;
         if (alpha >= stop) {
           ++counters.terminated;
@@ -163,10 +166,10 @@ class RayCaster {
         }
       }
     }
-    const Vec3f rgb = color + (1.0f - alpha) * s_.background;
-    out[0] = rgb[0];
-    out[1] = rgb[1];
-    out[2] = rgb[2];
+    const float behind = 1.0f - alpha;
+    out[0] = red + behind * s_.background[0];
+    out[1] = green + behind * s_.background[1];
+    out[2] = blue + behind * s_.background[2];
     out[3] = alpha;
   }
 
@@ -174,6 +177,7 @@ class RayCaster {
   const RenderSettings& s_;
   RayGenerator rays_;
   OpacityCorrection correction_;
+  TransferFunctionTable table_;
 };
 
 // Renders `field` with `settings`; stats (optional) receive the timing and counts.
