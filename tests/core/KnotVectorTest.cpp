@@ -86,7 +86,7 @@ TEST(BasisFunctions, PartitionOfUnityAndDerivativesSumToZero) {
       const double u = uni(rng);
       const int s = k.findSpan(u);
       double d[3 * (kMaxDegree + 1)];
-      basisDerivatives(k.data(), p, s, u, 2, d);
+      basisDerivatives(k, p, s, u, 2, d);
       double sum0 = 0, sum1 = 0, sum2 = 0;
       for (int r = 0; r <= p; ++r) {
         EXPECT_GE(d[r], -1e-15);
@@ -98,7 +98,7 @@ TEST(BasisFunctions, PartitionOfUnityAndDerivativesSumToZero) {
       EXPECT_NEAR(sum1, 0.0, 1e-9);
       EXPECT_NEAR(sum2, 0.0, 1e-6);
       double N[kMaxDegree + 1];
-      basisFunctions(k.data(), p, s, u, N);
+      basisFunctions(k, p, s, u, N);
       for (int r = 0; r <= p; ++r) EXPECT_NEAR(N[r], d[r], 1e-15);
     }
   }
@@ -114,9 +114,9 @@ TEST(BasisFunctions, DerivativesMatchFiniteDifferences) {
       ASSERT_EQ(k.findSpan(u - h), s);
       ASSERT_EQ(k.findSpan(u + h), s);
       double d[2 * (kMaxDegree + 1)], lo[kMaxDegree + 1], hi[kMaxDegree + 1];
-      basisDerivatives(k.data(), p, s, u, 1, d);
-      basisFunctions(k.data(), p, s, u - h, lo);
-      basisFunctions(k.data(), p, s, u + h, hi);
+      basisDerivatives(k, p, s, u, 1, d);
+      basisFunctions(k, p, s, u - h, lo);
+      basisFunctions(k, p, s, u + h, hi);
       for (int r = 0; r <= p; ++r) EXPECT_NEAR(d[p + 1 + r], (hi[r] - lo[r]) / (2 * h), 1e-5);
     }
   }

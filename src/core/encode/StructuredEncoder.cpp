@@ -43,7 +43,7 @@ AxisSampling sampleAxis(const KnotVector& kv, std::int64_t samples) {
     const double u = static_cast<double>(i) / static_cast<double>(samples - 1);
     const int span = kv.findSpan(u);
     s.first[i] = span - s.degree;
-    basisFunctions(kv.data(), s.degree, span, u, &s.weights[static_cast<size_t>(i * w)]);
+    basisFunctions(kv, s.degree, span, u, &s.weights[static_cast<size_t>(i * w)]);
   }
   return s;
 }

@@ -14,8 +14,10 @@
 
 namespace mfadvr {
 
-// N[r] = N_{span-p+r, p}(u), r = 0..p.
-MFADVR_INLINE void basisFunctions(const double* U, int p, int span, double u, double* N) {
+// N[r] = N_{span-p+r, p}(u), r = 0..p; p must be the knot vector's degree.
+MFADVR_INLINE void basisFunctions(const KnotVector& kv, int p, int span, double u, double* N) {
+  const double* U = kv.data();
+  const double* inv = kv.reciprocalDifferences(span);
   double left[kMaxDegree + 1], right[kMaxDegree + 1];
   N[0] = 1.0;
   for (int j = 1; j <= p; ++j) {
@@ -23,7 +25,7 @@ MFADVR_INLINE void basisFunctions(const double* U, int p, int span, double u, do
     right[j] = U[span + j] - u;
     double saved = 0.0;
     for (int r = 0; r < j; ++r) {
-      const double temp = N[r] / (right[r + 1] + left[j - r]);
+      const double temp = N[r] * inv[(j - 1) * j / 2 + r];  // / (right[r+1] + left[j-r])
       N[r] = saved + right[r + 1] * temp;
       saved = left[j - r] * temp;
     }
@@ -33,8 +35,11 @@ MFADVR_INLINE void basisFunctions(const double* U, int p, int span, double u, do
 
 // ders[k * (p+1) + r] = k-th derivative of N_{span-p+r, p} at u, for k = 0..order (order <= p
 // gives the non-zero derivatives; higher orders are written as zero).
-MFADVR_INLINE void basisDerivatives(const double* U, int p, int span, double u, int order,
+MFADVR_INLINE void basisDerivatives(const KnotVector& kv, int p, int span, double u, int order,
                                     double* ders) {
+  const double* U = kv.data();
+  const double* inv = kv.reciprocalDifferences(span);
+  // As A2.3, except that the lower triangle holds the reciprocals of the knot differences.
   double ndu[kMaxDegree + 1][kMaxDegree + 1];
   double left[kMaxDegree + 1], right[kMaxDegree + 1];
   ndu[0][0] = 1.0;
@@ -43,8 +48,8 @@ MFADVR_INLINE void basisDerivatives(const double* U, int p, int span, double u, 
     right[j] = U[span + j] - u;
     double saved = 0.0;
     for (int r = 0; r < j; ++r) {
-      ndu[j][r] = right[r + 1] + left[j - r];  // lower triangle: knot differences
-      const double temp = ndu[r][j - 1] / ndu[j][r];
+      ndu[j][r] = inv[(j - 1) * j / 2 + r];  // lower triangle: 1 / knot difference
+      const double temp = ndu[r][j - 1] * ndu[j][r];
       ndu[r][j] = saved + right[r + 1] * temp;  // upper triangle: basis values
       saved = left[j - r] * temp;
     }
@@ -64,17 +69,17 @@ MFADVR_INLINE void basisDerivatives(const double* U, int p, int span, double u, 
       double d = 0.0;
       const int rk = r - k, pk = p - k;
       if (r >= k) {
-        a[s2][0] = a[s1][0] / ndu[pk + 1][rk];
+        a[s2][0] = a[s1][0] * ndu[pk + 1][rk];
         d = a[s2][0] * ndu[rk][pk];
       }
       const int j1 = rk >= -1 ? 1 : -rk;
       const int j2 = (r - 1 <= pk) ? k - 1 : p - r;
       for (int j = j1; j <= j2; ++j) {
-        a[s2][j] = (a[s1][j] - a[s1][j - 1]) / ndu[pk + 1][rk + j];
+        a[s2][j] = (a[s1][j] - a[s1][j - 1]) * ndu[pk + 1][rk + j];
         d += a[s2][j] * ndu[rk + j][pk];
       }
       if (r <= pk) {
-        a[s2][k] = -a[s1][k - 1] / ndu[pk + 1][r];
+        a[s2][k] = -a[s1][k - 1] * ndu[pk + 1][r];
         d += a[s2][k] * ndu[r][pk];
       }
       ders[k * w + r] = d;

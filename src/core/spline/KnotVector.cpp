@@ -11,6 +11,17 @@ namespace mfadvr {
 KnotVector::KnotVector(int degree, std::vector<double> knots)
     : degree_(degree), knots_(std::move(knots)) {
   const int n = controlCount();
+  reciprocalsPerSpan_ = degree_ * (degree_ + 1) / 2;
+  if (degree_ >= 1 && n > degree_) {
+    reciprocals_.assign(static_cast<size_t>(n) * reciprocalsPerSpan_, 0.0);
+    for (int span = degree_; span < n; ++span)
+      for (int j = 1; j <= degree_; ++j)
+        for (int r = 0; r < j; ++r) {
+          const double d = knots_[span + r + 1] - knots_[span + 1 - j + r];
+          reciprocals_[static_cast<size_t>(span) * reciprocalsPerSpan_ + (j - 1) * j / 2 + r] =
+              d > 0.0 ? 1.0 / d : 0.0;  // zero only where the basis term vanishes anyway
+        }
+  }
   const int spans = n - degree_;
   uniform_ = true;
   for (int s = 0; s <= spans && uniform_; ++s) {

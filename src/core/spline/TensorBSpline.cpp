@@ -29,13 +29,13 @@ MFADVR_INLINE void evaluateKernel(const TensorBSpline& s, int p0, int p1, int p2
   constexpr int W = kMaxDegree + 1;
   double d0[2 * W], d1[2 * W], d2[2 * W];
   if constexpr (kGradient) {
-    basisDerivatives(k0.data(), p0, s0, u0, 1, d0);
-    basisDerivatives(k1.data(), p1, s1, u1, 1, d1);
-    basisDerivatives(k2.data(), p2, s2, u2, 1, d2);
+    basisDerivatives(k0, p0, s0, u0, 1, d0);
+    basisDerivatives(k1, p1, s1, u1, 1, d1);
+    basisDerivatives(k2, p2, s2, u2, 1, d2);
   } else {
-    basisFunctions(k0.data(), p0, s0, u0, d0);
-    basisFunctions(k1.data(), p1, s1, u1, d1);
-    basisFunctions(k2.data(), p2, s2, u2, d2);
+    basisFunctions(k0, p0, s0, u0, d0);
+    basisFunctions(k1, p1, s1, u1, d1);
+    basisFunctions(k2, p2, s2, u2, d2);
   }
   float N0[W], N1[W], N2[W], D0[W], D1[W], D2[W];
   for (int i = 0; i <= p0; ++i) {
@@ -162,7 +162,7 @@ ValueGradientHessian TensorBSpline::valueGradientHessian(const Vec3d& u) const {
   for (int a = 0; a < 3; ++a) {
     const double ua = clamp01(u[a]);
     span[a] = knots_[a].findSpan(ua);
-    basisDerivatives(knots_[a].data(), p[a], span[a], ua, 2, d[a]);
+    basisDerivatives(knots_[a], p[a], span[a], ua, 2, d[a]);
   }
   const std::int64_t n0 = knots_[0].controlCount(), n1 = knots_[1].controlCount();
   // acc[a][b][c]: sum of P * N0^(a) N1^(b) N2^(c) for the derivative orders we need.
