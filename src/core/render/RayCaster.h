@@ -23,6 +23,7 @@
 #include <chrono>
 #include <cmath>
 #include <mutex>
+#include <optional>
 
 #include "core/field/Field.h"
 #include "core/image/Image.h"
@@ -77,13 +78,15 @@ class RayCaster {
     auto work = [&] {
       tbb::parallel_for(tbb::blocked_range<int>(0, tiles, 1), [&](const auto& range) {
         auto sampler = field_.sampler();
-        Shader shader(s_.lighting, s_.camera.directionOfProjection());
+        std::optional<Shader> shader;
+        if (s_.shade) shader.emplace(s_.lighting, s_.camera.directionOfProjection());
         RayCounters c;
         for (int tile = range.begin(); tile < range.end(); ++tile) {
           const int x0 = (tile % tilesX) * kTile, y0 = (tile / tilesX) * kTile;
           const int x1 = std::min(x0 + kTile, s_.width), y1 = std::min(y0 + kTile, s_.height);
           for (int y = y0; y < y1; ++y)
-            for (int x = x0; x < x1; ++x) castRay(x, y, sampler, shader, image.pixel(x, y), c);
+            for (int x = x0; x < x1; ++x)
+              castRay(x, y, sampler, shader ? &*shader : nullptr, image.pixel(x, y), c);
           const int finished = ++done;
           if (s_.progress) {
             const int percent = static_cast<int>(100LL * finished / tiles);
@@ -105,6 +108,8 @@ class RayCaster {
     } else {
       work();
     }
+    // The last tile's report can lose the race for the lock; the caller still gets its 1.
+    if (s_.progress && lastReported < 100) s_.progress(1.0);
     if (stats) {
       stats->seconds = std::chrono::duration<double>(Clock::now() - start).count();
       stats->rays = std::int64_t(s_.width) * s_.height;
@@ -121,7 +126,8 @@ class RayCaster {
   };
 
   template <class Sampler>
-  void castRay(int x, int y, Sampler& sampler, Shader& shader, float* out,
+  // shader is null when shading is off.
+  void castRay(int x, int y, Sampler& sampler, Shader* shader, float* out,
                RayCounters& counters) const {
     Vec3d o, d;
     rays_.ray(x, y, o, d);
@@ -135,7 +141,7 @@ class RayCaster {
       const double dt = s_.sampleDistance;
       // The tolerance keeps a rounding error from adding a step of zero length.
       const std::int64_t steps = static_cast<std::int64_t>(std::ceil((tExit - tEnter) / dt - 1e-6));
-      if (s_.shade) shader.setView(d.cast<float>());
+      if (shader) shader->setView(d.cast<float>());
       const float stop = static_cast<float>(s_.earlyTerminationOpacity);
       for (std::int64_t k = 0; k < steps; ++k) {
         const double t = tEnter + static_cast<double>(k) * dt;
@@ -154,7 +160,7 @@ class RayCaster {
         const float corrected =
             length == dt ? tf.alphaStep : correction_.partial(tf.alpha, length / dt);
         Vec3f c = tf.rgb;
-        if (s_.shade) c = shader.shade(c, vg.gradient);
+        if (shader) c = shader->shade(c, vg.gradient);
         const float w = (1.0f - alpha) * corrected;
         red += w * c[0];
         green += w * c[1];
