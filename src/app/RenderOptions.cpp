@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <set>
 
 #include "app/OptionParsing.h"
 #include "core/util/Error.h"
@@ -22,7 +23,7 @@ Vec3d parseVec(const std::string& option, const std::string& text) {
 
 // Reads a camera in VTK's terms from JSON: position, focal_point, view_up, view_angle,
 // parallel_projection, parallel_scale (all optional).
-void readCameraFile(const std::string& path, Camera& camera, bool& hasPosition) {
+void readCameraFile(const std::string& path, Camera& camera) {
   std::ifstream in(path);
   if (!in) throw Error("cannot open camera file " + path);
   nlohmann::json j;
@@ -33,13 +34,12 @@ void readCameraFile(const std::string& path, Camera& camera, bool& hasPosition) 
   }
   if (!j.is_object()) throw Error("camera file " + path + " must hold a JSON object");
   auto vec = [&](const char* key, Vec3d& out) {
-    if (!j.contains(key)) return false;
+    if (!j.contains(key)) return;
     const auto& a = j[key];
     if (!a.is_array() || a.size() != 3 || !a[0].is_number() || !a[1].is_number() ||
         !a[2].is_number())
       throw Error("camera file " + path + ": '" + key + "' must be an array of 3 numbers");
     out = Vec3d(a[0].get<double>(), a[1].get<double>(), a[2].get<double>());
-    return true;
   };
   auto number = [&](const char* key, double& out) {
     if (!j.contains(key)) return;
@@ -47,17 +47,14 @@ void readCameraFile(const std::string& path, Camera& camera, bool& hasPosition) 
       throw Error("camera file " + path + ": '" + key + "' must be a number");
     out = j[key].get<double>();
   };
-  for (const auto& [key, value] : j.items()) {
-    static const char* known[] = {"position",   "focal_point",         "view_up",
-                                  "view_angle", "parallel_projection", "parallel_scale"};
-    if (std::find_if(std::begin(known), std::end(known), [&](const char* k) { return key == k; }) ==
-        std::end(known))
-      throw Error("camera file " + path + ": unknown key '" + key +
+  static const std::set<std::string> known = {
+      "position", "focal_point", "view_up", "view_angle", "parallel_projection", "parallel_scale"};
+  for (const auto& item : j.items())
+    if (!known.contains(item.key()))
+      throw Error("camera file " + path + ": unknown key '" + item.key() +
                   "' (known: position, focal_point, view_up, view_angle, parallel_projection, "
                   "parallel_scale)");
-    (void)value;
-  }
-  hasPosition = vec("position", camera.position);
+  vec("position", camera.position);
   vec("focal_point", camera.focalPoint);
   vec("view_up", camera.viewUp);
   number("view_angle", camera.viewAngle);
@@ -185,21 +182,14 @@ RenderSettings RenderOptions::settingsFor(const LoadedScene& scene) const {
   Camera& c = s.camera;
   c.viewAngle = viewAngle;  // before framing: the distance depends on it
   c.resetToBounds(scene.boxMin, scene.boxMax);
-  bool explicitPosition = false;
-  if (!cameraFile.empty()) readCameraFile(cameraFile, c, explicitPosition);
+  if (!cameraFile.empty()) readCameraFile(cameraFile, c);
   if (!position.empty()) {
     c.position = parseVec("--position", position);
-    explicitPosition = true;
   }
   if (!focalPoint.empty()) c.focalPoint = parseVec("--focal-point", focalPoint);
   if (!viewUp.empty()) c.viewUp = parseVec("--view-up", viewUp);
   if (parallel) c.parallelProjection = true;
   if (parallelScale != 0.0) c.parallelScale = parallelScale;
-  if (!explicitPosition && (!focalPoint.empty() || !viewUp.empty())) {
-    // A direction was changed without a position: keep the framing distance along the new one.
-    const double distance = (c.position - c.focalPoint).norm();
-    c.position = c.focalPoint + distance * Vec3d(0, 0, 1);
-  }
   c.validate();
   if (azimuth != 0.0) c.azimuth(azimuth);
   if (elevation != 0.0) c.elevation(elevation);
