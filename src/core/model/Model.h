@@ -9,6 +9,7 @@
 #include <span>
 #include <string>
 
+#include "core/mask/DomainMask.h"
 #include "core/spline/TensorBSpline.h"
 #include "core/util/Vec.h"
 
@@ -30,6 +31,8 @@ struct Provenance {
   std::string field;           // scalar name
   std::string sampleType;      // source storage type
   Index3 sampleDims{0, 0, 0};  // input grid size (0 when scattered)
+  std::int64_t inputPoints = 0;  // scattered inputs: number of points (0 for grids)
+  std::string fieldAssociation;  // scattered inputs: e.g. "point data"
   std::int64_t inputBytes = 0;
   std::string encoder;  // e.g. "structured-least-squares"
   std::string created;  // UTC time, ISO 8601
@@ -52,6 +55,14 @@ class Model {
   const Provenance& provenance() const { return provenance_; }
   Provenance& provenance() { return provenance_; }
 
+  // Where the model is defined (empty: the whole box). Models of meshes and point clouds carry
+  // one; the renderer treats samples outside it as empty.
+  const DomainMask& mask() const { return mask_; }
+  void setMask(DomainMask mask) { mask_ = std::move(mask); }
+  bool inside(const Vec3d& x) const {
+    return mask_.insideParameter(domain_.toParameter(x));  // clamps onto the box
+  }
+
   float value(const Vec3d& x) const { return spline_.value(domain_.toParameter(x)); }
   // Value and physical gradient.
   ValueGradient valueGradient(const Vec3d& x) const;
@@ -69,6 +80,7 @@ class Model {
   Vec3f invExtent_ = Vec3f::Ones();
   double valueMin_ = 0.0, valueMax_ = 0.0;
   Provenance provenance_;
+  DomainMask mask_;
 };
 
 }  // namespace mfadvr
