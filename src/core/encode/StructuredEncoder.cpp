@@ -12,6 +12,7 @@
 #include "core/model/ModelFile.h"
 #include "core/spline/BasisFunctions.h"
 #include "core/util/Error.h"
+#include "core/util/UtcTime.h"
 
 namespace mfadvr {
 namespace {
@@ -151,13 +152,6 @@ Index3 rotate(const Index3& d, std::int64_t newLast) {
   return {d[1], d[2], newLast};
 }
 
-std::string utcNow() {
-  const std::time_t t = std::time(nullptr);
-  char buf[32];
-  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&t));
-  return buf;
-}
-
 }  // namespace
 
 Index3 resolveControlCounts(const StructuredGrid& grid, const StructuredFitOptions& options) {
@@ -193,20 +187,37 @@ Index3 resolveControlCounts(const StructuredGrid& grid, const StructuredFitOptio
 
 Model encodeStructured(const StructuredGrid& grid, const StructuredFitOptions& options,
                        FitReport* report) {
-  const auto start = std::chrono::steady_clock::now();
   grid.validate();
   const Index3 n = resolveControlCounts(grid, options);
+  std::array<KnotVector, 3> knots;
+  for (int a = 0; a < 3; ++a)
+    knots[a] = knotsForSamples(options.degree[a], static_cast<int>(n[a]), grid.dims[a]);
+  return encodeStructuredWithKnots(grid, std::move(knots), options, report);
+}
+
+Model encodeStructuredWithKnots(const StructuredGrid& grid, std::array<KnotVector, 3> knots,
+                                const StructuredFitOptions& options, FitReport* report,
+                                std::array<std::vector<double>, 3>* spanErrors) {
+  const auto start = std::chrono::steady_clock::now();
+  grid.validate();
+  Index3 n{};
+  Degree3 degree{};
+  for (int a = 0; a < 3; ++a) {
+    degree[a] = knots[a].degree();
+    n[a] = knots[a].controlCount();
+    if (n[a] > grid.dims[a] || n[a] < degree[a] + 1) {
+      std::ostringstream m;
+      m << n[a] << " control points of degree " << degree[a] << " on axis " << axisName(a)
+        << " do not fit its " << grid.dims[a] << " samples";
+      throw Error(m.str());
+    }
+  }
   auto progress = [&](double f, const char* stage) {
     if (options.progress) options.progress(f, stage);
   };
 
-  std::array<KnotVector, 3> knots;
   std::array<AxisSampling, 3> sampling;
-  for (int a = 0; a < 3; ++a) {
-    knots[a] = knotsForSamples(options.degree[a], static_cast<int>(n[a]), grid.dims[a]);
-    sampling[a] = sampleAxis(knots[a], grid.dims[a]);
-  }
-
+  for (int a = 0; a < 3; ++a) sampling[a] = sampleAxis(knots[a], grid.dims[a]);
   // Fit: x, then y, then z; each pass leaves the next axis fastest.
   std::vector<double> bufA, bufB;
   const std::vector<double>* in = &grid.values;
@@ -234,14 +245,28 @@ Model encodeStructured(const StructuredGrid& grid, const StructuredFitOptions& o
   }
   double maxErr = 0.0, sumSq = 0.0;
   double vmin = grid.values.empty() ? 0.0 : grid.values[0], vmax = vmin;
-  for (size_t i = 0; i < recon.size(); ++i) {
-    const double v = grid.values[i];
-    const double e = std::abs(recon[i] - v);
-    maxErr = std::max(maxErr, e);
-    sumSq += e * e;
-    vmin = std::min(vmin, v);
-    vmax = std::max(vmax, v);
-  }
+  if (spanErrors)
+    for (int a = 0; a < 3; ++a)
+      (*spanErrors)[a].assign(static_cast<size_t>(n[a] - degree[a]), 0.0);
+  size_t i = 0;
+  for (std::int64_t z = 0; z < grid.dims[2]; ++z)
+    for (std::int64_t y = 0; y < grid.dims[1]; ++y)
+      for (std::int64_t x = 0; x < grid.dims[0]; ++x, ++i) {
+        const double v = grid.values[i];
+        const double e = std::abs(recon[i] - v);
+        maxErr = std::max(maxErr, e);
+        sumSq += e * e;
+        vmin = std::min(vmin, v);
+        vmax = std::max(vmax, v);
+        if (spanErrors) {
+          // sampling.first is the span's first control point: span index - degree.
+          const std::int64_t at[3] = {x, y, z};
+          for (int a = 0; a < 3; ++a) {
+            double& worst = (*spanErrors)[a][static_cast<size_t>(sampling[a].first[at[a]])];
+            worst = std::max(worst, e);
+          }
+        }
+      }
   const double rms = std::sqrt(sumSq / static_cast<double>(recon.size()));
   progress(1.0, "done");
 
@@ -265,7 +290,7 @@ Model encodeStructured(const StructuredGrid& grid, const StructuredFitOptions& o
   if (report) {
     report->source = grid.source;
     report->samples = grid.dims;
-    report->degree = options.degree;
+    report->degree = degree;
     report->controlCounts = n;
     report->seconds = seconds;
     report->valueMin = vmin;
@@ -274,6 +299,7 @@ Model encodeStructured(const StructuredGrid& grid, const StructuredFitOptions& o
     report->rmsError = rms;
     report->inputBytes = grid.inputBytes;
     report->modelBytes = modelFileSize(model);
+    report->encoder = model.provenance().encoder;
   }
   return model;
 }

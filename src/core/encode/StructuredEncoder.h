@@ -5,8 +5,10 @@
 // per axis applied to every grid line along it (the pseudo-inverse of a Kronecker product is the
 // Kronecker product of the pseudo-inverses). Each axis factors its banded normal matrix once and
 // solves all lines with it, in parallel. Control counts equal to the sample counts interpolate.
+#include <array>
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "core/encode/FitReport.h"
 #include "core/grid/StructuredGrid.h"
@@ -25,6 +27,13 @@ struct StructuredFitOptions {
 // count, grids with fewer than two samples on an axis, and non-finite samples.
 Model encodeStructured(const StructuredGrid& grid, const StructuredFitOptions& options,
                        FitReport* report = nullptr);
+
+// The same fit with the given knot vectors (any clamped vectors, e.g. refined by the adaptive
+// encoder; n <= samples on every axis). With spanErrors, (*spanErrors)[a][s - p] receives the
+// largest absolute error of the samples whose axis-a parameter lies in knot span s.
+Model encodeStructuredWithKnots(const StructuredGrid& grid, std::array<KnotVector, 3> knots,
+                                const StructuredFitOptions& options, FitReport* report = nullptr,
+                                std::array<std::vector<double>, 3>* spanErrors = nullptr);
 
 // Resolves 0 entries of options.controlCounts and validates everything against the grid.
 Index3 resolveControlCounts(const StructuredGrid& grid, const StructuredFitOptions& options);

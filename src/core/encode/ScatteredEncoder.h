@@ -1,0 +1,63 @@
+#pragma once
+// Least-squares fit of a tensor-product B-spline to values at scattered points.
+//
+// The control points c minimize
+//   (1/P) sum_k (s(x_k) - v_k)^2  +  lambda * sum_a  h_a^4 integral over [0,1]^3 of (d^2 s / du_a^2)^2
+// over the P input points, where h_a = 1 / (n_a - p_a) is the mean knot span of axis a. The
+// integral is approximated through the second-derivative coefficients of the spline (mass
+// lumping). lambda is dimensionless: both terms scale with the square of the values, and h^4
+// makes the penalty measure curvature per knot span, so that one lambda damps the same part of
+// what the control grid can resolve at any control count (frequencies above about
+// 1 / (h lambda^(1/4)) radians per unit parameter). The penalty makes the system definite, so
+// spans without points get the smoothest continuation of their surroundings instead of
+// arbitrary values, and multilinear functions carry no penalty at all.
+//
+// The normal equations are solved by conjugate gradients (Eigen) with a Jacobi preconditioner,
+// matrix-free: the sparse basis matrix (P rows of (p+1)^3 entries, about 12 bytes each) and the
+// difference matrix are assembled in parallel and applied as products, never multiplied out.
+// Empty regions converge slowly on one grid (their modes have eigenvalues of order lambda), so
+// the fit runs coarse to fine: each level starts from the previous level's spline sampled at its
+// own Greville abscissae.
+#include <array>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "core/encode/FitReport.h"
+#include "core/mesh/ScatteredData.h"
+#include "core/model/Model.h"
+
+namespace mfadvr {
+
+inline constexpr double kDefaultSmoothing = 1e-2;
+
+struct ScatteredFitOptions {
+  Degree3 degree{3, 3, 3};
+  Index3 controlCounts{0, 0, 0};  // 0 on an axis: defaultScatteredControlCount
+  double smoothing = kDefaultSmoothing;  // lambda, >= 0 (0 only when every span has points)
+  double tolerance = 1e-6;               // relative residual |b - Ax| / |b| of each solve
+  int maxIterations = 4000;              // conjugate-gradient iterations per level
+  // Called on the calling thread with the fraction done and the stage name.
+  std::function<void(double fraction, const std::string& stage)> progress;
+};
+
+// About the cube root of the point count per axis, at least degree + 1 and at most 64: as many
+// control points as points when the points fill the box evenly.
+std::int64_t defaultScatteredControlCount(std::int64_t pointCount, int degree);
+
+// Resolves 0 entries of options.controlCounts and validates degrees, counts and smoothing.
+Index3 resolveScatteredControlCounts(const ScatteredData& data, const ScatteredFitOptions& options);
+
+// Throws mfadvr::Error for invalid data (ScatteredData::validate) or options. The model's box is
+// the points' bounding box; it has no mask (the caller adds one, see encodeScatteredData).
+Model encodeScattered(const ScatteredData& data, const ScatteredFitOptions& options,
+                      FitReport* report = nullptr);
+
+// One solve with the given knot vectors, starting from `initial` (sampled at the Greville
+// abscissae; null: the mean value). spanErrors as in encodeStructuredWithKnots.
+Model encodeScatteredWithKnots(const ScatteredData& data, std::array<KnotVector, 3> knots,
+                               const ScatteredFitOptions& options, const Model* initial,
+                               FitReport* report = nullptr,
+                               std::array<std::vector<double>, 3>* spanErrors = nullptr);
+
+}  // namespace mfadvr
