@@ -154,6 +154,46 @@ Index3 rotate(const Index3& d, std::int64_t newLast) {
 
 }  // namespace
 
+std::array<std::vector<double>, 3> curveSpanErrors(const StructuredGrid& grid,
+                                                   const std::array<KnotVector, 3>& knots) {
+  std::array<std::vector<double>, 3> result;
+  std::vector<double> data = grid.values, rotated;
+  Index3 dims = grid.dims;  // axis a is fastest in `data` at step a
+  for (int a = 0; a < 3; ++a) {
+    const AxisSampling sampling = sampleAxis(knots[a], dims[0]);
+    const AxisFitter fitter(sampling);
+    const AxisEvaluator evaluator(sampling);
+    const std::int64_t A = dims[0], B = dims[1], C = dims[2];
+    const size_t spans = static_cast<size_t>(knots[a].controlCount() - knots[a].degree());
+    std::vector<std::vector<double>> perSlab(static_cast<size_t>(C));
+    tbb::parallel_for(std::int64_t(0), C, [&](std::int64_t c) {
+      Eigen::Map<const Eigen::MatrixXd> slab(data.data() + c * A * B, A, B);
+      Eigen::MatrixXd coeffs(knots[a].controlCount(), B), recon(A, B);
+      fitter(slab, coeffs);
+      evaluator(Eigen::Map<const Eigen::MatrixXd>(coeffs.data(), coeffs.rows(), B), recon);
+      std::vector<double>& worst = perSlab[static_cast<size_t>(c)];
+      worst.assign(spans, 0.0);
+      for (std::int64_t b = 0; b < B; ++b)
+        for (std::int64_t i = 0; i < A; ++i) {
+          double& w = worst[static_cast<size_t>(sampling.first[i])];
+          w = std::max(w, std::abs(recon(i, b) - slab(i, b)));
+        }
+    });
+    result[a].assign(spans, 0.0);
+    for (const auto& w : perSlab)
+      for (size_t s = 0; s < spans; ++s) result[a][s] = std::max(result[a][s], w[s]);
+    if (a < 2) {
+      passAlongFastest(data, dims, A, rotated,
+                       [](const Eigen::Map<const Eigen::MatrixXd>& in, Eigen::MatrixXd& out) {
+                         out = in;
+                       });
+      data.swap(rotated);
+      dims = rotate(dims, A);
+    }
+  }
+  return result;
+}
+
 Index3 resolveControlCounts(const StructuredGrid& grid, const StructuredFitOptions& options) {
   Index3 n{};
   for (int a = 0; a < 3; ++a) {

@@ -35,6 +35,12 @@ Model encodeStructuredWithKnots(const StructuredGrid& grid, std::array<KnotVecto
                                 const StructuredFitOptions& options, FitReport* report = nullptr,
                                 std::array<std::vector<double>, 3>* spanErrors = nullptr);
 
+// For each axis a, the largest absolute error, per knot span of knots[a], of 1-D least-squares
+// fits of every grid line along a with knots[a] alone: where axis a needs knots, whatever the
+// other axes do (the adaptive encoder's refinement test).
+std::array<std::vector<double>, 3> curveSpanErrors(const StructuredGrid& grid,
+                                                   const std::array<KnotVector, 3>& knots);
+
 // Resolves 0 entries of options.controlCounts and validates everything against the grid.
 Index3 resolveControlCounts(const StructuredGrid& grid, const StructuredFitOptions& options);
 

@@ -1,0 +1,244 @@
+#include "core/encode/AdaptiveEncoder.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <optional>
+#include <sstream>
+
+#include "core/encode/KnotPlacement.h"
+#include "core/model/ModelFile.h"
+#include "core/util/Error.h"
+
+namespace mfadvr {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// Where to split span s of an axis; nullopt when it cannot be split.
+using SplitRule = std::function<std::optional<double>(const KnotVector&, int span)>;
+
+// Splits, on every axis, the spans whose worst error exceeds `bound`, worst first, up to the
+// axis's cap. Returns how many knots were inserted and whether any were held back by a cap.
+struct Refinement {
+  int inserted = 0;
+  bool capped = false;
+  bool unsplittable = false;
+};
+
+Refinement refine(std::array<KnotVector, 3>& knots,
+                  const std::array<std::vector<double>, 3>& spanErrors, double bound,
+                  const Index3& caps, const std::array<SplitRule, 3>& split) {
+  Refinement out;
+  for (int a = 0; a < 3; ++a) {
+    const KnotVector& kv = knots[a];
+    const int p = kv.degree();
+    std::vector<std::pair<double, double>> candidates;  // (error, new knot)
+    for (size_t s = 0; s < spanErrors[a].size(); ++s) {
+      if (!(spanErrors[a][s] > bound)) continue;
+      if (const auto u = split[a](kv, static_cast<int>(s) + p))
+        candidates.emplace_back(spanErrors[a][s], *u);
+      else
+        out.unsplittable = true;
+    }
+    std::sort(candidates.begin(), candidates.end(),
+              [](const auto& x, const auto& y) { return x.first > y.first; });
+    const std::int64_t room = caps[a] - kv.controlCount();
+    if (static_cast<std::int64_t>(candidates.size()) > room) {
+      out.capped = true;
+      candidates.resize(static_cast<size_t>(std::max<std::int64_t>(room, 0)));
+    }
+    if (candidates.empty()) continue;
+    std::vector<double> u = kv.knots();
+    for (const auto& c : candidates) u.push_back(c.second);
+    std::sort(u.begin(), u.end());
+    knots[a] = KnotVector::fromKnots(p, std::move(u));
+    out.inserted += static_cast<int>(candidates.size());
+  }
+  return out;
+}
+
+std::string stopReasonFor(const Refinement& r, int maxRounds, bool roundsLeft) {
+  if (!roundsLeft) return "round limit (" + std::to_string(maxRounds) + ") reached";
+  if (r.capped) return "control-point limit reached";
+  if (r.unsplittable) return "the spans that exceed the bound cannot be split further";
+  return "no span can be refined";
+}
+
+void validate(const AdaptiveOptions& o) {
+  if (!(o.maxRelativeError > 0.0) || !std::isfinite(o.maxRelativeError))
+    throw Error("the error bound must be a number above 0 (relative to the value range)");
+  if (o.maxRounds < 1) throw Error("the round limit must be at least 1");
+  for (std::int64_t c : o.maxControlCounts)
+    if (c < 0) throw Error("control-point limits must be positive");
+}
+
+// Optional refinement hooks of a kind of input.
+struct AxisRules {
+  std::array<SplitRule, 3> split;
+  // Per-axis span errors to refine by before falling back to the full model's span errors.
+  std::function<std::array<std::vector<double>, 3>(const std::array<KnotVector, 3>&)> curveErrors;
+  // Adjusts refined knots (e.g. to interpolation knots once an axis has a control point per
+  // sample).
+  std::function<void(std::array<KnotVector, 3>&)> normalize;
+};
+
+// The refinement loop shared by grids and points. fit(knots, previous, report, spanErrors)
+// fits one round.
+template <class FitFn>
+Model adapt(std::array<KnotVector, 3> knots, const Index3& caps, const AdaptiveOptions& adaptive,
+            const AxisRules& rules, FitFn&& fit, FitReport* report) {
+  const auto start = Clock::now();
+  std::optional<Model> best;
+  FitReport bestReport;
+  std::optional<Model> previous;
+  std::string stopReason;
+  bool reached = false;
+  int round = 0;
+  int solverIterations = 0;
+  for (round = 1;; ++round) {
+    FitReport r;
+    std::array<std::vector<double>, 3> spanErrors;
+    Model m = fit(knots, previous ? &*previous : nullptr, r, spanErrors);
+    solverIterations += r.solverIterations;
+    if (adaptive.onRound)
+      adaptive.onRound({round, r.controlCounts, r.maxRelativeError(), r.rmsRelativeError(),
+                        std::chrono::duration<double>(Clock::now() - start).count()});
+    const double bound = adaptive.maxRelativeError * r.valueRange();
+    if (!best || r.maxError < bestReport.maxError) {
+      best = m;
+      bestReport = r;
+    }
+    if (r.maxError <= bound) {
+      reached = true;
+      stopReason = "reached the error bound";
+      break;
+    }
+    const bool roundsLeft = round < adaptive.maxRounds;
+    Refinement ref;
+    if (roundsLeft && rules.curveErrors) ref = refine(knots, rules.curveErrors(knots), bound, caps, rules.split);
+    if (roundsLeft && ref.inserted == 0) {
+      const Refinement full = refine(knots, spanErrors, bound, caps, rules.split);
+      ref.inserted = full.inserted;
+      ref.capped = ref.capped || full.capped;
+      ref.unsplittable = ref.unsplittable || full.unsplittable;
+    }
+    if (ref.inserted > 0 && rules.normalize) rules.normalize(knots);
+    if (!roundsLeft || ref.inserted == 0) {
+      stopReason = stopReasonFor(ref, adaptive.maxRounds, roundsLeft);
+      break;
+    }
+    previous = std::move(m);
+  }
+  const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  best->provenance().fitSeconds = seconds;
+  best->provenance().encoder += "-adaptive";
+  if (report) {
+    *report = bestReport;
+    report->seconds = seconds;
+    report->rounds = round;
+    report->targetRelativeError = adaptive.maxRelativeError;
+    report->reachedTarget = reached;
+    report->stopReason = stopReason;
+    report->solverIterations = solverIterations;
+    report->encoder = best->provenance().encoder;
+    report->modelBytes = modelFileSize(*best);
+  }
+  return std::move(*best);
+}
+
+}  // namespace
+
+Model encodeStructuredAdaptive(const StructuredGrid& grid, const StructuredFitOptions& fit,
+                               const AdaptiveOptions& adaptive, FitReport* report) {
+  validate(adaptive);
+  grid.validate();
+  StructuredFitOptions start = fit;
+  for (int a = 0; a < 3; ++a)
+    if (start.controlCounts[a] == 0)
+      start.controlCounts[a] = std::min<std::int64_t>(grid.dims[a], fit.degree[a] + 2);
+  const Index3 n = resolveControlCounts(grid, start);
+  Index3 caps{};
+  std::array<KnotVector, 3> knots;
+  AxisRules rules;
+  auto& split = rules.split;
+  for (int a = 0; a < 3; ++a) {
+    caps[a] = adaptive.maxControlCounts[a] == 0
+                  ? grid.dims[a]
+                  : std::min(adaptive.maxControlCounts[a], grid.dims[a]);
+    caps[a] = std::max(caps[a], n[a]);
+    knots[a] = knotsForSamples(fit.degree[a], static_cast<int>(n[a]), grid.dims[a]);
+    const double last = static_cast<double>(grid.dims[a] - 1);
+    // Samples t_i = i / (N-1) in [u_s, u_{s+1}) (the last span also holds t = 1).
+    const std::int64_t samples = grid.dims[a];
+    split[a] = [last, samples](const KnotVector& kv, int s) -> std::optional<double> {
+      const double lo = kv.knots()[static_cast<size_t>(s)], hi = kv.knots()[static_cast<size_t>(s + 1)];
+      const bool lastSpan = s == kv.controlCount() - 1;
+      // The samples t_i = i / (N-1) in [u_s, u_{s+1}) (the last span also holds t = 1), as
+      // KnotVector::findSpan assigns them.
+      std::int64_t first = -1, count = 0;
+      for (std::int64_t i = 0; i < samples; ++i) {
+        const double t = static_cast<double>(i) / last;
+        if (t >= lo && (t < hi || lastSpan)) {
+          if (first < 0) first = i;
+          ++count;
+        }
+      }
+      if (count < 2) return std::nullopt;
+      const std::int64_t m = first + count / 2 - 1;
+      return (static_cast<double>(m) + 0.5) / last;
+    };
+  }
+  // Refine an axis where 1-D fits of the grid lines along it miss the bound (so that a feature
+  // along x does not refine y and z); only when none do, by the full model's errors.
+  rules.curveErrors = [&](const std::array<KnotVector, 3>& k) { return curveSpanErrors(grid, k); };
+  // With a control point per sample, the averaged knots make the fit an exact interpolation.
+  rules.normalize = [&](std::array<KnotVector, 3>& k) {
+    for (int a = 0; a < 3; ++a)
+      if (k[a].controlCount() >= grid.dims[a])
+        k[a] = knotsForSamples(k[a].degree(), static_cast<int>(grid.dims[a]), grid.dims[a]);
+  };
+  StructuredFitOptions round = fit;
+  round.progress = nullptr;
+  return adapt(
+      std::move(knots), caps, adaptive, rules,
+      [&](const std::array<KnotVector, 3>& k, const Model*, FitReport& r,
+          std::array<std::vector<double>, 3>& spanErrors) {
+        return encodeStructuredWithKnots(grid, k, round, &r, &spanErrors);
+      },
+      report);
+}
+
+Model encodeScatteredAdaptive(const ScatteredData& data, const ScatteredFitOptions& fit,
+                              const AdaptiveOptions& adaptive, FitReport* report) {
+  validate(adaptive);
+  data.validate();
+  ScatteredFitOptions start = fit;
+  for (int a = 0; a < 3; ++a)
+    if (start.controlCounts[a] == 0) start.controlCounts[a] = fit.degree[a] + 2;
+  const Index3 n = resolveScatteredControlCounts(data, start);
+  Index3 caps{};
+  std::array<KnotVector, 3> knots;
+  AxisRules rules;
+  auto& split = rules.split;
+  for (int a = 0; a < 3; ++a) {
+    caps[a] = std::max(adaptive.maxControlCounts[a] == 0 ? 256 : adaptive.maxControlCounts[a], n[a]);
+    knots[a] = KnotVector::clampedUniform(fit.degree[a], static_cast<int>(n[a]));
+    split[a] = [](const KnotVector& kv, int s) -> std::optional<double> {
+      const double lo = kv.knots()[static_cast<size_t>(s)], hi = kv.knots()[static_cast<size_t>(s + 1)];
+      if (!(hi - lo > 1e-6)) return std::nullopt;
+      return 0.5 * (lo + hi);
+    };
+  }
+  ScatteredFitOptions round = fit;
+  round.progress = nullptr;
+  return adapt(
+      std::move(knots), caps, adaptive, rules,
+      [&](const std::array<KnotVector, 3>& k, const Model* previous, FitReport& r,
+          std::array<std::vector<double>, 3>& spanErrors) {
+        return encodeScatteredWithKnots(data, k, round, previous, &r, &spanErrors);
+      },
+      report);
+}
+
+}  // namespace mfadvr
