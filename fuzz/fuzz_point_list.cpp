@@ -1,4 +1,5 @@
-// libFuzzer target: the point-list parser of `mfadvr query --points`.
+// libFuzzer target: the point-list parsers of `mfadvr query --points` ("x y z") and of
+// scattered text inputs ("x y z v").
 #include <cstdint>
 #include <string_view>
 
@@ -6,8 +7,14 @@
 #include "core/util/PointList.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, size_t size) {
+  const std::string_view text(reinterpret_cast<const char*>(data), size);
   try {
-    (void)mfadvr::parsePointList(std::string_view(reinterpret_cast<const char*>(data), size));
+    (void)mfadvr::parsePointList(text);
+  } catch (const mfadvr::Error&) {
+  }
+  try {
+    const mfadvr::ScatteredData d = mfadvr::parsePointValueList(text);
+    if (d.points.size() != d.values.size() || d.points.empty()) __builtin_trap();
   } catch (const mfadvr::Error&) {
   }
   return 0;

@@ -1,5 +1,6 @@
 // Writes seed inputs for the fuzzers: small valid models (uniform and non-uniform knots, several
-// degrees) and a point list, so that mutations start from the interesting structure.
+// degrees) and point lists ("x y z" and "x y z v"), so that mutations start from the
+// interesting structure.
 #include <filesystem>
 #include <fstream>
 
@@ -22,5 +23,6 @@ int main(int argc, char** argv) {
     mfadvr::saveModel(m, models / ("seed" + std::to_string(i++) + ".mfa"));
   }
   std::ofstream(points / "seed.txt") << "x,y,z\n0 0 0\n1.5, -2e-3, 4\n# c\n";
+  std::ofstream(points / "seed-values.csv") << "x,y,z,rho\n0,0,0,1\n1.5 -2e-3 4 -7e2\n# c\n";
   return 0;
 }

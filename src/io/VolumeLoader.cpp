@@ -1,37 +1,13 @@
 #include "io/VolumeLoader.h"
 
-#include <algorithm>
-#include <cctype>
-#include <cerrno>
-#include <cstdio>
-#include <cstring>
-#include <filesystem>
-
 #include "core/analytic/BuiltinFunction.h"
 #include "core/util/Error.h"
+#include "io/InputFile.h"
 #include "io/RawVolumeReader.h"
 #include "io/VtkVolumeReader.h"
 
 namespace mfadvr {
 namespace {
-
-std::string lowerExtension(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ext;
-}
-
-// Checked up front so that every format reports a missing or unreadable file the same way,
-// before VTK readers get a chance to fail with less clear text.
-void requireReadableFile(const std::string& path) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec))
-    throw Error("cannot open " + path + ": it is a directory, expected a volume file");
-  std::FILE* f = std::fopen(path.c_str(), "rb");
-  if (!f) throw Error("cannot open " + path + ": " + std::strerror(errno));
-  std::fclose(f);
-}
 
 StructuredGrid readFile(const std::string& path, const std::string& field) {
   const std::string ext = lowerExtension(path);
@@ -69,7 +45,7 @@ StructuredGrid loadStructuredVolume(const std::string& input, const VolumeLoadOp
     return sampleBuiltinSpec(input);
   }
 
-  requireReadableFile(input);
+  requireReadableFile(input, "a volume file");
   StructuredGrid grid = readFile(input, options.field);
   if (options.spacing) grid.spacing = *options.spacing;
   if (options.origin) grid.origin = *options.origin;

@@ -2,14 +2,7 @@
 
 #include <filesystem>
 #include <fstream>
-#include <iostream>
-#include <mutex>
-#include <regex>
-#include <sstream>
-#include <type_traits>
-#include <vector>
 
-#include <vtkAbstractArray.h>
 #include <vtkAlgorithm.h>
 #include <vtkCellData.h>
 #include <vtkDataArray.h>
@@ -17,13 +10,10 @@
 #include <vtkDataSetReader.h>
 #include <vtkErrorCode.h>
 #include <vtkImageData.h>
-#include <vtkLogger.h>
 #include <vtkMatrix3x3.h>
 #include <vtkMetaImageReader.h>
 #include <vtkNew.h>
 #include <vtkNrrdReader.h>
-#include <vtkObjectFactory.h>
-#include <vtkOutputWindow.h>
 #include <vtkPointData.h>
 #include <vtkSmartPointer.h>
 #include <vtkStructuredPoints.h>
@@ -32,105 +22,10 @@
 #include <vtkXMLImageDataReader.h>
 
 #include "core/util/Error.h"
+#include "io/VtkSupport.h"
 
 namespace mfadvr {
 namespace {
-
-// VTK readers report failure by printing, not by throwing; this window keeps the text so that
-// it ends up in the mfadvr::Error instead of on the user's terminal.
-class CollectingOutputWindow : public vtkOutputWindow {
- public:
-  static CollectingOutputWindow* New();
-  vtkTypeMacro(CollectingOutputWindow, vtkOutputWindow);
-
-  void DisplayText(const char* text) override {
-    if (!text) return;
-    // Warnings (e.g. NRRD fields VTK ignores) do not stop a read; dropping them keeps the
-    // terminal quiet.
-    if (GetCurrentMessageType() == MESSAGE_TYPE_ERROR) addCleaned(errors, text);
-  }
-
-  std::vector<std::string> errors;
-
- protected:
-  CollectingOutputWindow() = default;
-
- private:
-  // VTK's text is "ERROR: In SOURCE.cxx, line N\nClass (0xADDR): message\n[object dump]";
-  // only the message helps a user.
-  static void addCleaned(std::vector<std::string>& into, const std::string& text) {
-    std::istringstream lines(text);
-    std::string line;
-    std::string message;
-    while (std::getline(lines, line)) {
-      if (line.rfind("ERROR: In ", 0) == 0 || line.rfind("Warning: In ", 0) == 0) continue;
-      if (line.rfind("Generic Warning: In ", 0) == 0) continue;
-      if (line.empty()) continue;
-      message = line;
-      break;
-    }
-    static const std::regex address(R"( \(0x[0-9a-fA-F]+\))");
-    message = std::regex_replace(message, address, "");
-    // The executive's follow-up only repeats that the reader failed.
-    if (message.empty() || message.find("returned failure for request") != std::string::npos)
-      return;
-    if (!into.empty() && into.back() == message) return;
-    into.push_back(message);
-  }
-};
-vtkStandardNewMacro(CollectingOutputWindow);
-
-// Routes VTK's messages (and std::cerr, which MetaIO writes to directly) into a
-// CollectingOutputWindow for one read. VTK's output window and logger are process-wide, so
-// reads are serialised.
-class VtkMessageCapture {
- public:
-  VtkMessageCapture() : lock_(mutex()) {
-    previousWindow_ = vtkOutputWindow::GetInstance();
-    if (previousWindow_) previousWindow_->Register(nullptr);
-    vtkOutputWindow::SetInstance(window_);
-    // vtkLogger prints errors to stderr on its own, besides the output window. It has no getter
-    // for the stderr level; the overall cutoff equals it unless a log file asks for more.
-    previousVerbosity_ = vtkLogger::GetCurrentVerbosityCutoff();
-    vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
-    previousCerr_ = std::cerr.rdbuf(cerrText_.rdbuf());
-  }
-  ~VtkMessageCapture() {
-    std::cerr.rdbuf(previousCerr_);
-    vtkLogger::SetStderrVerbosity(previousVerbosity_);
-    vtkOutputWindow::SetInstance(previousWindow_);
-    if (previousWindow_) previousWindow_->UnRegister(nullptr);
-  }
-  VtkMessageCapture(const VtkMessageCapture&) = delete;
-  VtkMessageCapture& operator=(const VtkMessageCapture&) = delete;
-
-  bool hasErrors() const { return !window_->errors.empty(); }
-
-  // All collected error text on one line, in the order it came; "" when there is none.
-  std::string errorText() const {
-    std::string out;
-    for (const auto& e : window_->errors) out += (out.empty() ? "" : "; ") + e;
-    std::istringstream lines(cerrText_.str());
-    std::string line;
-    while (std::getline(lines, line)) {
-      if (!line.empty()) out += (out.empty() ? "" : "; ") + line;
-    }
-    return out;
-  }
-
- private:
-  static std::mutex& mutex() {
-    static std::mutex m;
-    return m;
-  }
-
-  std::lock_guard<std::mutex> lock_;
-  vtkNew<CollectingOutputWindow> window_;
-  vtkOutputWindow* previousWindow_ = nullptr;
-  vtkLogger::Verbosity previousVerbosity_ = vtkLogger::VERBOSITY_INFO;
-  std::ostringstream cerrText_;
-  std::streambuf* previousCerr_ = nullptr;
-};
 
 const char* formatName(VtkVolumeFormat format) {
   switch (format) {
@@ -267,45 +162,6 @@ vtkSmartPointer<vtkImageData> runReader(const std::string& path, VtkVolumeFormat
   return image;
 }
 
-std::string sampleTypeName(vtkDataArray* array) {
-  const std::string bits = std::to_string(array->GetDataTypeSize() * 8);
-  switch (array->GetDataType()) {
-    case VTK_FLOAT:
-    case VTK_DOUBLE:
-      return "float" + bits;
-    case VTK_CHAR:
-      return (std::is_signed_v<char> ? "int" : "uint") + bits;
-    case VTK_SIGNED_CHAR:
-    case VTK_SHORT:
-    case VTK_INT:
-    case VTK_LONG:
-    case VTK_LONG_LONG:
-    case VTK_ID_TYPE:
-      return "int" + bits;
-    case VTK_UNSIGNED_CHAR:
-    case VTK_UNSIGNED_SHORT:
-    case VTK_UNSIGNED_INT:
-    case VTK_UNSIGNED_LONG:
-    case VTK_UNSIGNED_LONG_LONG:
-      return "uint" + bits;
-    default:
-      return "";
-  }
-}
-
-std::string describeArrays(vtkFieldData* data) {
-  std::string out;
-  for (int i = 0; i < data->GetNumberOfArrays(); ++i) {
-    vtkAbstractArray* a = data->GetAbstractArray(i);
-    if (!a) continue;
-    std::string entry = a->GetName() ? std::string("'") + a->GetName() + "'" : "(unnamed)";
-    if (a->GetNumberOfComponents() != 1)
-      entry += " (" + std::to_string(a->GetNumberOfComponents()) + " components)";
-    out += (out.empty() ? "" : ", ") + entry;
-  }
-  return out.empty() ? "none" : out;
-}
-
 vtkDataArray* selectArray(const std::string& path, VtkVolumeFormat format, vtkImageData* image,
                           const std::string& field) {
   vtkPointData* points = image->GetPointData();
@@ -315,7 +171,7 @@ vtkDataArray* selectArray(const std::string& path, VtkVolumeFormat format, vtkIm
     for (int i = 0; !array && i < points->GetNumberOfArrays(); ++i) array = points->GetArray(i);
     if (!array) {
       throw Error(path + ": no point-data arrays to read (cell data: " +
-                  describeArrays(image->GetCellData()) +
+                  describeVtkArrays(image->GetCellData()) +
                   "); the encoder needs one scalar value per grid point");
     }
   } else {
@@ -324,7 +180,7 @@ vtkDataArray* selectArray(const std::string& path, VtkVolumeFormat format, vtkIm
       std::string msg = path + ": no point-data array named '" + field + "'";
       if (image->GetCellData()->GetAbstractArray(field.c_str()))
         msg += " (there is a cell-data array of that name, but samples must sit on grid points)";
-      throw Error(msg + "; point-data arrays in the file: " + describeArrays(points));
+      throw Error(msg + "; point-data arrays in the file: " + describeVtkArrays(points));
     }
   }
   const int components = array->GetNumberOfComponents();
@@ -340,7 +196,7 @@ vtkDataArray* selectArray(const std::string& path, VtkVolumeFormat format, vtkIm
                 "' has " + std::to_string(components) +
                 " components per sample, but a scalar field (1 component) is expected; "
                 "point-data arrays in the file: " +
-                describeArrays(points));
+                describeVtkArrays(points));
   }
   return array;
 }
@@ -357,7 +213,7 @@ StructuredGrid toGrid(const std::string& path, VtkVolumeFormat format, vtkImageD
                 ": the grid axes are rotated or flipped (direction matrix is not the "
                 "identity); only axis-aligned grids are supported");
   vtkDataArray* array = selectArray(path, format, image, field);
-  const std::string type = sampleTypeName(array);
+  const std::string type = vtkSampleTypeName(array);
   if (type.empty()) {
     throw Error(path + ": array '" + std::string(array->GetName() ? array->GetName() : "") +
                 "' has sample type " + array->GetDataTypeAsString() +

@@ -20,7 +20,7 @@ struct ScatteredData {
   std::vector<Tetrahedron> tets;    // empty for point clouds
 
   std::string source;               // input path
-  std::string fieldName;            // scalar array name (empty for text files without a header)
+  std::string fieldName;            // scalar array name ("value" for text files without a header)
   std::string fieldAssociation;     // how values reached the points, e.g. "point data" or
                                     // "cell data averaged to points"
   std::string kind;                 // "tetrahedral mesh", "mixed-cell mesh", "curvilinear grid",

@@ -33,10 +33,23 @@ bool parseNumber(std::string_view t, double& v) {
   return !t.empty() && r.ec == std::errc() && r.ptr == t.data() + t.size();
 }
 
-}  // namespace
+// What a table of numbers looks like, for its error messages.
+struct TableShape {
+  size_t columns;
+  const char* expected;   // "three numbers 'x y z'"
+  const char* notFinite;  // "coordinates must be finite"
+  const char* empty;      // "no points"
+};
 
-std::vector<Vec3d> parsePointList(std::string_view text, std::string_view name) {
-  std::vector<Vec3d> points;
+struct Table {
+  std::vector<std::string> header;  // the header's names; empty when there is none
+  std::vector<double> numbers;      // row-major, shape.columns per row
+};
+
+// The one line-by-line reader behind both list formats.
+Table parseTable(std::string_view text, std::string_view name, const TableShape& shape) {
+  Table table;
+  std::vector<double> row(shape.columns);
   size_t lineNo = 0, pos = 0;
   bool seenContent = false;
   while (pos < text.size()) {
@@ -47,26 +60,61 @@ std::vector<Vec3d> parsePointList(std::string_view text, std::string_view name) 
     ++lineNo;
     const auto tok = tokens(line);
     if (tok.empty() || tok.front().front() == '#') continue;
-    double xyz[3];
-    bool numeric = tok.size() == 3;
-    for (size_t i = 0; numeric && i < 3; ++i) numeric = parseNumber(tok[i], xyz[i]);
+    bool numeric = tok.size() == shape.columns;
+    for (size_t i = 0; numeric && i < shape.columns; ++i) numeric = parseNumber(tok[i], row[i]);
     if (!seenContent) {
       seenContent = true;
       double ignored;
       bool anyNumber = false;
       for (const auto& t : tok) anyNumber = anyNumber || parseNumber(t, ignored);
-      if (!numeric && !anyNumber) continue;  // header line such as "x,y,z"
+      if (!numeric && !anyNumber) {  // header line such as "x,y,z"
+        for (const auto& t : tok) table.header.emplace_back(t);
+        continue;
+      }
     }
     const std::string where = std::string(name) + " line " + std::to_string(lineNo);
     if (!numeric)
-      throw Error(where + ": expected three numbers 'x y z' (comma or space separated), got '" +
+      throw Error(where + ": expected " + shape.expected + " (comma or space separated), got '" +
                   std::string(line.substr(0, 80)) + "'");
-    if (!(std::isfinite(xyz[0]) && std::isfinite(xyz[1]) && std::isfinite(xyz[2])))
-      throw Error(where + ": coordinates must be finite");
-    points.emplace_back(xyz[0], xyz[1], xyz[2]);
+    for (double v : row)
+      if (!std::isfinite(v)) throw Error(where + ": " + shape.notFinite);
+    table.numbers.insert(table.numbers.end(), row.begin(), row.end());
   }
-  if (points.empty()) throw Error(std::string(name) + ": no points");
+  if (table.numbers.empty()) throw Error(std::string(name) + ": " + shape.empty);
+  return table;
+}
+
+}  // namespace
+
+std::vector<Vec3d> parsePointList(std::string_view text, std::string_view name) {
+  const Table t = parseTable(
+      text, name, {3, "three numbers 'x y z'", "coordinates must be finite", "no points"});
+  std::vector<Vec3d> points;
+  points.reserve(t.numbers.size() / 3);
+  for (size_t i = 0; i < t.numbers.size(); i += 3)
+    points.emplace_back(t.numbers[i], t.numbers[i + 1], t.numbers[i + 2]);
   return points;
+}
+
+ScatteredData parsePointValueList(std::string_view text, std::string_view name) {
+  const Table t = parseTable(text, name,
+                             {4, "four numbers 'x y z value'",
+                              "coordinates and values must be finite", "no points with values"});
+  ScatteredData data;
+  const size_t n = t.numbers.size() / 4;
+  data.points.reserve(n);
+  data.values.reserve(n);
+  for (size_t i = 0; i < t.numbers.size(); i += 4) {
+    data.points.emplace_back(t.numbers[i], t.numbers[i + 1], t.numbers[i + 2]);
+    data.values.push_back(t.numbers[i + 3]);
+  }
+  data.source = std::string(name);
+  data.fieldName = t.header.size() == 4 ? t.header[3] : std::string("value");
+  data.fieldAssociation = "point data";
+  data.kind = "point cloud";
+  data.sampleType = "text";
+  data.inputBytes = static_cast<std::int64_t>(n * sizeof(double));
+  return data;
 }
 
 }  // namespace mfadvr

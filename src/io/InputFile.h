@@ -1,0 +1,18 @@
+#pragma once
+// File checks shared by the loaders, so that every format reports a missing or unreadable file
+// the same way, before a reader gets a chance to fail with less clear text.
+#include <string>
+
+namespace mfadvr {
+
+// The extension in lower case with its dot (".vtk"), or "" when there is none.
+std::string lowerExtension(const std::string& path);
+
+// Throws mfadvr::Error "cannot open PATH: REASON" when the file cannot be opened for reading,
+// and when it is a directory ("expected `expected`", e.g. "a volume file").
+void requireReadableFile(const std::string& path, const std::string& expected);
+
+// The whole file as text (binary-safe); throws mfadvr::Error naming the file on failure.
+std::string readTextFile(const std::string& path);
+
+}  // namespace mfadvr

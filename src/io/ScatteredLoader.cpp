@@ -1,0 +1,364 @@
+#include "io/ScatteredLoader.h"
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <fstream>
+#include <sstream>
+#include <vector>
+
+#include <vtkAlgorithm.h>
+#include <vtkCellData.h>
+#include <vtkCellDataToPointData.h>
+#include <vtkCellType.h>
+#include <vtkCellTypes.h>
+#include <vtkDataArray.h>
+#include <vtkDataSet.h>
+#include <vtkDataSetReader.h>
+#include <vtkDataSetTriangleFilter.h>
+#include <vtkErrorCode.h>
+#include <vtkGenericCell.h>
+#include <vtkIdList.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkPolyData.h>
+#include <vtkSmartPointer.h>
+#include <vtkStructuredGrid.h>
+#include <vtkUnstructuredGrid.h>
+#include <vtkXMLPolyDataReader.h>
+#include <vtkXMLStructuredGridReader.h>
+#include <vtkXMLUnstructuredGridReader.h>
+
+#include "core/util/Error.h"
+#include "core/util/PointList.h"
+#include "io/InputFile.h"
+#include "io/VtkSupport.h"
+
+namespace mfadvr {
+namespace {
+
+bool isTextExtension(const std::string& ext) {
+  return ext == ".csv" || ext == ".txt" || ext == ".xyz";
+}
+
+// The dataset type a legacy VTK file names on its DATASET line ("UNSTRUCTURED_GRID", ...), in
+// upper case; "" when the file does not start like a legacy VTK data file. Only the header is
+// read: version line, title line, ASCII|BINARY, DATASET TYPE.
+std::string legacyDatasetType(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string head(1024, '\0');
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<size_t>(in.gcount()));
+  std::istringstream lines(head);
+  std::string line;
+  if (!std::getline(lines, line) || line.rfind("# vtk DataFile", 0) != 0) return "";
+  std::getline(lines, line);  // title
+  std::vector<std::string> words;
+  for (std::string w; words.size() < 3 && lines >> w;) {
+    std::transform(w.begin(), w.end(), w.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::toupper(c)); });
+    words.push_back(w);
+  }
+  if (words.size() < 3 || words[1] != "DATASET") return "";
+  return words[2];
+}
+
+bool isScatteredLegacyType(const std::string& type) {
+  return type == "UNSTRUCTURED_GRID" || type == "STRUCTURED_GRID" || type == "POLYDATA";
+}
+
+struct MeshFormat {
+  const char* name;         // for "cannot read PATH as NAME"
+  const char* expectation;  // what a readable file looks like
+};
+
+MeshFormat meshFormat(const std::string& ext) {
+  if (ext == ".vtu")
+    return {"VTK XML unstructured grid (.vtu)",
+            "a VTK XML file <VTKFile type=\"UnstructuredGrid\"> with points, cells and data"};
+  if (ext == ".vts")
+    return {"VTK XML structured grid (.vts)",
+            "a VTK XML file <VTKFile type=\"StructuredGrid\"> with points and data"};
+  if (ext == ".vtp")
+    return {"VTK XML polydata (.vtp)",
+            "a VTK XML file <VTKFile type=\"PolyData\"> with points and data"};
+  return {"legacy VTK",
+          "a legacy VTK file ('# vtk DataFile Version') with DATASET UNSTRUCTURED_GRID, "
+          "STRUCTURED_GRID or POLYDATA"};
+}
+
+// Runs the reader for `ext` and returns its dataset, with VTK's messages in the error.
+vtkSmartPointer<vtkDataSet> readMesh(const std::string& path, const std::string& ext) {
+  const MeshFormat format = meshFormat(ext);
+  vtkSmartPointer<vtkAlgorithm> reader;
+  if (ext == ".vtu") {
+    auto r = vtkSmartPointer<vtkXMLUnstructuredGridReader>::New();
+    r->SetFileName(path.c_str());
+    reader = r;
+  } else if (ext == ".vts") {
+    auto r = vtkSmartPointer<vtkXMLStructuredGridReader>::New();
+    r->SetFileName(path.c_str());
+    reader = r;
+  } else if (ext == ".vtp") {
+    auto r = vtkSmartPointer<vtkXMLPolyDataReader>::New();
+    r->SetFileName(path.c_str());
+    reader = r;
+  } else {
+    const std::string type = legacyDatasetType(path);
+    if (type.empty()) {
+      throw Error("cannot read " + path + " as " + format.name +
+                  ": not a legacy VTK data file (expected " + format.expectation + ")");
+    }
+    if (type == "STRUCTURED_POINTS") {
+      throw Error(path +
+                  ": the file holds a regular grid (DATASET STRUCTURED_POINTS), which is read "
+                  "as a volume, not as scattered points");
+    }
+    if (!isScatteredLegacyType(type)) {
+      throw Error(path + ": DATASET " + type +
+                  " is not supported for scattered input; expected UNSTRUCTURED_GRID, "
+                  "STRUCTURED_GRID or POLYDATA");
+    }
+    auto r = vtkSmartPointer<vtkDataSetReader>::New();
+    r->SetFileName(path.c_str());
+    // By default only the first SCALARS block is read; the field may name another.
+    r->ReadAllScalarsOn();
+    r->ReadAllVectorsOn();
+    r->ReadAllColorScalarsOn();
+    r->ReadAllFieldsOn();
+    reader = r;
+  }
+
+  vtkSmartPointer<vtkDataSet> data;
+  {
+    VtkMessageCapture capture;
+    reader->Update();
+    data = vtkDataSet::SafeDownCast(reader->GetOutputDataObject(0));
+    if (capture.hasErrors() || reader->GetErrorCode() != vtkErrorCode::NoError || !data) {
+      std::string why = capture.errorText();
+      if (why.empty() && reader->GetErrorCode() != vtkErrorCode::NoError)
+        why = "the reader failed (VTK error code " + std::to_string(reader->GetErrorCode()) + ")";
+      if (why.empty()) why = "the reader produced no dataset";
+      throw Error("cannot read " + path + " as " + format.name + ": " + why + " (expected " +
+                  format.expectation + ")");
+    }
+  }
+  return data;
+}
+
+std::string arrayName(vtkDataArray* a) {
+  return a->GetName() ? a->GetName() : "";
+}
+
+std::string listArrays(vtkDataSet* data) {
+  return "point data: " + describeVtkArrays(data->GetPointData()) +
+         "; cell data: " + describeVtkArrays(data->GetCellData());
+}
+
+vtkDataArray* firstScalarArray(vtkFieldData* fields) {
+  for (int i = 0; i < fields->GetNumberOfArrays(); ++i) {
+    vtkDataArray* a = fields->GetArray(i);  // null for string and other non-numeric arrays
+    if (a && a->GetNumberOfComponents() == 1) return a;
+  }
+  return nullptr;
+}
+
+struct SelectedArray {
+  vtkDataArray* array = nullptr;
+  bool fromCells = false;
+};
+
+SelectedArray selectArray(const std::string& path, vtkDataSet* data, const std::string& field) {
+  vtkPointData* pd = data->GetPointData();
+  vtkCellData* cd = data->GetCellData();
+  SelectedArray s;
+  if (field.empty()) {
+    if (pd->GetNumberOfArrays() == 0 && cd->GetNumberOfArrays() == 0)
+      throw Error(path +
+                  ": the file holds no point-data or cell-data arrays; a scalar field "
+                  "(one value per point or cell) is needed");
+    s.array = pd->GetScalars();
+    if (!s.array || s.array->GetNumberOfComponents() != 1) s.array = firstScalarArray(pd);
+    if (!s.array) {
+      s.array = cd->GetScalars();
+      if (!s.array || s.array->GetNumberOfComponents() != 1) s.array = firstScalarArray(cd);
+      s.fromCells = s.array != nullptr;
+    }
+    if (!s.array)
+      throw Error(path + ": no one-component numeric array to use as the scalar field; " +
+                  listArrays(data));
+  } else {
+    s.array = pd->GetArray(field.c_str());
+    if (!s.array) {
+      s.array = cd->GetArray(field.c_str());
+      s.fromCells = s.array != nullptr;
+    }
+    if (!s.array) {
+      const bool other = pd->GetAbstractArray(field.c_str()) || cd->GetAbstractArray(field.c_str());
+      throw Error(path + ": " +
+                  (other ? "the array '" + field + "' is not numeric"
+                         : "no point-data or cell-data array named '" + field + "'") +
+                  "; " + listArrays(data));
+    }
+    if (s.array->GetNumberOfComponents() != 1) {
+      throw Error(path + ": array '" + field + "' has " +
+                  std::to_string(s.array->GetNumberOfComponents()) +
+                  " components, but a scalar field (1 component) is needed; pick another "
+                  "array: " +
+                  listArrays(data));
+    }
+  }
+  if (vtkSampleTypeName(s.array).empty()) {
+    throw Error(path + ": array '" + arrayName(s.array) + "' has sample type " +
+                s.array->GetDataTypeAsString() + "; expected an integer or floating-point type");
+  }
+  return s;
+}
+
+// Dimension (0..3) of every cell type in `data`, indexed by VTK cell type.
+std::array<int, 256> cellDimensions(vtkDataSet* data) {
+  std::array<int, 256> dims{};
+  vtkNew<vtkCellTypes> types;
+  data->GetCellTypes(types);
+  vtkNew<vtkGenericCell> cell;
+  for (vtkIdType i = 0; i < types->GetNumberOfTypes(); ++i) {
+    const unsigned char type = types->GetCellType(static_cast<int>(i));
+    cell->SetCellType(type);
+    dims[type] = cell->GetCellDimension();
+  }
+  return dims;
+}
+
+void appendTets(vtkDataSet* data, std::vector<Tetrahedron>& tets) {
+  vtkNew<vtkIdList> ids;
+  const vtkIdType cells = data->GetNumberOfCells();
+  tets.reserve(tets.size() + static_cast<size_t>(cells));
+  for (vtkIdType c = 0; c < cells; ++c) {
+    if (data->GetCellType(c) != VTK_TETRA) continue;
+    data->GetCellPoints(c, ids);
+    tets.push_back({ids->GetId(0), ids->GetId(1), ids->GetId(2), ids->GetId(3)});
+  }
+}
+
+ScatteredData readMeshData(const std::string& path, const std::string& ext,
+                           const std::string& field) {
+  vtkSmartPointer<vtkDataSet> input = readMesh(path, ext);
+  if (input->GetNumberOfPoints() == 0) throw Error(path + ": the file holds no points");
+
+  ScatteredData out;
+  const SelectedArray selected = selectArray(path, input, field);
+  out.fieldName = arrayName(selected.array);
+  out.sampleType = vtkSampleTypeName(selected.array);
+  out.inputBytes = static_cast<std::int64_t>(selected.array->GetNumberOfTuples()) *
+                   selected.array->GetDataTypeSize();
+
+  // The filters below report through VTK's output window too.
+  VtkMessageCapture capture;
+  vtkSmartPointer<vtkDataSet> data = input;
+  if (selected.fromCells) {
+    vtkNew<vtkCellDataToPointData> toPoints;
+    toPoints->SetInputData(input);
+    toPoints->ProcessAllArraysOff();
+    toPoints->AddCellDataArray(out.fieldName.c_str());
+    toPoints->PassCellDataOff();
+    toPoints->Update();
+    data = toPoints->GetOutput();
+    out.fieldAssociation = "cell data averaged to points";
+  } else {
+    out.fieldAssociation = "point data";
+  }
+
+  // Count the 3-D cells; 2-D, 1-D and vertex cells do not enclose a volume and are ignored.
+  std::int64_t volumeCells = 0;
+  bool allTets = true;
+  if (!vtkPolyData::SafeDownCast(data)) {
+    const auto dims = cellDimensions(data);
+    for (vtkIdType c = 0; c < data->GetNumberOfCells(); ++c) {
+      const int type = data->GetCellType(c);
+      if (dims[type] != 3) continue;
+      ++volumeCells;
+      allTets = allTets && type == VTK_TETRA;
+    }
+  }
+  out.inputCells = volumeCells;
+
+  if (volumeCells == 0) {
+    out.kind = "point cloud";
+  } else if (allTets && !vtkStructuredGrid::SafeDownCast(data)) {
+    out.kind = "tetrahedral mesh";
+    appendTets(data, out.tets);
+  } else {
+    out.kind = vtkStructuredGrid::SafeDownCast(data) ? "curvilinear grid" : "mixed-cell mesh";
+    // Splits every 3-D cell into tetrahedra on the cell's own points; the points and their
+    // data pass through.
+    vtkNew<vtkDataSetTriangleFilter> split;
+    split->SetInputData(data);
+    split->TetrahedraOnlyOn();
+    split->Update();
+    data = split->GetOutput();
+    appendTets(data, out.tets);
+  }
+  if (capture.hasErrors())
+    throw Error("cannot prepare the cells of " + path + ": " + capture.errorText());
+
+  vtkDataArray* values = data->GetPointData()->GetArray(out.fieldName.c_str());
+  if (!values || values->GetNumberOfTuples() != data->GetNumberOfPoints())
+    throw Error(path + ": array '" + out.fieldName + "' has no value for every point");
+  const vtkIdType n = data->GetNumberOfPoints();
+  out.points.resize(static_cast<size_t>(n));
+  out.values.resize(static_cast<size_t>(n));
+  for (vtkIdType i = 0; i < n; ++i) {
+    double p[3];
+    data->GetPoint(i, p);
+    out.points[static_cast<size_t>(i)] = Vec3d(p[0], p[1], p[2]);
+    out.values[static_cast<size_t>(i)] = values->GetComponent(i, 0);
+  }
+  return out;
+}
+
+ScatteredData readTextData(const std::string& path, const std::string& field) {
+  ScatteredData out = parsePointValueList(readTextFile(path), path);
+  if (!field.empty() && field != out.fieldName) {
+    throw Error(path + ": no value column named '" + field + "'; the file's value column is '" +
+                out.fieldName +
+                "' (the fourth name of a header line; 'value' when there is no header)");
+  }
+  return out;
+}
+
+}  // namespace
+
+ScatteredData loadScatteredData(const std::string& path, const ScatteredLoadOptions& options) {
+  const std::string ext = lowerExtension(path);
+  const bool known =
+      isTextExtension(ext) || ext == ".vtu" || ext == ".vts" || ext == ".vtp" || ext == ".vtk";
+  if (!known) {
+    throw Error(path + ": unknown mesh or point format '" +
+                (ext.empty() ? std::string("(no extension)") : ext) + "'; supported inputs:\n" +
+                supportedScatteredFormats());
+  }
+  requireReadableFile(path, "a mesh or point file");
+  ScatteredData data = isTextExtension(ext) ? readTextData(path, options.field)
+                                            : readMeshData(path, ext, options.field);
+  data.source = path;
+  data.validate();
+  return data;
+}
+
+bool isScatteredInput(const std::string& path) {
+  const std::string ext = lowerExtension(path);
+  if (isTextExtension(ext) || ext == ".vtu" || ext == ".vts" || ext == ".vtp") return true;
+  return ext == ".vtk" && isScatteredLegacyType(legacyDatasetType(path));
+}
+
+std::string supportedScatteredFormats() {
+  return "  .vtu                 VTK XML unstructured grid (3-D cells split into tetrahedra)\n"
+         "  .vts                 VTK XML structured (curvilinear) grid\n"
+         "  .vtp                 VTK XML polydata (the points; polygons and lines are ignored)\n"
+         "  .vtk                 legacy VTK, DATASET UNSTRUCTURED_GRID, STRUCTURED_GRID or\n"
+         "                       POLYDATA\n"
+         "  .csv, .txt, .xyz     text, one 'x y z value' per line (commas and/or spaces,\n"
+         "                       optional header line naming the columns, # comments)\n";
+}
+
+}  // namespace mfadvr

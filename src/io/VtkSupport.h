@@ -1,0 +1,39 @@
+#pragma once
+// Small pieces shared by the VTK-based readers (volumes and scattered data). Internal to
+// mfadvr_io: VTK types are only forward-declared, so this header needs no VTK include paths.
+#include <memory>
+#include <string>
+
+class vtkDataArray;
+class vtkFieldData;
+
+namespace mfadvr {
+
+// VTK readers report failure by printing, not by throwing. While one of these lives, VTK's
+// error messages (and std::cerr, which MetaIO writes to directly) are collected instead of
+// printed, with VTK's source-location lines and object addresses removed; warnings are
+// dropped. VTK's output window and logger are process-wide, so captures (and the reads inside
+// them) are serialised.
+class VtkMessageCapture {
+ public:
+  VtkMessageCapture();
+  ~VtkMessageCapture();
+  VtkMessageCapture(const VtkMessageCapture&) = delete;
+  VtkMessageCapture& operator=(const VtkMessageCapture&) = delete;
+
+  bool hasErrors() const;
+  // All collected error text on one line, in the order it came; "" when there is none.
+  std::string errorText() const;
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
+};
+
+// "float32", "int16", "uint8", ...; "" for types that are not plain numbers.
+std::string vtkSampleTypeName(vtkDataArray* array);
+
+// "'Density', 'Momentum' (3 components)", or "none".
+std::string describeVtkArrays(vtkFieldData* data);
+
+}  // namespace mfadvr
