@@ -1,12 +1,16 @@
-// The domain mask: its trilinear inside test and the builders (mesh occupancy, point coverage,
-// default resolutions).
+// The domain mask: its trilinear inside test, the builders (mesh occupancy, point coverage,
+// default resolutions), and rendering a masked model.
 #include <gtest/gtest.h>
 #include <tbb/task_arena.h>
 
 #include <cmath>
 #include <random>
 
+#include "core/field/DerivedFields.h"
+#include "core/field/ModelField.h"
 #include "core/mask/MaskVoxelizer.h"
+#include "core/render/Camera.h"
+#include "core/render/RayCaster.h"
 #include "core/util/Error.h"
 
 namespace mfadvr {
@@ -279,6 +283,78 @@ TEST(MaskVoxelizer, DefaultResolutions) {
   const Index3 big = defaultMaskDims(cube, 4096);  // capped by the total node count
   EXPECT_NO_THROW(DomainMask::validateDims(big));
   EXPECT_GT(big[0], 1000);
+}
+
+// A constant model (every control point 1) over [-1,1]^3, masked to x <= 0.
+Model halfMaskedConstantModel(bool masked) {
+  std::array<KnotVector, 3> knots;
+  for (auto& k : knots) k = KnotVector::clampedUniform(2, 4);
+  Model m(TensorBSpline(knots, std::vector<float>(64, 1.0f)),
+          DomainBox{Vec3d(-1, -1, -1), Vec3d(1, 1, 1)}, 1.0, 1.0);
+  if (masked) {
+    std::vector<std::uint8_t> nodes(8, 0);
+    nodes[0] = nodes[2] = nodes[4] = nodes[6] = 1;  // x = -1 face; boundary at x = 0
+    m.setMask(DomainMask(MaskKind::MeshOccupancy, {2, 2, 2}, nodes));
+  }
+  return m;
+}
+
+TEST(MaskedRender, SamplesOutsideTheMaskAreEmpty) {
+  RenderSettings s;
+  s.width = 40;
+  s.height = 30;
+  s.camera.position = Vec3d(0.3, 0.2, 5);  // slightly oblique: some rays cross x = 0
+  s.camera.focalPoint = Vec3d(0, 0, 0);
+  s.camera.viewUp = Vec3d(0, 1, 0);
+  s.camera.viewAngle = 30;
+  s.sampleDistance = 0.02;
+  s.background = Vec3f(0.1f, 0.2f, 0.3f);
+  s.transferFunction.space = TfSpace::Data;
+  s.transferFunction.color = {{0.0, Vec3f(1, 1, 1)}, {2.0, Vec3f(1, 1, 1)}};
+  s.transferFunction.opacity = {{0.0, 0.5f}, {2.0, 0.5f}};
+
+  const Model plain = halfMaskedConstantModel(false);
+  const Model masked = halfMaskedConstantModel(true);
+  const ModelField plainField(plain), maskedField(masked);
+  EXPECT_TRUE(plainField.sampler().inside(Vec3d(0.9, 0, 0)));
+  EXPECT_FALSE(maskedField.sampler().inside(Vec3d(0.9, 0, 0)));
+  EXPECT_TRUE(maskedField.sampler().inside(Vec3d(-0.9, 0, 0)));
+  RenderStats plainStats, maskedStats;
+  const Image a = renderVolume(plainField, s, &plainStats);
+  const Image b = renderVolume(maskedField, s, &maskedStats);
+  EXPECT_LT(maskedStats.samples, plainStats.samples);  // masked samples are not evaluated
+  // Central-difference gradients keep the inner model's mask.
+  const CentralDifferenceField central(maskedField, Vec3d::Constant(0.05));
+  EXPECT_FALSE(central.sampler().inside(Vec3d(0.9, 0, 0)));
+  EXPECT_EQ(renderVolume(central, s).rgba, b.rgba);
+
+  const RayGenerator rays(s.camera, s.width, s.height);
+  int background = 0, coloured = 0;
+  for (int y = 0; y < s.height; ++y)
+    for (int x = 0; x < s.width; ++x) {
+      Vec3d o, d;
+      rays.ray(x, y, o, d);
+      double t0, t1;
+      if (!intersectBox(o, d, masked.domain().min, masked.domain().max, t0, t1)) continue;
+      if (t1 - t0 < 0.05) continue;       // grazes an edge of the box
+      EXPECT_GT(a.pixel(x, y)[3], 0.0f);  // unmasked: every ray through the box is coloured
+      const double xIn = (o + t0 * d)[0], xOut = (o + t1 * d)[0];
+      const float* p = b.pixel(x, y);
+      if (std::min(xIn, xOut) > 0.01) {  // only the excluded half
+        EXPECT_EQ(p[3], 0.0f) << x << " " << y;
+        EXPECT_EQ(p[0], 0.1f);
+        EXPECT_EQ(p[2], 0.3f);
+        ++background;
+      } else if (std::max(xIn, xOut) < -0.01) {  // only the kept half: as without the mask
+        EXPECT_GT(p[3], 0.0f) << x << " " << y;
+        EXPECT_EQ(p[3], a.pixel(x, y)[3]);
+        ++coloured;
+      } else if (std::min(xIn, xOut) < -0.1) {  // crosses the kept half for a while
+        EXPECT_GT(p[3], 0.0f) << x << " " << y;
+      }
+    }
+  EXPECT_GT(background, 100);
+  EXPECT_GT(coloured, 100);
 }
 
 }  // namespace
