@@ -9,6 +9,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, size_t size) {
   try {
     const mfadvr::Model m = mfadvr::parseModel(std::span<const std::uint8_t>(data, size));
     (void)m.valueGradient(mfadvr::Vec3d::Zero());
+    (void)m.inside(mfadvr::Vec3d::Zero());
   } catch (const mfadvr::Error&) {
   }
   return 0;

@@ -1,6 +1,6 @@
 // Writes seed inputs for the fuzzers: small valid models (uniform and non-uniform knots, several
-// degrees) and point lists ("x y z" and "x y z v"), so that mutations start from the
-// interesting structure.
+// degrees, one with a domain mask) and point lists ("x y z" and "x y z v"), so that mutations
+// start from the interesting structure.
 #include <filesystem>
 #include <fstream>
 
@@ -20,6 +20,17 @@ int main(int argc, char** argv) {
     o.controlCounts = {4, 3, 3};
     const auto m =
         mfadvr::encodeStructured(mfadvr::sampleBuiltinSpec("builtin:marschner-lobb:6x5x4"), o);
+    mfadvr::saveModel(m, models / ("seed" + std::to_string(i++) + ".mfa"));
+  }
+  {
+    // A masked model: 3 x 4 x 5 = 60 nodes, so the last mask byte has padding bits.
+    mfadvr::StructuredFitOptions o;
+    o.degree = {2, 2, 2};
+    o.controlCounts = {3, 3, 3};
+    auto m = mfadvr::encodeStructured(mfadvr::sampleBuiltinSpec("builtin:marschner-lobb:5x5x5"), o);
+    std::vector<std::uint8_t> nodes(60);
+    for (size_t n = 0; n < nodes.size(); ++n) nodes[n] = (n * 7 % 5) < 3;
+    m.setMask(mfadvr::DomainMask(mfadvr::MaskKind::PointCoverage, {3, 4, 5}, nodes));
     mfadvr::saveModel(m, models / ("seed" + std::to_string(i++) + ".mfa"));
   }
   std::ofstream(points / "seed.txt") << "x,y,z\n0 0 0\n1.5, -2e-3, 4\n# c\n";

@@ -11,7 +11,15 @@
 namespace mfadvr::app {
 namespace {
 
-nlohmann::json infoJson(const Model& m, const std::string& path) {
+// Kind "none", dims 0 and inside fraction 1 for a model without a mask.
+nlohmann::json maskJson(const DomainMask& mask) {
+  if (mask.empty()) return {{"kind", "none"}, {"dims", {0, 0, 0}}, {"inside_fraction", 1.0}};
+  return {{"kind", maskKindName(mask.kind())},
+          {"dims", mask.dims()},
+          {"inside_fraction", mask.insideFraction()}};
+}
+
+nlohmann::json infoJson(const Model& m, const std::string& path, std::uint32_t version) {
   const TensorBSpline& s = m.spline();
   nlohmann::json knots = nlohmann::json::array();
   for (int a = 0; a < 3; ++a)
@@ -20,13 +28,14 @@ nlohmann::json infoJson(const Model& m, const std::string& path) {
                                                       : "non-uniform");
   return {{"file", path},
           {"file_bytes", std::filesystem::file_size(path)},
-          {"format_version", kModelFormatVersion},
+          {"format_version", version},
           {"degree", s.degrees()},
           {"control_counts", s.counts()},
           {"knots", knots},
           {"domain_min", {m.domain().min[0], m.domain().min[1], m.domain().min[2]}},
           {"domain_max", {m.domain().max[0], m.domain().max[1], m.domain().max[2]}},
           {"value_range", {m.valueMin(), m.valueMax()}},
+          {"mask", maskJson(m.mask())},
           {"provenance", provenanceToJson(m.provenance())}};
 }
 
@@ -42,8 +51,9 @@ Command addInfoCommand(CLI::App& app) {
   sub->add_option("model", o->model, "Model file (.mfa)")->required();
   sub->add_flag("--json", o->json, "Print as JSON");
   return {sub, [o]() {
-            const Model m = loadModel(o->model);
-            const nlohmann::json j = infoJson(m, o->model);
+            std::uint32_t version = 0;
+            const Model m = loadModel(o->model, &version);
+            const nlohmann::json j = infoJson(m, o->model, version);
             if (o->json) {
               std::cout << j.dump(2) << "\n";
               return 0;
@@ -52,8 +62,8 @@ Command addInfoCommand(CLI::App& app) {
             const double range = m.valueMax() - m.valueMin();
             std::ostringstream out;
             out << "file            " << o->model << "  ("
-                << groupDigits(j["file_bytes"].get<std::int64_t>()) << " bytes, format v"
-                << kModelFormatVersion << ")\n";
+                << groupDigits(j["file_bytes"].get<std::int64_t>()) << " bytes, format v" << version
+                << ")\n";
             out << "degree          " << j["degree"][0] << " " << j["degree"][1] << " "
                 << j["degree"][2] << "\n";
             out << "control points  " << j["control_counts"][0] << " x " << j["control_counts"][1]
@@ -64,10 +74,25 @@ Command addInfoCommand(CLI::App& app) {
             out << "domain          [" << m.domain().min.transpose() << "] .. ["
                 << m.domain().max.transpose() << "]\n";
             out << "value range     " << m.valueMin() << " .. " << m.valueMax() << "\n";
+            if (m.mask().empty()) {
+              out << "mask            none\n";
+            } else {
+              const Index3& d = m.mask().dims();
+              std::ostringstream percent;
+              percent.precision(3);
+              percent << 100.0 * m.mask().insideFraction();
+              out << "mask            " << maskKindName(m.mask().kind()) << ", " << d[0] << " x "
+                  << d[1] << " x " << d[2] << " nodes, " << percent.str() << "% inside\n";
+            }
             out << "source          " << p.source << (p.field.empty() ? "" : "  field " + p.field)
                 << "\n";
-            out << "samples         " << p.sampleDims[0] << " x " << p.sampleDims[1] << " x "
-                << p.sampleDims[2] << "  " << p.sampleType << "\n";
+            if (p.inputPoints > 0)
+              out << "samples         " << groupDigits(p.inputPoints) << " scattered points  "
+                  << p.sampleType
+                  << (p.fieldAssociation.empty() ? "" : "  (" + p.fieldAssociation + ")") << "\n";
+            else
+              out << "samples         " << p.sampleDims[0] << " x " << p.sampleDims[1] << " x "
+                  << p.sampleDims[2] << "  " << p.sampleType << "\n";
             out << "encoder         " << p.encoder << ", " << p.fitSeconds << " s, " << p.created
                 << ", mfadvr " << p.toolVersion << "\n";
             out << "max error       " << p.maxError << "  ("

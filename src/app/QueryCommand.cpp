@@ -21,7 +21,9 @@ Command addQueryCommand(CLI::App& app) {
   };
   auto o = std::make_shared<Options>();
   CLI::App* sub = app.add_subcommand(
-      "query", "Evaluate a model (value, gradient, Hessian) at physical points; prints CSV");
+      "query",
+      "Evaluate a model (value, gradient, Hessian) at physical points; prints CSV (with a last "
+      "column 'inside', 1 or 0, for models with a domain mask)");
   sub->add_option("model", o->model, "Model file (.mfa)")->required();
   auto* xyz = sub->add_option("x y z", o->xyz, "One point, physical coordinates")->expected(3);
   auto* pts = sub->add_option("--points", o->pointsFile,
@@ -60,10 +62,14 @@ Command addQueryCommand(CLI::App& app) {
             std::vector<Sym3f> hessians(o->derivatives >= 2 ? points.size() : 0);
             model.evaluate(points, values, gradients, hessians);
 
-            std::size_t outside = 0;
+            // A model with a domain mask gets a last column, inside: 1 within the mask, 0 outside
+            // (where the value is the spline's extrapolation).
+            const bool masked = !model.mask().empty();
+            std::size_t outside = 0, outsideMask = 0;
             std::string csv = "x,y,z,value";
             if (o->derivatives >= 1) csv += ",dx,dy,dz";
             if (o->derivatives >= 2) csv += ",dxx,dxy,dxz,dyy,dyz,dzz";
+            if (masked) csv += ",inside";
             csv += "\n";
             char buf[64];
             auto put = [&](double v, bool last = false) {
@@ -73,15 +79,25 @@ Command addQueryCommand(CLI::App& app) {
             for (size_t i = 0; i < points.size(); ++i) {
               if (!model.domain().contains(points[i])) ++outside;
               for (int a = 0; a < 3; ++a) put(points[i][a]);
-              put(values[i], o->derivatives == 0);
+              put(values[i], o->derivatives == 0 && !masked);
               if (o->derivatives >= 1)
-                for (int a = 0; a < 3; ++a) put(gradients[i][a], o->derivatives == 1 && a == 2);
+                for (int a = 0; a < 3; ++a)
+                  put(gradients[i][a], o->derivatives == 1 && a == 2 && !masked);
               if (o->derivatives >= 2)
-                for (int a = 0; a < 6; ++a) put(hessians[i][a], a == 5);
+                for (int a = 0; a < 6; ++a) put(hessians[i][a], a == 5 && !masked);
+              if (masked) {
+                const bool in = model.inside(points[i]);
+                if (!in) ++outsideMask;
+                csv += in ? "1\n" : "0\n";
+              }
             }
             if (outside > 0)
               std::cerr << "mfadvr query: warning: " << outside << " of " << points.size()
                         << " points lie outside the model's domain box and were clamped onto it\n";
+            if (outsideMask > 0)
+              std::cerr << "mfadvr query: warning: " << outsideMask << " of " << points.size()
+                        << " points lie outside the model's domain mask (inside = 0): their "
+                           "values are extrapolated\n";
             if (o->output.empty())
               std::cout << csv;
             else

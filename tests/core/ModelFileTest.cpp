@@ -23,6 +23,19 @@ Model smallModel() {
   return encodeStructured(g, o);
 }
 
+// smallModel with a 5 x 6 x 7 point-coverage mask (210 nodes: the last byte has padding bits)
+// and scattered-input provenance.
+Model maskedModel() {
+  Model m = smallModel();
+  std::mt19937 rng(5);
+  std::vector<std::uint8_t> nodes(5 * 6 * 7);
+  for (auto& n : nodes) n = rng() % 3 != 0;
+  m.setMask(DomainMask(MaskKind::PointCoverage, {5, 6, 7}, nodes));
+  m.provenance().inputPoints = 12345;
+  m.provenance().fieldAssociation = "cell data averaged to points";
+  return m;
+}
+
 std::vector<std::uint8_t> bytesOf(const std::string& s) {
   return {s.begin(), s.end()};
 }
@@ -40,6 +53,32 @@ std::string errorOf(const std::vector<std::uint8_t>& b) {
     return e.what();
   }
   return "";
+}
+
+std::string headerOf(const std::string& file) {
+  std::uint32_t hlen;
+  std::memcpy(&hlen, file.data() + 14, 4);
+  return file.substr(18, hlen);
+}
+
+// Rewrites the JSON header (keeping the checksum valid) so that validation past the checksum is
+// exercised: absurd sizes must not allocate, bad values must be rejected.
+std::vector<std::uint8_t> withHeader(const std::vector<std::uint8_t>& full, const std::string& from,
+                                     const std::string& to) {
+  std::uint32_t hlen;
+  std::memcpy(&hlen, full.data() + 14, 4);
+  std::string header(full.begin() + 18, full.begin() + 18 + hlen);
+  const size_t at = header.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  header.replace(at, from.size(), to);
+  const std::uint32_t n = static_cast<std::uint32_t>(header.size());
+  std::string text(full.begin(), full.begin() + 14);
+  text.append(reinterpret_cast<const char*>(&n), 4);
+  text += header;
+  text.append(full.begin() + 18 + hlen, full.end());
+  std::vector<std::uint8_t> b = bytesOf(text);
+  fixChecksum(b);
+  return b;
 }
 
 TEST(ModelFile, RoundTripIsBitExact) {
@@ -88,23 +127,180 @@ TEST(ModelFile, SaveAndLoadAtomically) {
 }
 
 TEST(ModelFile, EveryTruncationIsAnError) {
-  const auto full = bytesOf(serializeModel(smallModel()));
-  for (size_t n = 0; n < full.size(); ++n) {
-    const std::vector<std::uint8_t> cut(full.begin(), full.begin() + n);
-    EXPECT_NE(errorOf(cut), "") << "prefix of " << n << " bytes parsed";
+  for (const Model& m : {smallModel(), maskedModel()}) {
+    const auto full = bytesOf(serializeModel(m));
+    for (size_t n = 0; n < full.size(); ++n) {
+      const std::vector<std::uint8_t> cut(full.begin(), full.begin() + n);
+      EXPECT_NE(errorOf(cut), "") << "prefix of " << n << " bytes parsed";
+    }
+    auto longer = full;
+    longer.push_back(0);
+    EXPECT_NE(errorOf(longer).find("trailing"), std::string::npos);
   }
-  auto longer = full;
-  longer.push_back(0);
-  EXPECT_NE(errorOf(longer).find("trailing"), std::string::npos);
 }
 
 TEST(ModelFile, EverySingleByteCorruptionIsAnError) {
-  const auto full = bytesOf(serializeModel(smallModel()));
-  for (size_t i = 0; i < full.size(); ++i) {
-    auto b = full;
-    b[i] ^= 0x5a;
-    EXPECT_NE(errorOf(b), "") << "flip at byte " << i << " went unnoticed";
+  for (const Model& m : {smallModel(), maskedModel()}) {
+    const auto full = bytesOf(serializeModel(m));
+    for (size_t i = 0; i < full.size(); ++i) {
+      auto b = full;
+      b[i] ^= 0x5a;
+      EXPECT_NE(errorOf(b), "") << "flip at byte " << i << " went unnoticed";
+    }
   }
+}
+
+TEST(ModelFile, MaskRoundTripIsBitExact) {
+  const Model m = maskedModel();
+  const std::string bytes = serializeModel(m);
+  EXPECT_EQ(static_cast<std::int64_t>(bytes.size()), modelFileSize(m));
+  std::uint32_t version = 0;
+  const Model r = parseModel(bytesOf(bytes), "m.mfa", &version);
+  EXPECT_EQ(version, kModelFormatVersion);
+  EXPECT_EQ(version, 2u);
+  EXPECT_EQ(r.mask().kind(), MaskKind::PointCoverage);
+  EXPECT_EQ(r.mask().dims(), (Index3{5, 6, 7}));
+  EXPECT_EQ(r.mask().nodes(), m.mask().nodes());
+  EXPECT_EQ(r.spline().controlPoints(), m.spline().controlPoints());
+  EXPECT_EQ(r.provenance().inputPoints, 12345);
+  EXPECT_EQ(r.provenance().fieldAssociation, "cell data averaged to points");
+  EXPECT_EQ(serializeModel(r), bytes);
+  EXPECT_NE(headerOf(bytes).find("\"mask\":{\"dims\":[5,6,7],\"kind\":\"point-coverage\"}"),
+            std::string::npos)
+      << headerOf(bytes);
+
+  // The packing: node n is bit n % 8 of mask byte n / 8, x fastest.
+  const size_t maskStart = bytes.size() - 4 - 27;
+  for (size_t n = 0; n < 210; ++n)
+    EXPECT_EQ((static_cast<std::uint8_t>(bytes[maskStart + n / 8]) >> (n % 8)) & 1,
+              m.mask().nodes()[n])
+        << n;
+
+  // Every node set, and a mask kind of its own; a mask whose node count is a multiple of 8.
+  Model full = smallModel();
+  full.setMask(DomainMask(MaskKind::MeshOccupancy, {2, 4, 3}, std::vector<std::uint8_t>(24, 1)));
+  const Model rf = parseModel(bytesOf(serializeModel(full)));
+  EXPECT_EQ(rf.mask().kind(), MaskKind::MeshOccupancy);
+  EXPECT_EQ(rf.mask().nodes(), full.mask().nodes());
+  EXPECT_EQ(static_cast<std::int64_t>(serializeModel(full).size()), modelFileSize(full));
+
+  // No mask: no mask key, no mask bytes.
+  const std::string plain = serializeModel(smallModel());
+  EXPECT_EQ(headerOf(plain).find("\"mask\""), std::string::npos);
+  EXPECT_TRUE(parseModel(bytesOf(plain)).mask().empty());
+}
+
+template <class T>
+void appendRaw(std::string& out, const T& v) {
+  out.append(reinterpret_cast<const char*>(&v), sizeof(T));
+}
+
+// A version-1 file written by hand from the layout in docs/model-format.md: trilinear
+// (degree 1, 2 control points per axis) over [0,2] x [0,1] x [0,1], P(i,j,k) = i + 2j + 4k.
+std::vector<std::uint8_t> versionOneFile(const std::string& extraHeader = "",
+                                         const std::string& extraBytes = "") {
+  const std::string header =
+      "{\"format\":\"mfadvr-model\",\"degree\":[1,1,1],\"control_counts\":[2,2,2],"
+      "\"domain_min\":[0.0,0.0,0.0],\"domain_max\":[2.0,1.0,1.0],\"value_range\":[0.0,7.0],"
+      "\"provenance\":{\"source\":\"by hand\",\"field\":\"f\",\"sample_type\":\"float32\","
+      "\"sample_dims\":[2,2,2],\"input_bytes\":32,\"encoder\":\"structured-least-squares\","
+      "\"created\":\"2026-01-01T00:00:00Z\",\"tool_version\":\"0.1.0\",\"fit_seconds\":0.0,"
+      "\"max_error\":0.0,\"rms_error\":0.0}" +
+      extraHeader + "}";
+  std::string out("MFADVR\r\n\x1a\n", 10);
+  appendRaw(out, std::uint32_t{1});
+  appendRaw(out, static_cast<std::uint32_t>(header.size()));
+  out += header;
+  for (int a = 0; a < 3; ++a)
+    for (double k : {0.0, 0.0, 1.0, 1.0}) appendRaw(out, k);
+  for (int n = 0; n < 8; ++n) appendRaw(out, static_cast<float>(n));
+  out += extraBytes;
+  appendRaw(out, std::uint32_t{0});
+  std::vector<std::uint8_t> b = bytesOf(out);
+  fixChecksum(b);
+  return b;
+}
+
+TEST(ModelFile, VersionOneFilesStillLoad) {
+  std::uint32_t version = 0;
+  const Model m = parseModel(versionOneFile(), "v1.mfa", &version);
+  EXPECT_EQ(version, 1u);
+  EXPECT_TRUE(m.mask().empty());
+  EXPECT_TRUE(m.inside(Vec3d(1, 0.5, 0.5)));
+  EXPECT_EQ(m.provenance().source, "by hand");
+  EXPECT_EQ(m.provenance().inputPoints, 0);
+  EXPECT_EQ(m.provenance().fieldAssociation, "");
+  EXPECT_EQ(m.spline().degrees(), (Degree3{1, 1, 1}));
+  // Trilinear: value = u + 2v + 4w with u = x / 2.
+  EXPECT_NEAR(m.value(Vec3d(1.0, 0.25, 0.5)), 0.5 + 0.5 + 2.0, 1e-6);
+  EXPECT_NEAR(m.value(Vec3d(2.0, 1.0, 1.0)), 7.0, 1e-6);
+  // Written back, it becomes version 2 with the same content.
+  const auto again = bytesOf(serializeModel(m));
+  EXPECT_EQ(again[10], 2);
+  EXPECT_EQ(parseModel(again).spline().controlPoints(), m.spline().controlPoints());
+
+  // A "mask" key means nothing to version 1 (unknown keys are ignored): no mask section is read.
+  const auto withKey = versionOneFile(",\"mask\":{\"kind\":\"mesh-occupancy\",\"dims\":[2,2,2]}");
+  EXPECT_TRUE(parseModel(withKey).mask().empty());
+  EXPECT_NE(errorOf(versionOneFile(",\"mask\":{\"kind\":\"mesh-occupancy\",\"dims\":[2,2,2]}",
+                                   std::string(1, '\xff')))
+                .find("trailing"),
+            std::string::npos);
+}
+
+TEST(ModelFile, DamagedMaskSectionsAreErrors) {
+  const auto full = bytesOf(serializeModel(maskedModel()));
+  const std::string kMask = "\"mask\":{\"dims\":[5,6,7],\"kind\":\"point-coverage\"}";
+  EXPECT_NO_THROW(parseModel(withHeader(full, kMask, kMask)));
+  auto maskWith = [&](const std::string& replacement) {
+    return errorOf(withHeader(full, kMask, "\"mask\":" + replacement));
+  };
+  EXPECT_NE(maskWith("{\"dims\":[5,6,7],\"kind\":\"voxels\"}").find("unknown mask kind"),
+            std::string::npos);
+  EXPECT_NE(maskWith("{\"dims\":[5,6,7],\"kind\":3}"), "");
+  EXPECT_NE(maskWith("{\"dims\":[5,6,7]}"), "");
+  EXPECT_NE(maskWith("{\"kind\":\"point-coverage\"}"), "");
+  EXPECT_NE(maskWith("\"point-coverage\""), "");
+  EXPECT_NE(maskWith("null"), "");
+  EXPECT_NE(maskWith("{\"dims\":[5,6],\"kind\":\"point-coverage\"}"), "");
+  EXPECT_NE(maskWith("{\"dims\":[5,6,7.5],\"kind\":\"point-coverage\"}"), "");
+  EXPECT_NE(maskWith("{\"dims\":[1,6,7],\"kind\":\"point-coverage\"}").find("mask"),
+            std::string::npos);
+  EXPECT_NE(maskWith("{\"dims\":[5,6,4097],\"kind\":\"point-coverage\"}").find("mask"),
+            std::string::npos);
+  // Within the per-axis limit but 2^36 nodes: refused before any size arithmetic or allocation.
+  EXPECT_NE(maskWith("{\"dims\":[4096,4096,4096],\"kind\":\"point-coverage\"}").find("mask"),
+            std::string::npos);
+  EXPECT_NE(maskWith("{\"dims\":[-5,6,7],\"kind\":\"point-coverage\"}"), "");
+  EXPECT_NE(maskWith("{\"dims\":[9223372036854775807,2,2],\"kind\":\"point-coverage\"}"), "");
+  // Dims that do not match the mask bytes: 5 x 6 x 8 needs 30 bytes, 27 are there.
+  EXPECT_NE(maskWith("{\"dims\":[5,6,8],\"kind\":\"point-coverage\"}").find("truncated"),
+            std::string::npos);
+  EXPECT_NE(maskWith("{\"dims\":[5,6,6],\"kind\":\"point-coverage\"}").find("trailing"),
+            std::string::npos);
+
+  // Padding bits (210 nodes: the top 6 bits of the last mask byte) must be zero.
+  for (int bit = 2; bit < 8; ++bit) {
+    auto b = full;
+    b[b.size() - 5] = static_cast<std::uint8_t>(b[b.size() - 5] | (1u << bit));
+    fixChecksum(b);
+    EXPECT_NE(errorOf(b).find("padding"), std::string::npos) << bit;
+  }
+  // A flipped node bit behind a repaired checksum is a different, valid mask.
+  auto flipped = full;
+  flipped[flipped.size() - 10] ^= 1;
+  fixChecksum(flipped);
+  const Model r = parseModel(flipped);
+  EXPECT_NE(r.mask().nodes(), maskedModel().mask().nodes());
+  // A mask section cut short (the checksum repaired) or missing altogether.
+  auto cut = full;
+  cut.erase(cut.end() - 6);
+  fixChecksum(cut);
+  EXPECT_NE(errorOf(cut).find("truncated"), std::string::npos);
+  auto none = full;
+  none.erase(none.end() - 4 - 27, none.end() - 4);
+  fixChecksum(none);
+  EXPECT_NE(errorOf(none).find("truncated"), std::string::npos);
 }
 
 TEST(ModelFile, ClearMessages) {
@@ -113,34 +309,16 @@ TEST(ModelFile, ClearMessages) {
             std::string::npos);
   EXPECT_NE(errorOf({}).find("not an .mfa model"), std::string::npos);
   auto v2 = full;
-  v2[10] = 2;
-  EXPECT_NE(errorOf(v2).find("version 2 is not supported"), std::string::npos);
+  v2[10] = 3;
+  EXPECT_NE(errorOf(v2).find("version 3 is not supported"), std::string::npos);
+  v2[10] = 0;
+  EXPECT_NE(errorOf(v2).find("version 0 is not supported"), std::string::npos);
   auto crc = full;
   crc[crc.size() - 10] ^= 1;  // a control point byte
   EXPECT_NE(errorOf(crc).find("checksum"), std::string::npos);
   auto shortFile = full;
   shortFile.resize(full.size() - 100);
   EXPECT_NE(errorOf(shortFile).find("truncated"), std::string::npos);
-}
-
-// Rewrites the JSON header (keeping the checksum valid) so that validation past the checksum is
-// exercised: absurd sizes must not allocate, bad values must be rejected.
-std::vector<std::uint8_t> withHeader(const std::vector<std::uint8_t>& full, const std::string& from,
-                                     const std::string& to) {
-  std::uint32_t hlen;
-  std::memcpy(&hlen, full.data() + 14, 4);
-  std::string header(full.begin() + 18, full.begin() + 18 + hlen);
-  const size_t at = header.find(from);
-  EXPECT_NE(at, std::string::npos) << from;
-  header.replace(at, from.size(), to);
-  const std::uint32_t n = static_cast<std::uint32_t>(header.size());
-  std::string text(full.begin(), full.begin() + 14);
-  text.append(reinterpret_cast<const char*>(&n), 4);
-  text += header;
-  text.append(full.begin() + 18 + hlen, full.end());
-  std::vector<std::uint8_t> b = bytesOf(text);
-  fixChecksum(b);
-  return b;
 }
 
 TEST(ModelFile, SemanticValidationBehindValidChecksum) {
@@ -159,6 +337,7 @@ TEST(ModelFile, SemanticValidationBehindValidChecksum) {
   EXPECT_NE(errorOf(withHeader(full, "\"control_counts\":[6,5,4]", "\"control_counts\":[6,5,4.0]")),
             "");
   EXPECT_NE(errorOf(withHeader(full, "\"input_bytes\":", "\"input_bytes\":1e300,\"x\":")), "");
+  EXPECT_NE(errorOf(withHeader(full, "\"input_points\":0", "\"input_points\":0.5")), "");
   EXPECT_NE(errorOf(withHeader(full, "\"domain_max\":[1.0", "\"domain_max\":[-5.0")), "");
   EXPECT_NE(errorOf(withHeader(full, "mfadvr-model", "something-else")), "");
 
@@ -181,10 +360,12 @@ TEST(ModelFile, SemanticValidationBehindValidChecksum) {
 // parser's deeper checks see damaged content. Every input must parse or raise Error. (The
 // libFuzzer target fuzz/fuzz_model_file.cpp explores further.)
 TEST(ModelFile, RandomCorruptionNeverCrashes) {
-  const auto full = bytesOf(serializeModel(smallModel()));
+  const auto plain = bytesOf(serializeModel(smallModel()));
+  const auto masked = bytesOf(serializeModel(maskedModel()));
   std::mt19937 rng(2024);
   int errors = 0;
   for (int t = 0; t < 3000; ++t) {
+    const auto& full = t % 2 ? masked : plain;
     auto b = full;
     const int edits = 1 + static_cast<int>(rng() % 4);
     for (int e = 0; e < edits; ++e) {
@@ -204,6 +385,7 @@ TEST(ModelFile, RandomCorruptionNeverCrashes) {
     try {
       const Model m = parseModel(b);
       (void)m.value(Vec3d::Zero());
+      (void)m.inside(Vec3d::Zero());
     } catch (const Error&) {
       ++errors;
     }

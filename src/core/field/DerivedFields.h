@@ -17,11 +17,24 @@ class CentralDifferenceField {
   Vec3d boxMin() const { return inner_.boxMin(); }
   Vec3d boxMax() const { return inner_.boxMax(); }
 
+  using InnerSampler = decltype(std::declval<const Inner&>().sampler());
+
   class Sampler {
    public:
     Sampler(const CentralDifferenceField& f)
         : s_(f.inner_.sampler()), h_(f.h_), lo_(f.boxMin()), hi_(f.boxMax()) {}
     float value(const Vec3d& x) { return s_.value(x); }
+    // The inner field's domain, where it has one (a masked model).
+    bool inside(const Vec3d& x)
+      requires requires(InnerSampler& s, const Vec3d& y) { s.inside(y); }
+    {
+      return s_.inside(x);
+    }
+    bool masked() const
+      requires requires(const InnerSampler& s) { s.masked(); }
+    {
+      return s_.masked();
+    }
     ValueGradient valueGradient(const Vec3d& x) {
       ValueGradient r;
       r.value = s_.value(x);
@@ -36,7 +49,7 @@ class CentralDifferenceField {
     }
 
    private:
-    decltype(std::declval<const Inner&>().sampler()) s_;
+    InnerSampler s_;
     Vec3d h_, lo_, hi_;
   };
   Sampler sampler() const { return Sampler(*this); }

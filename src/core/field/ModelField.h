@@ -1,5 +1,6 @@
 #pragma once
-// The MFA model as a Field: exact spline value and analytic gradient at every sample.
+// The MFA model as a Field: exact spline value and analytic gradient at every sample, and the
+// model's domain mask (the ray caster skips samples outside it).
 #include "core/field/Field.h"
 #include "core/model/Model.h"
 
@@ -13,12 +14,17 @@ class ModelField {
 
   class Sampler {
    public:
-    explicit Sampler(const Model& m) : model_(&m) {}
+    explicit Sampler(const Model& m) : model_(&m), masked_(!m.mask().empty()) {}
     float value(const Vec3d& x) const { return model_->value(x); }
     ValueGradient valueGradient(const Vec3d& x) const { return model_->valueGradient(x); }
+    // False outside the model's domain mask. masked() is false for a model without one (every
+    // model of a grid): the ray caster then skips the inside() calls.
+    bool masked() const { return masked_; }
+    bool inside(const Vec3d& x) const { return !masked_ || model_->inside(x); }
 
    private:
     const Model* model_;
+    bool masked_;
   };
   Sampler sampler() const { return Sampler(*model_); }
 

@@ -23,12 +23,19 @@ enum class MaskKind {
 std::string maskKindName(MaskKind kind);       // "mesh-occupancy" / "point-coverage"
 MaskKind parseMaskKind(const std::string& name);  // throws mfadvr::Error
 
+// Limits on a mask's grid, so that node counts and file sizes cannot overflow: 2..4096 nodes per
+// axis and at most 2^31 nodes in all (2 GiB as bytes in memory, 256 MiB bit-packed in a file).
+inline constexpr std::int64_t kMaxMaskNodesPerAxis = 4096;
+inline constexpr std::int64_t kMaxMaskNodes = std::int64_t(1) << 31;
+
 class DomainMask {
  public:
   DomainMask() = default;
-  // nodes: x fastest, one byte per node, 0 or 1. Throws mfadvr::Error for dims < 2 on an axis or
-  // a size mismatch.
+  // nodes: x fastest, one byte per node, 0 or 1 (any non-zero byte is stored as 1). Throws
+  // mfadvr::Error for dims outside the limits above or a size mismatch.
   DomainMask(MaskKind kind, Index3 dims, std::vector<std::uint8_t> nodes);
+  // Throws mfadvr::Error unless dims are within the limits above.
+  static void validateDims(const Index3& dims);
 
   bool empty() const { return nodes_.empty(); }
   MaskKind kind() const { return kind_; }

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <limits>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 
 #include "core/model/ProvenanceJson.h"
@@ -56,6 +57,8 @@ Provenance provenanceFromJson(const json& j) {
   p.field = j.value("field", "");
   p.sampleType = j.value("sample_type", "");
   p.sampleDims = j.contains("sample_dims") ? integers3(j, "sample_dims") : Index3{0, 0, 0};
+  p.inputPoints = integerOr(j, "input_points", 0);
+  p.fieldAssociation = j.value("field_association", "");
   p.inputBytes = integerOr(j, "input_bytes", 0);
   p.encoder = j.value("encoder", "");
   p.created = j.value("created", "");
@@ -76,6 +79,8 @@ std::string headerText(const Model& m) {
             {"domain_max", {d.max[0], d.max[1], d.max[2]}},
             {"value_range", {m.valueMin(), m.valueMax()}},
             {"provenance", provenanceToJson(m.provenance())}};
+  if (!m.mask().empty())
+    h["mask"] = {{"kind", maskKindName(m.mask().kind())}, {"dims", m.mask().dims()}};
   return h.dump();
 }
 
@@ -102,6 +107,23 @@ std::uint32_t crc(const std::uint8_t* data, size_t n) {
   return static_cast<std::uint32_t>(c);
 }
 
+// Mask nodes, 0/1 bytes, as bits: node i is bit i % 8 (least significant first) of byte i / 8.
+std::int64_t maskBytes(const Index3& dims) {
+  return (dims[0] * dims[1] * dims[2] + 7) / 8;
+}
+
+std::int64_t maskBytes(const DomainMask& mask) {
+  return mask.empty() ? 0 : maskBytes(mask.dims());
+}
+
+void appendMaskBits(std::string& out, const DomainMask& mask) {
+  const auto& nodes = mask.nodes();
+  std::string bits(static_cast<size_t>(maskBytes(mask)), '\0');
+  for (size_t i = 0; i < nodes.size(); ++i)
+    if (nodes[i]) bits[i / 8] = static_cast<char>(bits[i / 8] | (1u << (i % 8)));
+  out += bits;
+}
+
 Vec3d vec3(const json& j, const char* key) {
   const auto a = j.at(key).get<std::array<double, 3>>();
   return Vec3d(a[0], a[1], a[2]);
@@ -121,6 +143,7 @@ std::string serializeModel(const Model& model) {
     for (double k : model.spline().knots(a).knots()) append(out, k);
   const auto& ctrl = model.spline().controlPoints();
   out.append(reinterpret_cast<const char*>(ctrl.data()), ctrl.size() * sizeof(float));
+  if (!model.mask().empty()) appendMaskBits(out, model.mask());
   append(out, crc(reinterpret_cast<const std::uint8_t*>(out.data()), out.size()));
   return out;
 }
@@ -130,10 +153,12 @@ std::int64_t modelFileSize(const Model& model) {
   for (int a = 0; a < 3; ++a)
     knots += static_cast<std::int64_t>(model.spline().knots(a).knots().size());
   return static_cast<std::int64_t>(kPrefixBytes + headerText(model).size()) + 8 * knots +
-         4 * static_cast<std::int64_t>(model.spline().controlPoints().size()) + 4;
+         4 * static_cast<std::int64_t>(model.spline().controlPoints().size()) +
+         maskBytes(model.mask()) + 4;
 }
 
-Model parseModel(std::span<const std::uint8_t> b, const std::string& name) {
+Model parseModel(std::span<const std::uint8_t> b, const std::string& name,
+                 std::uint32_t* formatVersion) {
   auto bad = [&](const std::string& why) -> Error {
     return Error(name + ": not a valid .mfa model: " + why);
   };
@@ -141,9 +166,10 @@ Model parseModel(std::span<const std::uint8_t> b, const std::string& name) {
     throw Error(name + ": not an .mfa model file (wrong magic bytes)");
   if (b.size() < kPrefixBytes + 4) throw bad("file is truncated");
   const auto version = readAt<std::uint32_t>(b, sizeof(kMagic));
-  if (version != kModelFormatVersion)
+  if (version < kOldestModelFormatVersion || version > kModelFormatVersion)
     throw Error(name + ": .mfa format version " + std::to_string(version) +
-                " is not supported; this build reads version " +
+                " is not supported; this build reads versions " +
+                std::to_string(kOldestModelFormatVersion) + " to " +
                 std::to_string(kModelFormatVersion));
   const auto headerBytes = readAt<std::uint32_t>(b, sizeof(kMagic) + 4);
   if (headerBytes > kMaxHeaderBytes || kPrefixBytes + headerBytes + 4 > b.size())
@@ -155,6 +181,8 @@ Model parseModel(std::span<const std::uint8_t> b, const std::string& name) {
   Vec3d lo, hi;
   std::array<double, 2> range{};
   Provenance prov;
+  std::optional<MaskKind> maskKind;  // version 2 on; a version-1 file has no mask
+  Index3 maskDims{0, 0, 0};
   try {
     h = json::parse(b.begin() + kPrefixBytes, b.begin() + kPrefixBytes + headerBytes);
     if (h.value("format", "") != "mfadvr-model") throw bad("header is not an mfadvr-model header");
@@ -169,6 +197,18 @@ Model parseModel(std::span<const std::uint8_t> b, const std::string& name) {
     hi = vec3(h, "domain_max");
     range = h.at("value_range").get<std::array<double, 2>>();
     if (h.contains("provenance")) prov = provenanceFromJson(h.at("provenance"));
+    if (version >= 2 && h.contains("mask")) {
+      const json& m = h.at("mask");
+      if (!m.is_object()) throw bad("mask must be an object");
+      const json& kind = m.at("kind");
+      if (!kind.is_string()) throw bad("mask kind must be a string");
+      try {
+        maskKind = parseMaskKind(kind.get<std::string>());
+      } catch (const Error& e) {
+        throw bad(e.what());
+      }
+      maskDims = integers3(m, "dims");
+    }
   } catch (const json::exception& e) {
     throw bad(std::string("header is corrupt (") + e.what() + ")");
   }
@@ -180,14 +220,22 @@ Model parseModel(std::span<const std::uint8_t> b, const std::string& name) {
   }
   if (!(std::isfinite(range[0]) && std::isfinite(range[1]) && range[0] <= range[1]))
     throw bad("value range is not finite");
+  if (maskKind) {
+    try {
+      DomainMask::validateDims(maskDims);  // bounds the node count by 2^31
+    } catch (const Error& e) {
+      throw bad(std::string("mask: ") + e.what());
+    }
+  }
+  const std::int64_t packedMaskBytes = maskKind ? maskBytes(maskDims) : 0;
 
   // Sizes: every factor is at most 2^20, so the products below cannot overflow int64.
   const std::int64_t knotCount = (n[0] + p[0] + 1) + (n[1] + p[1] + 1) + (n[2] + p[2] + 1);
   const std::int64_t ctrlCount = n[0] * n[1] * n[2];
   if (ctrlCount > std::numeric_limits<std::int64_t>::max() / 8)
     throw bad("too many control points");
-  const std::int64_t expected =
-      static_cast<std::int64_t>(kPrefixBytes + headerBytes) + 8 * knotCount + 4 * ctrlCount + 4;
+  const std::int64_t expected = static_cast<std::int64_t>(kPrefixBytes + headerBytes) +
+                                8 * knotCount + 4 * ctrlCount + packedMaskBytes + 4;
   if (static_cast<std::int64_t>(b.size()) != expected)
     throw bad("size is " + std::to_string(b.size()) + " bytes but the header describes " +
               std::to_string(expected) +
@@ -210,17 +258,29 @@ Model parseModel(std::span<const std::uint8_t> b, const std::string& name) {
   }
   std::vector<float> ctrl(static_cast<size_t>(ctrlCount));
   std::memcpy(ctrl.data(), b.data() + offset, ctrl.size() * sizeof(float));
+  offset += ctrl.size() * sizeof(float);
   for (float c : ctrl)
     if (!std::isfinite(c)) throw bad("a control point is NaN or infinite");
-  return Model(TensorBSpline(std::move(knots), std::move(ctrl)), DomainBox{lo, hi}, range[0],
-               range[1], std::move(prov));
+  Model model(TensorBSpline(std::move(knots), std::move(ctrl)), DomainBox{lo, hi}, range[0],
+              range[1], std::move(prov));
+  if (maskKind) {
+    const std::uint8_t* bits = b.data() + offset;
+    const std::int64_t count = maskDims[0] * maskDims[1] * maskDims[2];
+    if (count % 8 != 0 && (bits[packedMaskBytes - 1] >> (count % 8)) != 0)
+      throw bad("mask padding bits are not zero");
+    std::vector<std::uint8_t> nodes(static_cast<size_t>(count));
+    for (std::int64_t i = 0; i < count; ++i) nodes[i] = (bits[i / 8] >> (i % 8)) & 1u;
+    model.setMask(DomainMask(*maskKind, maskDims, std::move(nodes)));
+  }
+  if (formatVersion) *formatVersion = version;
+  return model;
 }
 
 void saveModel(const Model& model, const std::filesystem::path& path) {
   writeFileAtomically(path, serializeModel(model));
 }
 
-Model loadModel(const std::filesystem::path& path) {
+Model loadModel(const std::filesystem::path& path, std::uint32_t* formatVersion) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec))
     throw Error("cannot read " + path.string() + ": is a directory");
@@ -229,7 +289,7 @@ Model loadModel(const std::filesystem::path& path) {
   std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)),
                                   std::istreambuf_iterator<char>());
   if (in.bad()) throw Error("cannot read " + path.string());
-  return parseModel(bytes, path.string());
+  return parseModel(bytes, path.string(), formatVersion);
 }
 
 }  // namespace mfadvr

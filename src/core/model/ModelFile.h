@@ -1,11 +1,14 @@
 #pragma once
-// The .mfa model file (format version 1; docs/model-format.md describes every byte).
+// The .mfa model file (format version 2; docs/model-format.md describes every byte).
 //
 //   magic "MFADVR\r\n\x1a\n" (10 bytes) | u32 version | u32 header length H | H bytes JSON header
-//   | knots: float64 per axis, x then y then z | control points: float32, x fastest | u32 CRC-32
+//   | knots: float64 per axis, x then y then z | control points: float32, x fastest
+//   | [mask nodes: bit-packed, x fastest, least significant bit first; when the header has "mask"]
+//   | u32 CRC-32
 //
 // All integers and floats little-endian; the CRC-32 (zlib) covers every byte before it. Loading
 // checks everything before trusting it, so that any damaged file gives an Error, never a crash.
+// Writing always produces version 2; reading accepts version 1 (no mask section) and 2.
 #include <cstdint>
 #include <filesystem>
 #include <span>
@@ -15,15 +18,18 @@
 
 namespace mfadvr {
 
-inline constexpr std::uint32_t kModelFormatVersion = 1;
+inline constexpr std::uint32_t kModelFormatVersion = 2;        // written
+inline constexpr std::uint32_t kOldestModelFormatVersion = 1;  // oldest read
 
 std::string serializeModel(const Model& model);
-// `name` appears in error messages (usually the path).
-Model parseModel(std::span<const std::uint8_t> bytes, const std::string& name = "model");
+// `name` appears in error messages (usually the path). formatVersion (optional) receives the
+// version the bytes were written in.
+Model parseModel(std::span<const std::uint8_t> bytes, const std::string& name = "model",
+                 std::uint32_t* formatVersion = nullptr);
 
 // Writes atomically: a temporary file beside the target, flushed, then renamed over it.
 void saveModel(const Model& model, const std::filesystem::path& path);
-Model loadModel(const std::filesystem::path& path);
+Model loadModel(const std::filesystem::path& path, std::uint32_t* formatVersion = nullptr);
 
 std::int64_t modelFileSize(const Model& model);
 

@@ -12,6 +12,11 @@
 // field's gradient when shading is on) are composited front to back; a ray stops once its
 // opacity reaches the early-termination threshold. The result is composited over the background.
 //
+// A field whose sampler has `bool inside(x)` (a model with a domain mask) is empty where it
+// answers false: such samples are neither evaluated nor composited, as if their opacity were 0.
+// The ray loop is instantiated twice, with and without that test, and a sampler with
+// `bool masked()` answering false (a model without a mask) gets the loop without it.
+//
 // Pixels are computed independently in square tiles spread over the threads, so the image is
 // bit-identical for any thread count.
 #include <tbb/blocked_range.h>
@@ -81,12 +86,19 @@ class RayCaster {
         std::optional<Shader> shader;
         if (s_.shade) shader.emplace(s_.lighting, s_.camera.directionOfProjection());
         RayCounters c;
+        // Fields without a mask get the ray loop without the inside() test.
+        const bool masked = canBeOutside(sampler);
         for (int tile = range.begin(); tile < range.end(); ++tile) {
           const int x0 = (tile % tilesX) * kTile, y0 = (tile / tilesX) * kTile;
           const int x1 = std::min(x0 + kTile, s_.width), y1 = std::min(y0 + kTile, s_.height);
           for (int y = y0; y < y1; ++y)
-            for (int x = x0; x < x1; ++x)
-              castRay(x, y, sampler, shader ? &*shader : nullptr, image.pixel(x, y), c);
+            for (int x = x0; x < x1; ++x) {
+              Shader* sh = shader ? &*shader : nullptr;
+              if (masked)
+                castRay<kHasInside<decltype(sampler)>>(x, y, sampler, sh, image.pixel(x, y), c);
+              else
+                castRay<false>(x, y, sampler, sh, image.pixel(x, y), c);
+            }
           const int finished = ++done;
           if (s_.progress) {
             const int percent = static_cast<int>(100LL * finished / tiles);
@@ -126,7 +138,24 @@ class RayCaster {
   };
 
   template <class Sampler>
-  // shader is null when shading is off.
+  static constexpr bool kHasInside = requires(Sampler& s, const Vec3d& x) {
+    { s.inside(x) } -> std::convertible_to<bool>;
+  };
+
+  // Whether the sampler can answer inside(x) == false: samplers without inside() cannot; those
+  // with masked() say whether they can (a model without a mask cannot); others may.
+  template <class Sampler>
+  static bool canBeOutside(const Sampler& sampler) {
+    if constexpr (!kHasInside<Sampler>)
+      return false;
+    else if constexpr (requires { sampler.masked(); })
+      return sampler.masked();
+    else
+      return true;
+  }
+
+  // shader is null when shading is off. Masked: skip samples where sampler.inside(p) is false.
+  template <bool Masked, class Sampler>
   void castRay(int x, int y, Sampler& sampler, Shader* shader, float* out,
                RayCounters& counters) const {
     Vec3d o, d;
@@ -149,6 +178,9 @@ class RayCaster {
         if (!(length > 0.0)) break;
         // Fields clamp their own lookups, so a sample a rounding error outside the box is fine.
         const Vec3d p = o + (t + 0.5 * length) * d;
+        if constexpr (Masked) {
+          if (!sampler.inside(p)) continue;
+        }
         ++counters.samples;
         ValueGradient vg;
         if (s_.shade)
