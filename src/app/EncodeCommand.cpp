@@ -1,60 +1,130 @@
-// mfadvr encode INPUT [-o MODEL.mfa] [--degree ...] [--ctrl ...]
+// mfadvr encode INPUT [-o MODEL.mfa] [--degree ...] [--ctrl ...] [--max-error E ...]
 #include <iostream>
 
 #include "app/Commands.h"
+#include "app/EncodeCliOptions.h"
 #include "app/FitReportOutput.h"
 #include "app/OptionParsing.h"
-#include "core/encode/StructuredEncoder.h"
+#include "core/encode/Encoder.h"
 #include "core/model/ModelFile.h"
+#include "io/ScatteredLoader.h"
 #include "io/VolumeLoader.h"
 
 namespace mfadvr::app {
 
+namespace {
+
+// Exit status when --strict is given and the bound was not reached.
+constexpr int kBoundNotReached = 3;
+
+}  // namespace
+
 Command addEncodeCommand(CLI::App& app) {
   struct Options {
-    std::string input, output, degree = "3", ctrl, spacing, origin, field;
-    bool json = false, quiet = false;
+    std::string input, output, spacing, origin, field;
+    bool json = false, quiet = false, strict = false;
+    EncodeCliOptions encode;
   };
   auto o = std::make_shared<Options>();
   CLI::App* sub = app.add_subcommand(
-      "encode", "Fit an MFA model (tensor-product B-spline) to a volume and report the fit");
+      "encode", "Fit an MFA model (tensor-product B-spline) to a volume, mesh or point cloud");
   sub->add_option("input", o->input,
-                  "Volume file or built-in function: builtin:NAME[:N|:NXxNYxNZ]\n" +
-                      supportedVolumeFormats())
+                  "Volume, mesh or point file, or a built-in function builtin:NAME[:N|:NXxNYxNZ]\n" +
+                      supportedVolumeFormats() + "\n" + supportedScatteredFormats())
       ->required();
   sub->add_option("-o,--output", o->output,
                   "Model file to write (.mfa); without it only the report is printed");
-  sub->add_option("--degree", o->degree, "Polynomial degree P or PX,PY,PZ (1..7)")
-      ->capture_default_str();
-  sub->add_option("--ctrl", o->ctrl,
-                  "Control points N or NX,NY,NZ per axis (default: as many as samples, which "
-                  "interpolates; fewer gives a smoothing least-squares fit)");
-  sub->add_option("--spacing", o->spacing, "Sample spacing S or SX,SY,SZ (overrides the file's)");
+  o->encode.addTo(sub, "Encoding");
+  sub->add_flag("--strict", o->strict,
+                "With --max-error: exit with status 3 and write nothing when a limit stops "
+                "refinement before the bound is reached");
+  sub->add_option("--spacing", o->spacing, "Grids: sample spacing S or SX,SY,SZ (overrides the file's)")
+      ->group("Input");
   sub->add_option("--origin", o->origin,
-                  "Position of the first sample X,Y,Z (overrides the file's)");
-  sub->add_option("--field", o->field, "Scalar array to encode (default: the active/first one)");
+                  "Grids: position of the first sample X,Y,Z (overrides the file's)")
+      ->group("Input");
+  sub->add_option("--field", o->field,
+                  "Scalar array to encode (default: the active/first point-data array)")
+      ->group("Input");
   sub->add_flag("--json", o->json, "Print the report as JSON");
   sub->add_flag("-q,--quiet", o->quiet, "No progress on stderr");
 
   auto run = [o]() -> int {
-    StructuredFitOptions fit = parseFitOptions(o->degree, o->ctrl);
-    const VolumeLoadOptions load = parseVolumeLoadOptions(o->spacing, o->origin, o->field);
+    EncodeOptions options = o->encode.parse();
+    const bool scattered = isScatteredInput(o->input);
+    if (o->strict && !options.adaptive)
+      throw CLI::ValidationError("--strict", "applies to adaptive encoding; give --max-error too");
+    if (!scattered && (!o->encode.smooth.empty() || !o->encode.maskRes.empty() || o->encode.noMask))
+      throw CLI::ValidationError(
+          "--smooth/--mask-res/--no-mask",
+          "apply to meshes and point clouds; " + o->input + " is a regular grid");
+    if (scattered && (!o->spacing.empty() || !o->origin.empty()))
+      throw CLI::ValidationError("--spacing/--origin",
+                                 "apply to regular grids; " + o->input + " holds scattered points");
 
     const bool progress = wantProgress(o->quiet || o->json);
     if (progress) std::cerr << "reading " << o->input << "\n";
-    const StructuredGrid grid = loadStructuredVolume(o->input, load);
-    if (progress) {
-      fit.progress = [](double f, const std::string& stage) {
+    std::vector<AdaptiveRound> rounds;
+    if (options.adaptive) {
+      options.adaptive->onRound = [&rounds, progress](const AdaptiveRound& r) {
+        rounds.push_back(r);
+        if (progress)
+          std::fprintf(stderr, "  round %d: %lld x %lld x %lld control points, max error %.3e, %.1f s\n",
+                       r.round, static_cast<long long>(r.controlCounts[0]),
+                       static_cast<long long>(r.controlCounts[1]),
+                       static_cast<long long>(r.controlCounts[2]), r.maxRelativeError, r.seconds);
+      };
+    } else if (progress) {
+      options.progress = [](double f, const std::string& stage) {
         printProgress("encoding", f, stage);
       };
     }
+
     FitReport report;
-    const Model model = encodeStructured(grid, fit, &report);
-    if (!o->output.empty()) saveModel(model, o->output);
-    if (o->json)
-      std::cout << fitReportJson(report, o->output).dump(2) << "\n";
-    else
-      std::cout << formatFitReport(report, o->output);
+    Model model;
+    if (scattered) {
+      ScatteredLoadOptions load;
+      load.field = o->field;
+      const ScatteredData data = loadScatteredData(o->input, load);
+      if (progress)
+        std::cerr << "  " << data.kind << ": " << groupDigits(data.pointCount()) << " points"
+                  << (data.hasCells() ? ", " + groupDigits(static_cast<std::int64_t>(data.tets.size())) + " tetrahedra" : "")
+                  << "\n";
+      model = encodePoints(data, options, &report);
+    } else {
+      const VolumeLoadOptions load = parseVolumeLoadOptions(o->spacing, o->origin, o->field);
+      const StructuredGrid grid = loadStructuredVolume(o->input, load);
+      model = encodeGrid(grid, options, &report);
+    }
+    const bool failedStrict = o->strict && !report.reachedTarget;
+    if (!o->output.empty() && !failedStrict) saveModel(model, o->output);
+    const std::string written = failedStrict ? std::string() : o->output;
+    if (o->json) {
+      nlohmann::json j = fitReportJson(report, written);
+      if (options.adaptive) {
+        nlohmann::json list = nlohmann::json::array();
+        for (const auto& r : rounds)
+          list.push_back({{"round", r.round},
+                          {"control_counts", r.controlCounts},
+                          {"max_relative_error", r.maxRelativeError},
+                          {"rms_relative_error", r.rmsRelativeError},
+                          {"seconds", r.seconds}});
+        j["adaptive"]["history"] = list;
+      }
+      std::cout << j.dump(2) << "\n";
+    } else {
+      std::cout << formatFitReport(report, written);
+    }
+    if (options.adaptive && !report.reachedTarget) {
+      std::cerr << "mfadvr: " << (o->strict ? "error" : "warning")
+                << ": the error bound was not reached (" << report.stopReason
+                << "); max error is " << report.maxRelativeError() << " of the value range";
+      if (o->strict) {
+        std::cerr << "; nothing written (--strict)\n";
+        return kBoundNotReached;
+      }
+      std::cerr << (o->output.empty() ? "" : "; wrote the best model") << "\n";
+    }
     return 0;
   };
   return {sub, run};

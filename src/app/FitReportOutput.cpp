@@ -25,17 +25,32 @@ std::string fmt(const char* f, double v) {
 std::string formatFitReport(const FitReport& r, const std::string& modelPath) {
   std::ostringstream o;
   o << "source          " << r.source << "\n";
-  o << "samples         " << r.samples[0] << " x " << r.samples[1] << " x " << r.samples[2] << "  ("
-    << groupDigits(r.inputBytes) << " bytes)\n";
+  if (r.points > 0)
+    o << "input           " << (r.inputKind.empty() ? "points" : r.inputKind) << ", "
+      << groupDigits(r.points) << " points  (" << groupDigits(r.inputBytes) << " bytes)\n";
+  else
+    o << "samples         " << r.samples[0] << " x " << r.samples[1] << " x " << r.samples[2]
+      << "  (" << groupDigits(r.inputBytes) << " bytes)\n";
   o << "value range     " << fmt("%.6g", r.valueMin) << " .. " << fmt("%.6g", r.valueMax) << "\n";
   o << "degree          " << r.degree[0] << " " << r.degree[1] << " " << r.degree[2] << "\n";
   o << "control points  " << r.controlCounts[0] << " x " << r.controlCounts[1] << " x "
     << r.controlCounts[2] << "\n";
+  if (r.points > 0)
+    o << "smoothing       " << fmt("%g", r.smoothing) << "  (solver: " << r.solverIterations
+      << " CG iterations, residual " << fmt("%.2e", r.solverResidual) << ")\n";
+  if (r.rounds > 0)
+    o << "adaptive        bound " << fmt("%.3e", r.targetRelativeError) << " of the value range: "
+      << (r.reachedTarget ? "reached" : "NOT reached") << " after " << r.rounds << " round"
+      << (r.rounds == 1 ? "" : "s") << (r.reachedTarget ? "" : " (" + r.stopReason + ")") << "\n";
   o << "fit time        " << fmt("%.3f", r.seconds) << " s\n";
   o << "max error       " << fmt("%.4g", r.maxError) << "  (" << fmt("%.3e", r.maxRelativeError())
     << " of the value range)\n";
   o << "rms error       " << fmt("%.4g", r.rmsError) << "  (" << fmt("%.3e", r.rmsRelativeError())
     << " of the value range)\n";
+  if (!r.maskKind.empty())
+    o << "domain mask     " << r.maskKind << ", " << r.maskDims[0] << " x " << r.maskDims[1]
+      << " x " << r.maskDims[2] << " nodes, " << fmt("%.1f", 100.0 * r.maskInsideFraction)
+      << "% inside\n";
   o << "model size      " << groupDigits(r.modelBytes) << " bytes"
     << (modelPath.empty() ? std::string("  (not written: no -o)") : "  -> " + modelPath) << "\n";
   o << "compression     " << fmt("%.2f", r.compressionRatio())
@@ -44,7 +59,10 @@ std::string formatFitReport(const FitReport& r, const std::string& modelPath) {
 }
 
 nlohmann::json fitReportJson(const FitReport& r, const std::string& modelPath) {
-  return {{"source", r.source},
+  nlohmann::json j = {{"source", r.source},
+          {"encoder", r.encoder},
+          {"points", r.points},
+          {"input_kind", r.inputKind},
           {"samples", r.samples},
           {"value_min", r.valueMin},
           {"value_max", r.valueMax},
@@ -59,6 +77,20 @@ nlohmann::json fitReportJson(const FitReport& r, const std::string& modelPath) {
           {"model_bytes", r.modelBytes},
           {"compression_ratio", r.compressionRatio()},
           {"model", modelPath.empty() ? nlohmann::json(nullptr) : nlohmann::json(modelPath)}};
+  j["solver"] = r.points > 0 ? nlohmann::json{{"smoothing", r.smoothing},
+                                              {"iterations", r.solverIterations},
+                                              {"residual", r.solverResidual}}
+                             : nlohmann::json(nullptr);
+  j["adaptive"] = r.rounds > 0 ? nlohmann::json{{"max_relative_error_bound", r.targetRelativeError},
+                                                {"rounds", r.rounds},
+                                                {"reached", r.reachedTarget},
+                                                {"stop_reason", r.stopReason}}
+                               : nlohmann::json(nullptr);
+  j["mask"] = r.maskKind.empty() ? nlohmann::json(nullptr)
+                                 : nlohmann::json{{"kind", r.maskKind},
+                                                  {"dims", r.maskDims},
+                                                  {"inside_fraction", r.maskInsideFraction}};
+  return j;
 }
 
 }  // namespace mfadvr::app

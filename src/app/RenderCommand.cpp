@@ -5,6 +5,8 @@
 #include <iostream>
 
 #include "app/Commands.h"
+#include "app/EncodeCliOptions.h"
+#include "io/ScatteredLoader.h"
 #include "app/OptionParsing.h"
 #include "app/RenderOptions.h"
 #include "app/SceneLoader.h"
@@ -28,7 +30,8 @@ std::string methodList() {
 Command addRenderCommand(CLI::App& app) {
   struct Options {
     std::string input, output, floatOutput, method, gradientFrom, gradient = "analytic";
-    std::string degree = "3", ctrl, spacing, origin, field;
+    std::string spacing, origin, field;
+    EncodeCliOptions encode;
     bool json = false, quiet = false, alpha = false;
     RenderOptions render;
   };
@@ -36,14 +39,15 @@ Command addRenderCommand(CLI::App& app) {
   CLI::App* sub = app.add_subcommand(
       "render", "Ray-cast a volume image of an MFA model, a grid filter or the analytic truth");
   sub->add_option("input", o->input,
-                  "A model (.mfa), a volume file, or builtin:NAME[:N|:NXxNYxNZ]\n" +
-                      supportedVolumeFormats())
+                  "A model (.mfa), a volume, mesh or point file, or builtin:NAME[:N|:NXxNYxNZ]\n" +
+                      supportedVolumeFormats() + "\n" + supportedScatteredFormats())
       ->required();
   sub->add_option("-o,--output", o->output, "PNG to write (8-bit RGB; RGBA with --alpha)")
       ->required();
   sub->add_option("--method", o->method,
                   "Reconstruction: " + methodList() +
-                      " [default: mfa; a volume input is encoded first with --degree/--ctrl]")
+                      " [default: mfa; a non-model input is encoded first with the encoding "
+                      "options]")
       ->check(CLI::IsMember(reconstructionMethodNames()));
   sub->add_option("--gradient-from", o->gradientFrom,
                   "Gradient test (paper Table 1): value from the truth, gradient from this method")
@@ -57,10 +61,7 @@ Command addRenderCommand(CLI::App& app) {
   sub->add_option("--float", o->floatOutput,
                   "Also write the linear float RGBA image as NRRD (for analysis)");
   o->render.addTo(sub);
-  const char* enc = "Encoding (volume inputs rendered with mfa)";
-  sub->add_option("--degree", o->degree, "Degree P or PX,PY,PZ")->capture_default_str()->group(enc);
-  sub->add_option("--ctrl", o->ctrl, "Control points N or NX,NY,NZ (default: as many as samples)")
-      ->group(enc);
+  o->encode.addTo(sub, "Encoding (non-model inputs rendered with mfa)");
   const char* in = "Input";
   sub->add_option("--spacing", o->spacing, "Sample spacing S or SX,SY,SZ (overrides the file's)")
       ->group(in);
@@ -93,7 +94,7 @@ Command addRenderCommand(CLI::App& app) {
     }
 
     SceneLoadOptions load;
-    load.fit = parseFitOptions(o->degree, o->ctrl);
+    load.encode = o->encode.parse();
     load.volume = parseVolumeLoadOptions(o->spacing, o->origin, o->field);
     const bool progress = wantProgress(o->quiet || o->json);
     load.progress = progress;

@@ -7,6 +7,7 @@
 #include "app/OptionParsing.h"
 #include "core/model/ModelFile.h"
 #include "core/util/Error.h"
+#include "io/ScatteredLoader.h"
 
 namespace mfadvr::app {
 
@@ -25,6 +26,22 @@ void takeGridFacts(LoadedScene& s) {
   const auto [lo, hi] = std::minmax_element(g.values.begin(), g.values.end());
   s.valueMin = *lo;
   s.valueMax = *hi;
+}
+
+// Box, value range and spacing from the model alone (a .mfa file, or scattered data).
+void takeModelFacts(LoadedScene& s) {
+  const Model& m = *s.model;
+  s.boxMin = m.domain().min;
+  s.boxMax = m.domain().max;
+  s.valueMin = m.valueMin();
+  s.valueMax = m.valueMax();
+  const Provenance& p = m.provenance();
+  const Index3 counts = m.spline().counts();
+  for (int a = 0; a < 3; ++a) {
+    // The data spacing when the model records its grid, else the control-point spacing.
+    const std::int64_t n = p.sampleDims[a] > 1 ? p.sampleDims[a] : counts[a];
+    s.spacing[a] = (s.boxMax[a] - s.boxMin[a]) / double(std::max<std::int64_t>(n - 1, 1));
+  }
 }
 
 }  // namespace
@@ -49,18 +66,8 @@ LoadedScene loadScene(const std::string& input, const SceneNeeds& needs,
   const auto start = Clock::now();
   if (isModelFile(input)) {
     s.model = loadModel(input);
-    const Model& m = *s.model;
-    s.boxMin = m.domain().min;
-    s.boxMax = m.domain().max;
-    s.valueMin = m.valueMin();
-    s.valueMax = m.valueMax();
-    const Provenance& p = m.provenance();
-    const Index3 counts = m.spline().counts();
-    for (int a = 0; a < 3; ++a) {
-      // The data spacing when the model records its grid, else the control-point spacing.
-      const std::int64_t n = p.sampleDims[a] > 1 ? p.sampleDims[a] : counts[a];
-      s.spacing[a] = (s.boxMax[a] - s.boxMin[a]) / double(std::max<std::int64_t>(n - 1, 1));
-    }
+    takeModelFacts(s);
+    const Provenance& p = s.model->provenance();
     if (isBuiltinSpec(p.source)) {
       // A model of a built-in function: the truth is known, and its samples can be recomputed.
       s.truth = makeBuiltin(parseBuiltinSpec(p.source).name);
@@ -75,18 +82,32 @@ LoadedScene loadScene(const std::string& input, const SceneNeeds& needs,
     return s;
   }
   if (options.progress) std::cerr << "reading " << input << "\n";
+  EncodeOptions encode = options.encode;
+  if (options.progress)
+    encode.progress = [](double f, const std::string& stage) {
+      printProgress("encoding", f, stage);
+    };
+  if (isScatteredInput(input)) {
+    if (needs.grid)
+      throw Error("grid methods need a regular grid; " + input +
+                  " holds scattered points or a mesh: render it with --method mfa");
+    ScatteredLoadOptions load;
+    load.field = options.volume.field;
+    const ScatteredData data = loadScatteredData(input, load);
+    s.loadSeconds = since(start);
+    const auto encodeStart = Clock::now();
+    s.model = encodePoints(data, encode);
+    s.encodeSeconds = since(encodeStart);
+    takeModelFacts(s);
+    return s;
+  }
   s.grid = loadStructuredVolume(input, options.volume);
   if (isBuiltinSpec(input)) s.truth = makeBuiltin(parseBuiltinSpec(input).name);
   takeGridFacts(s);
   s.loadSeconds = since(start);
   if (needs.model) {
     const auto encodeStart = Clock::now();
-    StructuredFitOptions fit = options.fit;
-    if (options.progress)
-      fit.progress = [](double f, const std::string& stage) {
-        printProgress("encoding", f, stage);
-      };
-    s.model = encodeStructured(*s.grid, fit);
+    s.model = encodeGrid(*s.grid, encode);
     s.encodeSeconds = since(encodeStart);
   }
   return s;

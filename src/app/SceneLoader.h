@@ -1,13 +1,13 @@
 #pragma once
 // Turns a render command's INPUT into what the methods reconstruct from: a model (loaded, or
-// encoded on the fly from a volume), the grid samples, and the analytic truth when the input is
-// a built-in function (or a model encoded from one).
+// encoded on the fly from a volume, mesh or point cloud), the grid samples, and the analytic
+// truth when the input is a built-in function (or a model encoded from one).
 #include <memory>
 #include <optional>
 #include <string>
 
 #include "core/analytic/BuiltinFunction.h"
-#include "core/encode/StructuredEncoder.h"
+#include "core/encode/Encoder.h"
 #include "core/model/Model.h"
 #include "core/render/ReconstructionMethod.h"
 #include "io/VolumeLoader.h"
@@ -34,7 +34,7 @@ struct LoadedScene {
 
 struct SceneLoadOptions {
   VolumeLoadOptions volume;
-  StructuredFitOptions fit;  // when a volume must be encoded for the mfa method
+  EncodeOptions encode;  // when a volume, mesh or point cloud must be encoded for the mfa method
   bool progress = false;
 };
 

@@ -1,0 +1,99 @@
+#include "app/EncodeCliOptions.h"
+
+#include <charconv>
+#include <cmath>
+
+#include "app/OptionParsing.h"
+
+namespace mfadvr::app {
+
+namespace {
+
+double parsePositive(const std::string& option, const std::string& text, bool allowZero) {
+  const double v = parseNumberList(option, text, 1, 1)[0];
+  if (v < 0.0 || (!allowZero && v == 0.0))
+    throw CLI::ValidationError(option, std::string("must be ") + (allowZero ? ">= 0" : "> 0") +
+                                           ", got '" + text + "'");
+  return v;
+}
+
+Index3 parseCounts(const std::string& option, const std::string& text, long minimum) {
+  const auto n = parseIntTriple(option, text);
+  Index3 out{};
+  for (int a = 0; a < 3; ++a) {
+    if (n[a] < minimum)
+      throw CLI::ValidationError(option, "counts must be at least " + std::to_string(minimum));
+    out[a] = n[a];
+  }
+  return out;
+}
+
+}  // namespace
+
+void EncodeCliOptions::addTo(CLI::App* sub, const std::string& group) {
+  sub->add_option("--degree", degree, "Polynomial degree P or PX,PY,PZ (1..7)")
+      ->capture_default_str()
+      ->group(group);
+  sub->add_option("--ctrl", ctrl,
+                  "Control points N or NX,NY,NZ per axis. Grids: default as many as samples "
+                  "(interpolation); scattered data: default about the cube root of the point "
+                  "count (at most 64); with --max-error: the starting counts (default degree+2)")
+      ->group(group);
+  sub->add_option("--max-error", maxError,
+                  "Adaptive encoding: refine knots until the max error over all input samples "
+                  "is at most E times the value range (e.g. 1e-3)")
+      ->group(group);
+  sub->add_option("--max-ctrl", maxCtrl,
+                  "Adaptive encoding: at most N or NX,NY,NZ control points per axis "
+                  "(default: the sample count for grids, 256 for scattered data)")
+      ->group(group);
+  sub->add_option("--max-rounds", maxRounds, "Adaptive encoding: at most R refinement rounds")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 1000))
+      ->group(group);
+  sub->add_option("--smooth", smooth,
+                  "Scattered data: smoothing weight lambda >= 0 of the curvature penalty "
+                  "(default 1e-2; see docs/encoding.md)")
+      ->group(group);
+  sub->add_option("--mask-res", maskRes,
+                  "Scattered data: domain-mask nodes N (longest axis) or NX,NY,NZ (default: 128 "
+                  "along the longest axis for meshes, from the point count for point clouds)")
+      ->group(group);
+  sub->add_flag("--no-mask", noMask,
+                "Scattered data: store no domain mask (the model then covers its whole box)")
+      ->group(group);
+}
+
+EncodeOptions EncodeCliOptions::parse() const {
+  const StructuredFitOptions fit = parseFitOptions(degree, ctrl);
+  EncodeOptions o;
+  o.degree = fit.degree;
+  o.controlCounts = fit.controlCounts;
+  if (!smooth.empty()) o.smoothing = parsePositive("--smooth", smooth, true);
+  if (!maxError.empty()) {
+    AdaptiveOptions a;
+    a.maxRelativeError = parsePositive("--max-error", maxError, false);
+    if (!maxCtrl.empty()) a.maxControlCounts = parseCounts("--max-ctrl", maxCtrl, 2);
+    a.maxRounds = maxRounds;
+    o.adaptive = a;
+  } else if (!maxCtrl.empty()) {
+    throw CLI::ValidationError("--max-ctrl", "limits adaptive encoding; give --max-error too");
+  }
+  if (!maskRes.empty()) {
+    const auto n = parseIntTriple("--mask-res", maskRes);
+    const bool single = maskRes.find(',') == std::string::npos;
+    for (int a = 0; a < 3; ++a)
+      if (n[a] < 2 || n[a] > 4096)
+        throw CLI::ValidationError("--mask-res", "nodes per axis must be in 2..4096");
+    if (single)
+      o.mask.longestAxisNodes = static_cast<int>(n[0]);
+    else
+      o.mask.dims = {n[0], n[1], n[2]};
+  }
+  if (noMask && !maskRes.empty())
+    throw CLI::ValidationError("--no-mask", "contradicts --mask-res; give one of them");
+  o.mask.enabled = !noMask;
+  return o;
+}
+
+}  // namespace mfadvr::app

@@ -1,0 +1,45 @@
+#pragma once
+// One entry point per kind of input for everything `mfadvr encode` can do: a fixed-size or
+// adaptive fit, and for scattered data the domain mask that goes with the model.
+#include <functional>
+#include <optional>
+#include <string>
+
+#include "core/encode/AdaptiveEncoder.h"
+#include "core/encode/FitReport.h"
+#include "core/encode/ScatteredEncoder.h"
+#include "core/encode/StructuredEncoder.h"
+#include "core/grid/StructuredGrid.h"
+#include "core/mesh/ScatteredData.h"
+
+namespace mfadvr {
+
+struct MaskOptions {
+  bool enabled = true;       // scattered inputs only; grids never get one
+  Index3 dims{0, 0, 0};      // nodes per axis; 0: from longestAxisNodes
+  int longestAxisNodes = 0;  // nodes along the longest box axis, the others in proportion;
+                             // 0: the default for the kind of input
+};
+
+struct EncodeOptions {
+  Degree3 degree{3, 3, 3};
+  Index3 controlCounts{0, 0, 0};        // 0: the default (fixed fits) or the start (adaptive)
+  double smoothing = kDefaultSmoothing;  // scattered inputs only
+  std::optional<AdaptiveOptions> adaptive;
+  MaskOptions mask;
+  std::function<void(double fraction, const std::string& stage)> progress;
+};
+
+Model encodeGrid(const StructuredGrid& grid, const EncodeOptions& options,
+                 FitReport* report = nullptr);
+
+// Fits the points, then voxelizes the mask: mesh occupancy when the data have cells (default
+// 128 nodes along the longest box axis), point coverage otherwise (default resolution from the
+// point count, see defaultCoverageResolution).
+Model encodePoints(const ScatteredData& data, const EncodeOptions& options,
+                   FitReport* report = nullptr);
+
+// The mask dims encodePoints uses for `data` with `options`.
+Index3 maskDimsFor(const ScatteredData& data, const MaskOptions& options);
+
+}  // namespace mfadvr
