@@ -24,6 +24,7 @@ struct Refinement {
   int inserted = 0;
   bool capped = false;
   bool unsplittable = false;
+  std::array<bool, 3> unsplittableOnAxis{false, false, false};
 };
 
 Refinement refine(std::array<KnotVector, 3>& knots,
@@ -39,7 +40,7 @@ Refinement refine(std::array<KnotVector, 3>& knots,
       if (const auto u = split[a](kv, static_cast<int>(s) + p))
         candidates.emplace_back(spanErrors[a][s], *u);
       else
-        out.unsplittable = true;
+        out.unsplittable = out.unsplittableOnAxis[a] = true;
     }
     std::sort(candidates.begin(), candidates.end(),
               [](const auto& x, const auto& y) { return x.first > y.first; });
@@ -81,6 +82,9 @@ struct AxisRules {
   // Adjusts refined knots (e.g. to interpolation knots once an axis has a control point per
   // sample).
   std::function<void(std::array<KnotVector, 3>&)> normalize;
+  // Called for an axis whose failing spans cannot be split; returns whether it refined the
+  // axis some other way (grids: all the way to interpolation, if the cap allows).
+  std::function<bool(int axis, std::array<KnotVector, 3>&)> saturate;
 };
 
 // The refinement loop shared by grids and points. fit(knots, previous, report, spanErrors)
@@ -123,6 +127,9 @@ Model adapt(std::array<KnotVector, 3> knots, const Index3& caps, const AdaptiveO
       ref.capped = ref.capped || full.capped;
       ref.unsplittable = ref.unsplittable || full.unsplittable;
     }
+    if (roundsLeft && ref.inserted == 0 && rules.saturate)
+      for (int a = 0; a < 3; ++a)
+        if (ref.unsplittableOnAxis[a] && rules.saturate(a, knots)) ++ref.inserted;
     if (ref.inserted > 0 && rules.normalize) rules.normalize(knots);
     if (!roundsLeft || ref.inserted == 0) {
       stopReason = stopReasonFor(ref, adaptive.maxRounds, roundsLeft);
@@ -197,6 +204,12 @@ Model encodeStructuredAdaptive(const StructuredGrid& grid, const StructuredFitOp
     for (int a = 0; a < 3; ++a)
       if (k[a].controlCount() >= grid.dims[a])
         k[a] = knotsForSamples(k[a].degree(), static_cast<int>(grid.dims[a]), grid.dims[a]);
+  };
+  // A failing span with a single sample: only interpolation along that axis can do better.
+  rules.saturate = [&](int a, std::array<KnotVector, 3>& k) {
+    if (k[a].controlCount() >= grid.dims[a] || caps[a] < grid.dims[a]) return false;
+    k[a] = knotsForSamples(k[a].degree(), static_cast<int>(grid.dims[a]), grid.dims[a]);
+    return true;
   };
   StructuredFitOptions round = fit;
   round.progress = nullptr;

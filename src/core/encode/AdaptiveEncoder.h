@@ -8,7 +8,8 @@
 // slab of that span, as a tensor-product spline must.
 //
 // Grid spans are split between their two middle samples, so every span keeps at least one
-// sample and the fit stays well posed; a span holding one sample is not split. Scattered spans
+// sample and the fit stays well posed; when a failing span holds one sample, that axis goes
+// straight to interpolation (a control point per sample), so every grid can meet any bound. Scattered spans
 // are split at their middle (the smoothing keeps spans without points defined). Each scattered
 // round starts its solver from the previous round's model.
 #include <functional>
