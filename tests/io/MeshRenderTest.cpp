@@ -69,7 +69,7 @@ Silhouette meshSilhouette(const ScatteredData& mesh, const Camera& camera, int w
 
 RenderSettings settingsFor(const Model& model, double azimuth, double elevation) {
   RenderSettings s;
-  s.width = s.height = 72;
+  s.width = s.height = 64;
   s.camera.parallelProjection = true;
   s.camera.resetToBounds(model.domain().min, model.domain().max);
   s.camera.azimuth(azimuth);
@@ -109,6 +109,7 @@ void checkMesh(const std::string& file, const std::string& field, Index3 ctrl) {
   ASSERT_TRUE(mesh.hasCells());
   EncodeOptions options;
   options.controlCounts = ctrl;
+  options.mask.longestAxisNodes = 96;  // the default 128 works too; this keeps the test quick
   FitReport report;
   Model model = encodePoints(mesh, options, &report);
   ASSERT_FALSE(model.mask().empty());
@@ -119,7 +120,7 @@ void checkMesh(const std::string& file, const std::string& field, Index3 ctrl) {
   unmasked.setMask(DomainMask());
 
   bool maskMattered = false;
-  for (const auto& [azimuth, elevation] : {std::pair{0.0, 0.0}, {90.0, 30.0}, {35.0, -60.0}}) {
+  for (const auto& [azimuth, elevation] : {std::pair{0.0, 0.0}, {100.0, 35.0}}) {
     const RenderSettings s = settingsFor(model, azimuth, elevation);
     const Silhouette silhouette = meshSilhouette(mesh, s.camera, s.width, s.height);
     const Counts masked = countPixels(renderVolume(ModelField(model), s), silhouette);

@@ -24,7 +24,7 @@ struct Refinement {
   int inserted = 0;
   bool capped = false;
   bool unsplittable = false;
-  std::array<bool, 3> unsplittableOnAxis{false, false, false};
+  std::array<double, 3> worstUnsplittable{0.0, 0.0, 0.0};  // per axis; 0: none
 };
 
 Refinement refine(std::array<KnotVector, 3>& knots,
@@ -40,7 +40,10 @@ Refinement refine(std::array<KnotVector, 3>& knots,
       if (const auto u = split[a](kv, static_cast<int>(s) + p))
         candidates.emplace_back(spanErrors[a][s], *u);
       else
-        out.unsplittable = out.unsplittableOnAxis[a] = true;
+      {
+        out.unsplittable = true;
+        out.worstUnsplittable[a] = std::max(out.worstUnsplittable[a], spanErrors[a][s]);
+      }
     }
     std::sort(candidates.begin(), candidates.end(),
               [](const auto& x, const auto& y) { return x.first > y.first; });
@@ -126,10 +129,22 @@ Model adapt(std::array<KnotVector, 3> knots, const Index3& caps, const AdaptiveO
       ref.inserted = full.inserted;
       ref.capped = ref.capped || full.capped;
       ref.unsplittable = ref.unsplittable || full.unsplittable;
-    }
-    if (roundsLeft && ref.inserted == 0 && rules.saturate)
       for (int a = 0; a < 3; ++a)
-        if (ref.unsplittableOnAxis[a] && rules.saturate(a, knots)) ++ref.inserted;
+        ref.worstUnsplittable[a] = std::max(ref.worstUnsplittable[a], full.worstUnsplittable[a]);
+    }
+    // Saturate one axis per round, the one with the worst unsplittable span: the next fit may
+    // meet the bound without the others.
+    if (roundsLeft && ref.inserted == 0 && rules.saturate) {
+      std::array<int, 3> order{0, 1, 2};
+      std::sort(order.begin(), order.end(), [&](int x, int y) {
+        return ref.worstUnsplittable[x] > ref.worstUnsplittable[y];
+      });
+      for (int a : order)
+        if (ref.worstUnsplittable[a] > 0.0 && rules.saturate(a, knots)) {
+          ++ref.inserted;
+          break;
+        }
+    }
     if (ref.inserted > 0 && rules.normalize) rules.normalize(knots);
     if (!roundsLeft || ref.inserted == 0) {
       stopReason = stopReasonFor(ref, adaptive.maxRounds, roundsLeft);

@@ -513,6 +513,7 @@ Model encodeScattered(const ScatteredData& data, const ScatteredFitOptions& opti
       report->solverIterations = iterations;
       report->seconds = std::chrono::duration<double>(Clock::now() - start).count();
       m.provenance().fitSeconds = report->seconds;
+      report->modelBytes = modelFileSize(m);  // the header holds the time
     }
     previous = std::move(m);
   }
