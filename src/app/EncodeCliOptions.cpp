@@ -12,8 +12,8 @@ namespace {
 double parsePositive(const std::string& option, const std::string& text, bool allowZero) {
   const double v = parseNumberList(option, text, 1, 1)[0];
   if (v < 0.0 || (!allowZero && v == 0.0))
-    throw CLI::ValidationError(option, std::string("must be ") + (allowZero ? ">= 0" : "> 0") +
-                                           ", got '" + text + "'");
+    throw CLI::ValidationError(
+        option, std::string("must be ") + (allowZero ? ">= 0" : "> 0") + ", got '" + text + "'");
   return v;
 }
 

@@ -28,9 +28,10 @@ Command addEncodeCommand(CLI::App& app) {
   auto o = std::make_shared<Options>();
   CLI::App* sub = app.add_subcommand(
       "encode", "Fit an MFA model (tensor-product B-spline) to a volume, mesh or point cloud");
-  sub->add_option("input", o->input,
-                  "Volume, mesh or point file, or a built-in function builtin:NAME[:N|:NXxNYxNZ]\n" +
-                      supportedVolumeFormats() + "\n" + supportedScatteredFormats())
+  sub->add_option(
+         "input", o->input,
+         "Volume, mesh or point file, or a built-in function builtin:NAME[:N|:NXxNYxNZ]\n" +
+             supportedVolumeFormats() + "\n" + supportedScatteredFormats())
       ->required();
   sub->add_option("-o,--output", o->output,
                   "Model file to write (.mfa); without it only the report is printed");
@@ -38,7 +39,8 @@ Command addEncodeCommand(CLI::App& app) {
   sub->add_flag("--strict", o->strict,
                 "With --max-error: exit with status 3 and write nothing when a limit stops "
                 "refinement before the bound is reached");
-  sub->add_option("--spacing", o->spacing, "Grids: sample spacing S or SX,SY,SZ (overrides the file's)")
+  sub->add_option("--spacing", o->spacing,
+                  "Grids: sample spacing S or SX,SY,SZ (overrides the file's)")
       ->group("Input");
   sub->add_option("--origin", o->origin,
                   "Grids: position of the first sample X,Y,Z (overrides the file's)")
@@ -69,7 +71,8 @@ Command addEncodeCommand(CLI::App& app) {
       options.adaptive->onRound = [&rounds, progress](const AdaptiveRound& r) {
         rounds.push_back(r);
         if (progress)
-          std::fprintf(stderr, "  round %d: %lld x %lld x %lld control points, max error %.3e, %.1f s\n",
+          std::fprintf(stderr,
+                       "  round %d: %lld x %lld x %lld control points, max error %.3e, %.1f s\n",
                        r.round, static_cast<long long>(r.controlCounts[0]),
                        static_cast<long long>(r.controlCounts[1]),
                        static_cast<long long>(r.controlCounts[2]), r.maxRelativeError, r.seconds);
@@ -88,7 +91,10 @@ Command addEncodeCommand(CLI::App& app) {
       const ScatteredData data = loadScatteredData(o->input, load);
       if (progress)
         std::cerr << "  " << data.kind << ": " << groupDigits(data.pointCount()) << " points"
-                  << (data.hasCells() ? ", " + groupDigits(static_cast<std::int64_t>(data.tets.size())) + " tetrahedra" : "")
+                  << (data.hasCells()
+                          ? ", " + groupDigits(static_cast<std::int64_t>(data.tets.size())) +
+                                " tetrahedra"
+                          : "")
                   << "\n";
       model = encodePoints(data, options, &report);
     } else {
@@ -117,8 +123,8 @@ Command addEncodeCommand(CLI::App& app) {
     }
     if (options.adaptive && !report.reachedTarget) {
       std::cerr << "mfadvr: " << (o->strict ? "error" : "warning")
-                << ": the error bound was not reached (" << report.stopReason
-                << "); max error is " << report.maxRelativeError() << " of the value range";
+                << ": the error bound was not reached (" << report.stopReason << "); max error is "
+                << report.maxRelativeError() << " of the value range";
       if (o->strict) {
         std::cerr << "; nothing written (--strict)\n";
         return kBoundNotReached;

@@ -39,9 +39,10 @@ std::string formatFitReport(const FitReport& r, const std::string& modelPath) {
     o << "smoothing       " << fmt("%g", r.smoothing) << "  (solver: " << r.solverIterations
       << " CG iterations, residual " << fmt("%.2e", r.solverResidual) << ")\n";
   if (r.rounds > 0)
-    o << "adaptive        bound " << fmt("%.3e", r.targetRelativeError) << " of the value range: "
-      << (r.reachedTarget ? "reached" : "NOT reached") << " after " << r.rounds << " round"
-      << (r.rounds == 1 ? "" : "s") << (r.reachedTarget ? "" : " (" + r.stopReason + ")") << "\n";
+    o << "adaptive        bound " << fmt("%.3e", r.targetRelativeError)
+      << " of the value range: " << (r.reachedTarget ? "reached" : "NOT reached") << " after "
+      << r.rounds << " round" << (r.rounds == 1 ? "" : "s")
+      << (r.reachedTarget ? "" : " (" + r.stopReason + ")") << "\n";
   o << "fit time        " << fmt("%.3f", r.seconds) << " s\n";
   o << "max error       " << fmt("%.4g", r.maxError) << "  (" << fmt("%.3e", r.maxRelativeError())
     << " of the value range)\n";
@@ -59,24 +60,25 @@ std::string formatFitReport(const FitReport& r, const std::string& modelPath) {
 }
 
 nlohmann::json fitReportJson(const FitReport& r, const std::string& modelPath) {
-  nlohmann::json j = {{"source", r.source},
-          {"encoder", r.encoder},
-          {"points", r.points},
-          {"input_kind", r.inputKind},
-          {"samples", r.samples},
-          {"value_min", r.valueMin},
-          {"value_max", r.valueMax},
-          {"degree", r.degree},
-          {"control_counts", r.controlCounts},
-          {"fit_seconds", r.seconds},
-          {"max_error", r.maxError},
-          {"rms_error", r.rmsError},
-          {"max_relative_error", r.maxRelativeError()},
-          {"rms_relative_error", r.rmsRelativeError()},
-          {"input_bytes", r.inputBytes},
-          {"model_bytes", r.modelBytes},
-          {"compression_ratio", r.compressionRatio()},
-          {"model", modelPath.empty() ? nlohmann::json(nullptr) : nlohmann::json(modelPath)}};
+  nlohmann::json j = {
+      {"source", r.source},
+      {"encoder", r.encoder},
+      {"points", r.points},
+      {"input_kind", r.inputKind},
+      {"samples", r.samples},
+      {"value_min", r.valueMin},
+      {"value_max", r.valueMax},
+      {"degree", r.degree},
+      {"control_counts", r.controlCounts},
+      {"fit_seconds", r.seconds},
+      {"max_error", r.maxError},
+      {"rms_error", r.rmsError},
+      {"max_relative_error", r.maxRelativeError()},
+      {"rms_relative_error", r.rmsRelativeError()},
+      {"input_bytes", r.inputBytes},
+      {"model_bytes", r.modelBytes},
+      {"compression_ratio", r.compressionRatio()},
+      {"model", modelPath.empty() ? nlohmann::json(nullptr) : nlohmann::json(modelPath)}};
   j["solver"] = r.points > 0 ? nlohmann::json{{"smoothing", r.smoothing},
                                               {"iterations", r.solverIterations},
                                               {"residual", r.solverResidual}}

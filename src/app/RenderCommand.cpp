@@ -6,13 +6,13 @@
 
 #include "app/Commands.h"
 #include "app/EncodeCliOptions.h"
-#include "io/ScatteredLoader.h"
 #include "app/OptionParsing.h"
 #include "app/RenderOptions.h"
 #include "app/SceneLoader.h"
 #include "core/image/FloatImageFile.h"
 #include "core/image/PngFile.h"
 #include "core/util/Error.h"
+#include "io/ScatteredLoader.h"
 #include "io/VolumeLoader.h"
 
 namespace mfadvr::app {
@@ -101,10 +101,7 @@ Command addRenderCommand(CLI::App& app) {
 
     const LoadedScene scene = loadScene(o->input, needs, load);
     RenderSettings settings = o->render.settingsFor(scene);
-    if (progress)
-      settings.progress = [](double f) {
-        printProgress("rendering", f);
-      };
+    if (progress) settings.progress = [](double f) { printProgress("rendering", f); };
     MethodRenderStats stats;
     const Image image = renderMethod(scene.view(), spec, settings, &stats);
     writePng(o->output, toImage8(image, o->alpha));

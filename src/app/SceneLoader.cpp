@@ -40,8 +40,8 @@ void takeModelFacts(LoadedScene& s) {
   for (int a = 0; a < 3; ++a) {
     // The data spacing when the model records its grid, else the finer of the control-point
     // and mask-node spacings (so that the default step resolves the mask's boundary).
-    const std::int64_t n = p.sampleDims[a] > 1 ? p.sampleDims[a]
-                                               : std::max(counts[a], m.mask().dims()[a]);
+    const std::int64_t n =
+        p.sampleDims[a] > 1 ? p.sampleDims[a] : std::max(counts[a], m.mask().dims()[a]);
     s.spacing[a] = (s.boxMax[a] - s.boxMin[a]) / double(std::max<std::int64_t>(n - 1, 1));
   }
 }

@@ -78,8 +78,7 @@ TEST(AdaptiveEncoder, KnotsConcentrateWhereTheDataVary) {
   g.values.resize(65 * 9 * 9);
   for (std::int64_t k = 0; k < 9; ++k)
     for (std::int64_t j = 0; j < 9; ++j)
-      for (std::int64_t i = 0; i < 65; ++i)
-        g.at(i, j, k) = std::tanh((i / 64.0 - 0.8) * 40.0);
+      for (std::int64_t i = 0; i < 65; ++i) g.at(i, j, k) = std::tanh((i / 64.0 - 0.8) * 40.0);
   FitReport r;
   const Model m = encodeStructuredAdaptive(g, StructuredFitOptions{}, bound(1e-3), &r);
   EXPECT_TRUE(r.reachedTarget) << r.stopReason;

@@ -17,8 +17,7 @@ std::vector<Vec3d> randomPoints(int n, double lo, double hi, unsigned seed) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> u(lo, hi);
   std::vector<Vec3d> pts;
-  for (int c = 0; c < 8; ++c)
-    pts.emplace_back(c & 1 ? hi : lo, c & 2 ? hi : lo, c & 4 ? hi : lo);
+  for (int c = 0; c < 8; ++c) pts.emplace_back(c & 1 ? hi : lo, c & 2 ? hi : lo, c & 4 ? hi : lo);
   for (int i = 0; i < n; ++i) pts.emplace_back(u(rng), u(rng), u(rng));
   return pts;
 }
@@ -94,8 +93,7 @@ TEST(ScatteredEncoder, ReproducesTensorPolynomials) {
   const auto bilinear = [](const Vec3d& x) { return 3.0 - x[0] + 2.0 * x[1] * x[2]; };
   const Model heavy =
       encodeScattered(sample(randomPoints(3000, -1, 1, 5), bilinear), options(3, 8, 1.0));
-  for (const Vec3d& x : randomPoints(500, -1, 1, 6))
-    EXPECT_NEAR(heavy.value(x), bilinear(x), 1e-4);
+  for (const Vec3d& x : randomPoints(500, -1, 1, 6)) EXPECT_NEAR(heavy.value(x), bilinear(x), 1e-4);
 }
 
 // Points only in the lower half (z < 0) of the box: the upper half has no data, and the

@@ -26,7 +26,8 @@ TEST(AdaptiveRealData, BoundHoldsOnFuel) {
     for (std::int64_t k = 0; k < grid.dims[2]; ++k)
       for (std::int64_t j = 0; j < grid.dims[1]; ++j)
         for (std::int64_t i = 0; i < grid.dims[0]; ++i)
-          worst = std::max(worst, std::abs(double(m.value(grid.position(i, j, k))) - grid.at(i, j, k)));
+          worst =
+              std::max(worst, std::abs(double(m.value(grid.position(i, j, k))) - grid.at(i, j, k)));
     EXPECT_LE(worst, e * r.valueRange() * (1 + 1e-9)) << "E=" << e;
     const Index3 n = m.spline().counts();
     EXPECT_GT(n[0] * n[1] * n[2], previous) << "E=" << e;

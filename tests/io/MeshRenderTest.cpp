@@ -38,7 +38,8 @@ Silhouette meshSilhouette(const ScatteredData& mesh, const Camera& camera, int w
   rays.ray(0, 1, o01, d);
   const Vec3d ex = o10 - o00, ey = o01 - o00;
   auto project = [&](const Vec3d& p) {
-    return Eigen::Vector2d((p - o00).dot(ex) / ex.squaredNorm(), (p - o00).dot(ey) / ey.squaredNorm());
+    return Eigen::Vector2d((p - o00).dot(ex) / ex.squaredNorm(),
+                           (p - o00).dot(ey) / ey.squaredNorm());
   };
   Silhouette s{w, h, std::vector<std::uint8_t>(size_t(w * h), 0)};
   const int faces[4][3] = {{0, 1, 2}, {0, 1, 3}, {0, 2, 3}, {1, 2, 3}};
@@ -75,7 +76,8 @@ RenderSettings settingsFor(const Model& model, double azimuth, double elevation)
   s.camera.azimuth(azimuth);
   s.camera.elevation(elevation);
   s.transferFunction.space = TfSpace::Data;
-  s.transferFunction.color = {{model.valueMin(), Vec3f(1, 1, 1)}, {model.valueMax(), Vec3f(1, 1, 1)}};
+  s.transferFunction.color = {{model.valueMin(), Vec3f(1, 1, 1)},
+                              {model.valueMax(), Vec3f(1, 1, 1)}};
   s.transferFunction.opacity = {{model.valueMin(), 0.5f}, {model.valueMax(), 0.5f}};
   const Vec3d extent = model.domain().extent();
   s.sampleDistance = extent.minCoeff() / 100.0;
@@ -135,7 +137,9 @@ void checkMesh(const std::string& file, const std::string& field, Index3 ctrl) {
   EXPECT_TRUE(maskMattered);
 }
 
-TEST(MeshRender, SpxShowsNothingOutsideTheMesh) { checkMesh("spx.vtk", "", {12, 12, 12}); }
+TEST(MeshRender, SpxShowsNothingOutsideTheMesh) {
+  checkMesh("spx.vtk", "", {12, 12, 12});
+}
 
 TEST(MeshRender, BluntfinShowsNothingOutsideTheMesh) {
   checkMesh("bluntfin_tets.vtu", "Density", {16, 16, 16});

@@ -39,8 +39,7 @@ Refinement refine(std::array<KnotVector, 3>& knots,
       if (!(spanErrors[a][s] > bound)) continue;
       if (const auto u = split[a](kv, static_cast<int>(s) + p))
         candidates.emplace_back(spanErrors[a][s], *u);
-      else
-      {
+      else {
         out.unsplittable = true;
         out.worstUnsplittable[a] = std::max(out.worstUnsplittable[a], spanErrors[a][s]);
       }
@@ -123,7 +122,8 @@ Model adapt(std::array<KnotVector, 3> knots, const Index3& caps, const AdaptiveO
     }
     const bool roundsLeft = round < adaptive.maxRounds;
     Refinement ref;
-    if (roundsLeft && rules.curveErrors) ref = refine(knots, rules.curveErrors(knots), bound, caps, rules.split);
+    if (roundsLeft && rules.curveErrors)
+      ref = refine(knots, rules.curveErrors(knots), bound, caps, rules.split);
     if (roundsLeft && ref.inserted == 0) {
       const Refinement full = refine(knots, spanErrors, bound, caps, rules.split);
       ref.inserted = full.inserted;
@@ -136,9 +136,8 @@ Model adapt(std::array<KnotVector, 3> knots, const Index3& caps, const AdaptiveO
     // meet the bound without the others.
     if (roundsLeft && ref.inserted == 0 && rules.saturate) {
       std::array<int, 3> order{0, 1, 2};
-      std::sort(order.begin(), order.end(), [&](int x, int y) {
-        return ref.worstUnsplittable[x] > ref.worstUnsplittable[y];
-      });
+      std::sort(order.begin(), order.end(),
+                [&](int x, int y) { return ref.worstUnsplittable[x] > ref.worstUnsplittable[y]; });
       for (int a : order)
         if (ref.worstUnsplittable[a] > 0.0 && rules.saturate(a, knots)) {
           ++ref.inserted;
@@ -194,7 +193,8 @@ Model encodeStructuredAdaptive(const StructuredGrid& grid, const StructuredFitOp
     // Samples t_i = i / (N-1) in [u_s, u_{s+1}) (the last span also holds t = 1).
     const std::int64_t samples = grid.dims[a];
     split[a] = [last, samples](const KnotVector& kv, int s) -> std::optional<double> {
-      const double lo = kv.knots()[static_cast<size_t>(s)], hi = kv.knots()[static_cast<size_t>(s + 1)];
+      const double lo = kv.knots()[static_cast<size_t>(s)],
+                   hi = kv.knots()[static_cast<size_t>(s + 1)];
       const bool lastSpan = s == kv.controlCount() - 1;
       // The samples t_i = i / (N-1) in [u_s, u_{s+1}) (the last span also holds t = 1), as
       // KnotVector::findSpan assigns them.
@@ -250,10 +250,12 @@ Model encodeScatteredAdaptive(const ScatteredData& data, const ScatteredFitOptio
   AxisRules rules;
   auto& split = rules.split;
   for (int a = 0; a < 3; ++a) {
-    caps[a] = std::max(adaptive.maxControlCounts[a] == 0 ? 256 : adaptive.maxControlCounts[a], n[a]);
+    caps[a] =
+        std::max(adaptive.maxControlCounts[a] == 0 ? 256 : adaptive.maxControlCounts[a], n[a]);
     knots[a] = KnotVector::clampedUniform(fit.degree[a], static_cast<int>(n[a]));
     split[a] = [](const KnotVector& kv, int s) -> std::optional<double> {
-      const double lo = kv.knots()[static_cast<size_t>(s)], hi = kv.knots()[static_cast<size_t>(s + 1)];
+      const double lo = kv.knots()[static_cast<size_t>(s)],
+                   hi = kv.knots()[static_cast<size_t>(s + 1)];
       if (!(hi - lo > 1e-6)) return std::nullopt;
       return 0.5 * (lo + hi);
     };

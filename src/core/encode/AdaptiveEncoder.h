@@ -9,9 +9,9 @@
 //
 // Grid spans are split between their two middle samples, so every span keeps at least one
 // sample and the fit stays well posed; when a failing span holds one sample, that axis goes
-// straight to interpolation (a control point per sample), so every grid can meet any bound. Scattered spans
-// are split at their middle (the smoothing keeps spans without points defined). Each scattered
-// round starts its solver from the previous round's model.
+// straight to interpolation (a control point per sample), so every grid can meet any bound.
+// Scattered spans are split at their middle (the smoothing keeps spans without points defined).
+// Each scattered round starts its solver from the previous round's model.
 #include <functional>
 #include <string>
 

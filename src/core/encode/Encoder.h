@@ -23,7 +23,7 @@ struct MaskOptions {
 
 struct EncodeOptions {
   Degree3 degree{3, 3, 3};
-  Index3 controlCounts{0, 0, 0};        // 0: the default (fixed fits) or the start (adaptive)
+  Index3 controlCounts{0, 0, 0};         // 0: the default (fixed fits) or the start (adaptive)
   double smoothing = kDefaultSmoothing;  // scattered inputs only
   std::optional<AdaptiveOptions> adaptive;
   MaskOptions mask;

@@ -22,16 +22,16 @@ struct FitReport {
 
   // Scattered inputs (points == 0 for grids).
   std::int64_t points = 0;
-  std::string inputKind;         // "tetrahedral mesh", "point cloud", ...
-  double smoothing = 0.0;        // regularization weight lambda
-  int solverIterations = 0;      // conjugate-gradient iterations, all levels and rounds
-  double solverResidual = 0.0;   // relative residual |b - Ax| / |b| of the last solve
+  std::string inputKind;        // "tetrahedral mesh", "point cloud", ...
+  double smoothing = 0.0;       // regularization weight lambda
+  int solverIterations = 0;     // conjugate-gradient iterations, all levels and rounds
+  double solverResidual = 0.0;  // relative residual |b - Ax| / |b| of the last solve
 
   // Adaptive encoding (rounds == 0 when the control counts were fixed).
   int rounds = 0;
   double targetRelativeError = 0.0;
   bool reachedTarget = true;
-  std::string stopReason;        // why refinement stopped
+  std::string stopReason;  // why refinement stopped
 
   // Domain mask (maskKind empty when the model has none).
   std::string maskKind;

@@ -174,14 +174,16 @@ std::vector<double> grevilleAbscissae(const KnotVector& kv) {
 Eigen::VectorXd sampleAtGreville(const Model& coarse, const std::array<KnotVector, 3>& knots) {
   std::array<std::vector<double>, 3> g;
   for (int a = 0; a < 3; ++a) g[a] = grevilleAbscissae(knots[a]);
-  const auto n0 = static_cast<Eigen::Index>(g[0].size()), n1 = static_cast<Eigen::Index>(g[1].size()),
+  const auto n0 = static_cast<Eigen::Index>(g[0].size()),
+             n1 = static_cast<Eigen::Index>(g[1].size()),
              n2 = static_cast<Eigen::Index>(g[2].size());
   Eigen::VectorXd out(n0 * n1 * n2);
   tbb::parallel_for(Eigen::Index(0), n2, [&](Eigen::Index k) {
     for (Eigen::Index j = 0; j < n1; ++j)
       for (Eigen::Index i = 0; i < n0; ++i)
-        out[i + n0 * (j + n1 * k)] = coarse.spline().value(Vec3d(
-            g[0][static_cast<size_t>(i)], g[1][static_cast<size_t>(j)], g[2][static_cast<size_t>(k)]));
+        out[i + n0 * (j + n1 * k)] =
+            coarse.spline().value(Vec3d(g[0][static_cast<size_t>(i)], g[1][static_cast<size_t>(j)],
+                                        g[2][static_cast<size_t>(k)]));
   });
   return out;
 }
@@ -193,9 +195,10 @@ RowSparse assembleBasis(const std::vector<Vec3d>& params, const std::array<KnotV
   const auto rows = static_cast<std::int64_t>(params.size());
   const std::int64_t n0 = knots[0].controlCount(), n1 = knots[1].controlCount(),
                      n2 = knots[2].controlCount();
-  if (rows * perRow > std::numeric_limits<int>::max() || n0 * n1 * n2 > std::numeric_limits<int>::max())
-    throw Error("too many points or control points for one scattered fit (" +
-                std::to_string(rows) + " points x " + std::to_string(perRow) +
+  if (rows * perRow > std::numeric_limits<int>::max() ||
+      n0 * n1 * n2 > std::numeric_limits<int>::max())
+    throw Error("too many points or control points for one scattered fit (" + std::to_string(rows) +
+                " points x " + std::to_string(perRow) +
                 " basis weights each); use fewer points or a lower degree");
   RowSparse N(static_cast<Eigen::Index>(rows), static_cast<Eigen::Index>(n0 * n1 * n2));
   N.resizeNonZeros(static_cast<Eigen::Index>(rows * perRow));
@@ -261,14 +264,16 @@ RowSparse assembleSecondDifferences(const std::array<KnotVector, 3>& knots) {
     for (std::int64_t i = 0; i + 2 < n[a]; ++i) {
       const double g0 = g[a][static_cast<size_t>(i + 1)] - g[a][static_cast<size_t>(i)];
       const double g1 = g[a][static_cast<size_t>(i + 2)] - g[a][static_cast<size_t>(i + 1)];
-      const double l = p >= 2 ? (u[static_cast<size_t>(i + p + 1)] - u[static_cast<size_t>(i + 2)]) / (p - 1)
-                              : 0.5 * (g[a][static_cast<size_t>(i + 2)] - g[a][static_cast<size_t>(i)]);
+      const double l =
+          p >= 2 ? (u[static_cast<size_t>(i + p + 1)] - u[static_cast<size_t>(i + 2)]) / (p - 1)
+                 : 0.5 * (g[a][static_cast<size_t>(i + 2)] - g[a][static_cast<size_t>(i)]);
       if (!(g0 > 0.0 && g1 > 0.0 && l > 0.0)) continue;
       const double w[3] = {1.0 / (g0 * l), -(1.0 / g0 + 1.0 / g1) / l, 1.0 / (g1 * l)};
       for (std::int64_t k = 0; k < n[c]; ++k)
         for (std::int64_t j = 0; j < n[b]; ++j) {
-          const double scale = h * h * std::sqrt(l * mass[b][static_cast<size_t>(j)] *
-                                                 mass[c][static_cast<size_t>(k)]);
+          const double scale =
+              h * h *
+              std::sqrt(l * mass[b][static_cast<size_t>(j)] * mass[c][static_cast<size_t>(k)]);
           const std::int64_t base = i * stride[a] + j * stride[b] + k * stride[c];
           for (int e = 0; e < 3; ++e)
             t.emplace_back(static_cast<int>(rows), static_cast<int>(base + e * stride[a]),
@@ -303,7 +308,8 @@ std::int64_t defaultScatteredControlCount(std::int64_t pointCount, int degree) {
   return std::clamp<std::int64_t>(n, degree + 1, std::max<std::int64_t>(64, degree + 1));
 }
 
-Index3 resolveScatteredControlCounts(const ScatteredData& data, const ScatteredFitOptions& options) {
+Index3 resolveScatteredControlCounts(const ScatteredData& data,
+                                     const ScatteredFitOptions& options) {
   validateOptions(options);
   Index3 n{};
   for (int a = 0; a < 3; ++a) {
@@ -356,8 +362,8 @@ Model encodeScatteredWithKnots(const ScatteredData& data, std::array<KnotVector,
         "some control points touch no input point; use a smoothing weight above 0 "
         "(--smooth) or fewer control points");
 
-  const Eigen::VectorXd values =
-      Eigen::Map<const Eigen::VectorXd>(data.values.data(), static_cast<Eigen::Index>(data.values.size()));
+  const Eigen::VectorXd values = Eigen::Map<const Eigen::VectorXd>(
+      data.values.data(), static_cast<Eigen::Index>(data.values.size()));
   Eigen::VectorXd rhs;
   multiply(sys.basisT, values, rhs);
   rhs *= sys.dataScale;
@@ -412,7 +418,8 @@ Model encodeScatteredWithKnots(const ScatteredData& data, std::array<KnotVector,
   double vmin = data.values[0], vmax = vmin;
   if (spanErrors)
     for (int a = 0; a < 3; ++a)
-      (*spanErrors)[a].assign(static_cast<size_t>(knots[a].controlCount() - knots[a].degree()), 0.0);
+      (*spanErrors)[a].assign(static_cast<size_t>(knots[a].controlCount() - knots[a].degree()),
+                              0.0);
   for (size_t i = 0; i < params.size(); ++i) {
     maxErr = std::max(maxErr, errors[i]);
     sumSq += errors[i] * errors[i];
@@ -495,9 +502,10 @@ Model encodeScattered(const ScatteredData& data, const ScatteredFitOptions& opti
     for (int a = 0; a < 3; ++a)
       knots[a] = KnotVector::clampedUniform(options.degree[a], static_cast<int>(levels[l][a]));
     ScatteredFitOptions levelOptions = options;
-    const std::string name = "level " + std::to_string(l + 1) + "/" + std::to_string(levels.size()) +
-                             " (" + std::to_string(levels[l][0]) + "x" +
-                             std::to_string(levels[l][1]) + "x" + std::to_string(levels[l][2]) + ")";
+    const std::string name = "level " + std::to_string(l + 1) + "/" +
+                             std::to_string(levels.size()) + " (" + std::to_string(levels[l][0]) +
+                             "x" + std::to_string(levels[l][1]) + "x" +
+                             std::to_string(levels[l][2]) + ")";
     // Work grows about 8x per level: give the finest most of the progress bar.
     const double lo = levels.size() == 1 ? 0.0 : 0.3 * l / (levels.size() - 1);
     const double hi = l + 1 == levels.size() ? 1.0 : 0.3 * (l + 1) / (levels.size() - 1);

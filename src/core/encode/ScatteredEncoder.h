@@ -2,7 +2,8 @@
 // Least-squares fit of a tensor-product B-spline to values at scattered points.
 //
 // The control points c minimize
-//   (1/P) sum_k (s(x_k) - v_k)^2  +  lambda * sum_a  h_a^4 integral over [0,1]^3 of (d^2 s / du_a^2)^2
+//   (1/P) sum_k (s(x_k) - v_k)^2  +  lambda * sum_a  h_a^4 integral over [0,1]^3 of (d^2 s /
+//   du_a^2)^2
 // over the P input points, where h_a = 1 / (n_a - p_a) is the mean knot span of axis a. The
 // integral is approximated through the second-derivative coefficients of the spline (mass
 // lumping). lambda is dimensionless: both terms scale with the square of the values, and h^4
@@ -33,7 +34,7 @@ inline constexpr double kDefaultSmoothing = 1e-2;
 
 struct ScatteredFitOptions {
   Degree3 degree{3, 3, 3};
-  Index3 controlCounts{0, 0, 0};  // 0 on an axis: defaultScatteredControlCount
+  Index3 controlCounts{0, 0, 0};         // 0 on an axis: defaultScatteredControlCount
   double smoothing = kDefaultSmoothing;  // lambda, >= 0 (0 only when every span has points)
   double tolerance = 1e-6;               // relative residual |b - Ax| / |b| of each solve
   int maxIterations = 4000;              // conjugate-gradient iterations per level

@@ -183,10 +183,9 @@ std::array<std::vector<double>, 3> curveSpanErrors(const StructuredGrid& grid,
     for (const auto& w : perSlab)
       for (size_t s = 0; s < spans; ++s) result[a][s] = std::max(result[a][s], w[s]);
     if (a < 2) {
-      passAlongFastest(data, dims, A, rotated,
-                       [](const Eigen::Map<const Eigen::MatrixXd>& in, Eigen::MatrixXd& out) {
-                         out = in;
-                       });
+      passAlongFastest(
+          data, dims, A, rotated,
+          [](const Eigen::Map<const Eigen::MatrixXd>& in, Eigen::MatrixXd& out) { out = in; });
       data.swap(rotated);
       dims = rotate(dims, A);
     }
@@ -286,8 +285,7 @@ Model encodeStructuredWithKnots(const StructuredGrid& grid, std::array<KnotVecto
   double maxErr = 0.0, sumSq = 0.0;
   double vmin = grid.values.empty() ? 0.0 : grid.values[0], vmax = vmin;
   if (spanErrors)
-    for (int a = 0; a < 3; ++a)
-      (*spanErrors)[a].assign(static_cast<size_t>(n[a] - degree[a]), 0.0);
+    for (int a = 0; a < 3; ++a) (*spanErrors)[a].assign(static_cast<size_t>(n[a] - degree[a]), 0.0);
   size_t i = 0;
   for (std::int64_t z = 0; z < grid.dims[2]; ++z)
     for (std::int64_t y = 0; y < grid.dims[1]; ++y)

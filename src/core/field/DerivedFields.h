@@ -25,16 +25,10 @@ class CentralDifferenceField {
         : s_(f.inner_.sampler()), h_(f.h_), lo_(f.boxMin()), hi_(f.boxMax()) {}
     float value(const Vec3d& x) { return s_.value(x); }
     // The inner field's domain, where it has one (a masked model).
-    bool inside(const Vec3d& x)
-      requires requires(InnerSampler& s, const Vec3d& y) { s.inside(y); }
-    {
-      return s_.inside(x);
-    }
-    bool masked() const
-      requires requires(const InnerSampler& s) { s.masked(); }
-    {
-      return s_.masked();
-    }
+    bool inside(const Vec3d& x) requires requires(InnerSampler& s, const Vec3d& y) { s.inside(y); }
+    { return s_.inside(x); }
+    bool masked() const requires requires(const InnerSampler& s) { s.masked(); }
+    { return s_.masked(); }
     ValueGradient valueGradient(const Vec3d& x) {
       ValueGradient r;
       r.value = s_.value(x);

@@ -56,8 +56,8 @@ bool DomainMask::insideParameter(const Vec3d& u) const {
   const std::int64_t sx = 1, sy = dims_[0], sz = dims_[0] * dims_[1];
   const std::uint8_t* n = nodes_.data() + i[0] * sx + i[1] * sy + i[2] * sz;
   // Fast paths: all eight corners agree (the common case away from the boundary).
-  const int sum = n[0] + n[sx] + n[sy] + n[sx + sy] + n[sz] + n[sx + sz] + n[sy + sz] +
-                  n[sx + sy + sz];
+  const int sum =
+      n[0] + n[sx] + n[sy] + n[sx + sy] + n[sz] + n[sx + sz] + n[sy + sz] + n[sx + sy + sz];
   if (sum == 0) return false;
   if (sum == 8) return true;
   const double x0 = (1 - f[0]) * n[0] + f[0] * n[sx];

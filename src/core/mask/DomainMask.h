@@ -20,7 +20,7 @@ enum class MaskKind {
   MeshOccupancy,  // nodes inside some cell of the input mesh
   PointCoverage,  // nodes near input points (point clouds)
 };
-std::string maskKindName(MaskKind kind);       // "mesh-occupancy" / "point-coverage"
+std::string maskKindName(MaskKind kind);          // "mesh-occupancy" / "point-coverage"
 MaskKind parseMaskKind(const std::string& name);  // throws mfadvr::Error
 
 // Limits on a mask's grid, so that node counts and file sizes cannot overflow: 2..4096 nodes per

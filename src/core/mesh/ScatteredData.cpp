@@ -45,8 +45,8 @@ void ScatteredData::validate() const {
   for (int a = 0; a < 3; ++a) {
     if (!(hi[a] > lo[a])) {
       std::ostringstream m;
-      m << name << ": the points span no extent along " << "xyz"[a] << " (all at " << lo[a]
-        << "); a 3-D model needs a box with volume";
+      m << name << ": the points span no extent along "
+        << "xyz"[a] << " (all at " << lo[a] << "); a 3-D model needs a box with volume";
       throw Error(m.str());
     }
   }

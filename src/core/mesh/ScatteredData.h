@@ -16,18 +16,18 @@ using Tetrahedron = std::array<std::int64_t, 4>;  // indices into ScatteredData:
 
 struct ScatteredData {
   std::vector<Vec3d> points;
-  std::vector<double> values;       // one per point
-  std::vector<Tetrahedron> tets;    // empty for point clouds
+  std::vector<double> values;     // one per point
+  std::vector<Tetrahedron> tets;  // empty for point clouds
 
-  std::string source;               // input path
-  std::string fieldName;            // scalar array name ("value" for text files without a header)
-  std::string fieldAssociation;     // how values reached the points, e.g. "point data" or
-                                    // "cell data averaged to points"
-  std::string kind;                 // "tetrahedral mesh", "mixed-cell mesh", "curvilinear grid",
-                                    // "point cloud"
-  std::string sampleType;           // storage type of the source values (float32, ...)
-  std::int64_t inputBytes = 0;      // bytes of the values in their source type
-  std::int64_t inputCells = 0;      // cells in the source before splitting into tetrahedra
+  std::string source;            // input path
+  std::string fieldName;         // scalar array name ("value" for text files without a header)
+  std::string fieldAssociation;  // how values reached the points, e.g. "point data" or
+                                 // "cell data averaged to points"
+  std::string kind;              // "tetrahedral mesh", "mixed-cell mesh", "curvilinear grid",
+                                 // "point cloud"
+  std::string sampleType;        // storage type of the source values (float32, ...)
+  std::int64_t inputBytes = 0;   // bytes of the values in their source type
+  std::int64_t inputCells = 0;   // cells in the source before splitting into tetrahedra
 
   std::int64_t pointCount() const { return static_cast<std::int64_t>(points.size()); }
   bool hasCells() const { return !tets.empty(); }

@@ -27,10 +27,10 @@ struct DomainBox {
 
 // What the model was fitted from and how well; stored in the .mfa header and shown by `info`.
 struct Provenance {
-  std::string source;          // input path or builtin spec
-  std::string field;           // scalar name
-  std::string sampleType;      // source storage type
-  Index3 sampleDims{0, 0, 0};  // input grid size (0 when scattered)
+  std::string source;            // input path or builtin spec
+  std::string field;             // scalar name
+  std::string sampleType;        // source storage type
+  Index3 sampleDims{0, 0, 0};    // input grid size (0 when scattered)
   std::int64_t inputPoints = 0;  // scattered inputs: number of points (0 for grids)
   std::string fieldAssociation;  // scattered inputs: e.g. "point data"
   std::int64_t inputBytes = 0;
