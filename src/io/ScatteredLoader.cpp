@@ -121,11 +121,7 @@ vtkSmartPointer<vtkDataSet> readMesh(const std::string& path, const std::string&
     }
     auto r = vtkSmartPointer<vtkDataSetReader>::New();
     r->SetFileName(path.c_str());
-    // By default only the first SCALARS block is read; the field may name another.
-    r->ReadAllScalarsOn();
-    r->ReadAllVectorsOn();
-    r->ReadAllColorScalarsOn();
-    r->ReadAllFieldsOn();
+    readAllLegacyArrays(r);
     reader = r;
   }
 

@@ -9,6 +9,7 @@
 
 #include <vtkAbstractArray.h>
 #include <vtkDataArray.h>
+#include <vtkDataReader.h>
 #include <vtkFieldData.h>
 #include <vtkLogger.h>
 #include <vtkNew.h>
@@ -112,6 +113,13 @@ std::string VtkMessageCapture::errorText() const {
     if (!line.empty()) out += (out.empty() ? "" : "; ") + line;
   }
   return out;
+}
+
+void readAllLegacyArrays(vtkDataReader* reader) {
+  reader->ReadAllScalarsOn();
+  reader->ReadAllVectorsOn();
+  reader->ReadAllColorScalarsOn();
+  reader->ReadAllFieldsOn();
 }
 
 std::string vtkSampleTypeName(vtkDataArray* array) {

@@ -5,6 +5,7 @@
 #include <string>
 
 class vtkDataArray;
+class vtkDataReader;
 class vtkFieldData;
 
 namespace mfadvr {
@@ -32,6 +33,10 @@ class VtkMessageCapture {
 
 // "float32", "int16", "uint8", ...; "" for types that are not plain numbers.
 std::string vtkSampleTypeName(vtkDataArray* array);
+
+// Makes a legacy reader read every SCALARS/VECTORS/COLOR_SCALARS/FIELD block (by default it
+// reads only the first SCALARS block, and the field asked for may be another).
+void readAllLegacyArrays(vtkDataReader* reader);
 
 // "'Density', 'Momentum' (3 components)", or "none".
 std::string describeVtkArrays(vtkFieldData* data);

@@ -137,11 +137,7 @@ vtkSmartPointer<vtkImageData> runReader(const std::string& path, VtkVolumeFormat
       requireStructuredPoints(path, capture);
       auto r = vtkSmartPointer<vtkStructuredPointsReader>::New();
       r->SetFileName(path.c_str());
-      // By default only the first SCALARS block is read; the field may name another.
-      r->ReadAllScalarsOn();
-      r->ReadAllVectorsOn();
-      r->ReadAllColorScalarsOn();
-      r->ReadAllFieldsOn();
+      readAllLegacyArrays(r);
       reader = r;
       break;
     }

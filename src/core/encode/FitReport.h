@@ -7,6 +7,8 @@
 
 namespace mfadvr {
 
+class Model;
+
 struct FitReport {
   std::string source;
   Index3 samples{0, 0, 0};
@@ -49,5 +51,9 @@ struct FitReport {
  private:
   double relative(double e) const { return valueRange() > 0.0 ? e / valueRange() : e; }
 };
+
+// The report fields a model records itself: source, input size, degree, control counts, value
+// range, errors, fit time (from its provenance), encoder and file size. Encoders add the rest.
+FitReport fitReportOf(const Model& model);
 
 }  // namespace mfadvr

@@ -449,24 +449,10 @@ Model encodeScatteredWithKnots(const ScatteredData& data, std::array<KnotVector,
   prov.rmsError = rms;
   const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
   prov.fitSeconds = seconds;
-  Index3 counts = spline.counts();
-  Degree3 degree = spline.degrees();
   Model model(spline, box, vmin, vmax, std::move(prov));
   if (report) {
-    report->source = data.source;
-    report->samples = {0, 0, 0};
-    report->points = data.pointCount();
+    *report = fitReportOf(model);
     report->inputKind = data.kind;
-    report->degree = degree;
-    report->controlCounts = counts;
-    report->seconds = seconds;
-    report->valueMin = vmin;
-    report->valueMax = vmax;
-    report->maxError = maxErr;
-    report->rmsError = rms;
-    report->inputBytes = data.inputBytes;
-    report->modelBytes = modelFileSize(model);
-    report->encoder = model.provenance().encoder;
     report->smoothing = options.smoothing;
     report->solverIterations = iterations;
     report->solverResidual = residual;

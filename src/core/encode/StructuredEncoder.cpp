@@ -325,20 +325,7 @@ Model encodeStructuredWithKnots(const StructuredGrid& grid, std::array<KnotVecto
 
   Model model(TensorBSpline(std::move(knots), std::move(ctrl)),
               DomainBox{grid.boxMin(), grid.boxMax()}, vmin, vmax, std::move(prov));
-  if (report) {
-    report->source = grid.source;
-    report->samples = grid.dims;
-    report->degree = degree;
-    report->controlCounts = n;
-    report->seconds = seconds;
-    report->valueMin = vmin;
-    report->valueMax = vmax;
-    report->maxError = maxErr;
-    report->rmsError = rms;
-    report->inputBytes = grid.inputBytes;
-    report->modelBytes = modelFileSize(model);
-    report->encoder = model.provenance().encoder;
-  }
+  if (report) *report = fitReportOf(model);
   return model;
 }
 
