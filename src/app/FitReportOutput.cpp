@@ -28,6 +28,9 @@ std::string formatFitReport(const FitReport& r, const std::string& modelPath) {
   if (r.points > 0)
     o << "input           " << (r.inputKind.empty() ? "points" : r.inputKind) << ", "
       << groupDigits(r.points) << " points  (" << groupDigits(r.inputBytes) << " bytes)\n";
+  if (!r.field.empty())
+    o << "field           " << r.field
+      << (r.fieldAssociation.empty() ? "" : "  (" + r.fieldAssociation + ")") << "\n";
   else
     o << "samples         " << r.samples[0] << " x " << r.samples[1] << " x " << r.samples[2]
       << "  (" << groupDigits(r.inputBytes) << " bytes)\n";
@@ -65,6 +68,8 @@ nlohmann::json fitReportJson(const FitReport& r, const std::string& modelPath) {
       {"encoder", r.encoder},
       {"points", r.points},
       {"input_kind", r.inputKind},
+      {"field", r.field},
+      {"field_association", r.fieldAssociation},
       {"samples", r.samples},
       {"value_min", r.valueMin},
       {"value_max", r.valueMax},

@@ -20,6 +20,8 @@ FitReport fitReportOf(const Model& model) {
   r.inputBytes = p.inputBytes;
   r.modelBytes = modelFileSize(model);
   r.encoder = p.encoder;
+  r.field = p.field;
+  r.fieldAssociation = p.fieldAssociation;
   return r;
 }
 

@@ -19,8 +19,10 @@ struct FitReport {
   double maxError = 0.0;  // absolute, model (float32 control points) vs every input sample
   double rmsError = 0.0;
   std::int64_t inputBytes = 0;
-  std::int64_t modelBytes = 0;  // size of the .mfa file
-  std::string encoder;          // as recorded in the model's provenance
+  std::int64_t modelBytes = 0;   // size of the .mfa file
+  std::string encoder;           // as recorded in the model's provenance
+  std::string field;             // scalar name, when the input has one
+  std::string fieldAssociation;  // scattered inputs: "point data", "cell data averaged to points"
 
   // Scattered inputs (points == 0 for grids).
   std::int64_t points = 0;
