@@ -102,6 +102,11 @@ Command addEncodeCommand(CLI::App& app) {
       const StructuredGrid grid = loadStructuredVolume(o->input, load);
       model = encodeGrid(grid, options, &report);
     }
+    if (report.points > 0 && report.solverResidual > 1e-4)
+      std::cerr << "mfadvr: warning: the solver stopped at a relative residual of "
+                << report.solverResidual
+                << " (not converged); the fit may be inaccurate: a larger --smooth converges "
+                   "faster\n";
     const bool failedStrict = o->strict && !report.reachedTarget;
     if (!o->output.empty() && !failedStrict) saveModel(model, o->output);
     const std::string written = failedStrict ? std::string() : o->output;

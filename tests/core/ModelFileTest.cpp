@@ -81,6 +81,45 @@ std::vector<std::uint8_t> withHeader(const std::vector<std::uint8_t>& full, cons
   return b;
 }
 
+// The compressed mask section of a masked model file: the last `bytes` bytes before the CRC,
+// `bytes` as the header's mask.bytes says.
+size_t maskSectionBytes(const std::vector<std::uint8_t>& file) {
+  const std::string text(file.begin(), file.end());
+  const std::string header = headerOf(text);
+  const size_t at = header.find("\"bytes\":");
+  EXPECT_NE(at, std::string::npos) << header;
+  return std::stoul(header.substr(at + 8));
+}
+
+// The packed (uncompressed) mask bits of a masked model file.
+std::vector<std::uint8_t> packedMaskBits(const std::vector<std::uint8_t>& file, size_t packed) {
+  const size_t bytes = maskSectionBytes(file);
+  std::vector<std::uint8_t> out(packed);
+  uLongf size = packed;
+  EXPECT_EQ(uncompress(out.data(), &size, file.data() + file.size() - 4 - bytes, bytes), Z_OK);
+  EXPECT_EQ(size, packed);
+  return out;
+}
+
+// The file with its mask section replaced by `section` (header byte count and CRC updated).
+std::vector<std::uint8_t> withMaskSection(const std::vector<std::uint8_t>& file,
+                                          const std::vector<std::uint8_t>& section) {
+  const size_t bytes = maskSectionBytes(file);
+  std::vector<std::uint8_t> b(file.begin(), file.end() - 4 - static_cast<long>(bytes));
+  b.insert(b.end(), section.begin(), section.end());
+  b.insert(b.end(), 4, 0);
+  return withHeader(b, "\"bytes\":" + std::to_string(bytes),
+                    "\"bytes\":" + std::to_string(section.size()));
+}
+
+std::vector<std::uint8_t> compressed(const std::vector<std::uint8_t>& packed) {
+  uLongf size = compressBound(packed.size());
+  std::vector<std::uint8_t> out(size);
+  EXPECT_EQ(compress(out.data(), &size, packed.data(), packed.size()), Z_OK);
+  out.resize(size);
+  return out;
+}
+
 TEST(ModelFile, RoundTripIsBitExact) {
   const Model m = smallModel();
   const std::string bytes = serializeModel(m);
@@ -165,16 +204,14 @@ TEST(ModelFile, MaskRoundTripIsBitExact) {
   EXPECT_EQ(r.provenance().inputPoints, 12345);
   EXPECT_EQ(r.provenance().fieldAssociation, "cell data averaged to points");
   EXPECT_EQ(serializeModel(r), bytes);
-  EXPECT_NE(headerOf(bytes).find("\"mask\":{\"dims\":[5,6,7],\"kind\":\"point-coverage\"}"),
+  EXPECT_NE(headerOf(bytes).find("\"dims\":[5,6,7],\"kind\":\"point-coverage\"}"),
             std::string::npos)
       << headerOf(bytes);
 
-  // The packing: node n is bit n % 8 of mask byte n / 8, x fastest.
-  const size_t maskStart = bytes.size() - 4 - 27;
+  // The packing: node n is bit n % 8 of mask byte n / 8, x fastest; 27 bytes, zlib-compressed.
+  const auto bits = packedMaskBits(bytesOf(bytes), 27);
   for (size_t n = 0; n < 210; ++n)
-    EXPECT_EQ((static_cast<std::uint8_t>(bytes[maskStart + n / 8]) >> (n % 8)) & 1,
-              m.mask().nodes()[n])
-        << n;
+    EXPECT_EQ((bits[n / 8] >> (n % 8)) & 1, m.mask().nodes()[n]) << n;
 
   // Every node set, and a mask kind of its own; a mask whose node count is a multiple of 8.
   Model full = smallModel();
@@ -250,55 +287,77 @@ TEST(ModelFile, VersionOneFilesStillLoad) {
 
 TEST(ModelFile, DamagedMaskSectionsAreErrors) {
   const auto full = bytesOf(serializeModel(maskedModel()));
-  const std::string kMask = "\"mask\":{\"dims\":[5,6,7],\"kind\":\"point-coverage\"}";
+  const std::string bytes = "\"bytes\":" + std::to_string(maskSectionBytes(full));
+  const std::string kMask = "\"mask\":{" + bytes + ",\"dims\":[5,6,7],\"kind\":\"point-coverage\"}";
   EXPECT_NO_THROW(parseModel(withHeader(full, kMask, kMask)));
   auto maskWith = [&](const std::string& replacement) {
     return errorOf(withHeader(full, kMask, "\"mask\":" + replacement));
   };
-  EXPECT_NE(maskWith("{\"dims\":[5,6,7],\"kind\":\"voxels\"}").find("unknown mask kind"),
+  auto withBytes = [&](const std::string& rest) { return "{" + bytes + "," + rest + "}"; };
+  EXPECT_NE(maskWith(withBytes("\"dims\":[5,6,7],\"kind\":\"voxels\"")).find("unknown mask kind"),
             std::string::npos);
-  EXPECT_NE(maskWith("{\"dims\":[5,6,7],\"kind\":3}"), "");
-  EXPECT_NE(maskWith("{\"dims\":[5,6,7]}"), "");
-  EXPECT_NE(maskWith("{\"kind\":\"point-coverage\"}"), "");
+  EXPECT_NE(maskWith(withBytes("\"dims\":[5,6,7],\"kind\":3")), "");
+  EXPECT_NE(maskWith(withBytes("\"dims\":[5,6,7]")), "");
+  EXPECT_NE(maskWith(withBytes("\"kind\":\"point-coverage\"")), "");
   EXPECT_NE(maskWith("\"point-coverage\""), "");
   EXPECT_NE(maskWith("null"), "");
-  EXPECT_NE(maskWith("{\"dims\":[5,6],\"kind\":\"point-coverage\"}"), "");
-  EXPECT_NE(maskWith("{\"dims\":[5,6,7.5],\"kind\":\"point-coverage\"}"), "");
-  EXPECT_NE(maskWith("{\"dims\":[1,6,7],\"kind\":\"point-coverage\"}").find("mask"),
+  EXPECT_NE(maskWith(withBytes("\"dims\":[5,6],\"kind\":\"point-coverage\"")), "");
+  EXPECT_NE(maskWith(withBytes("\"dims\":[5,6,7.5],\"kind\":\"point-coverage\"")), "");
+  EXPECT_NE(maskWith(withBytes("\"dims\":[1,6,7],\"kind\":\"point-coverage\"")).find("mask"),
             std::string::npos);
-  EXPECT_NE(maskWith("{\"dims\":[5,6,4097],\"kind\":\"point-coverage\"}").find("mask"),
+  EXPECT_NE(maskWith(withBytes("\"dims\":[5,6,4097],\"kind\":\"point-coverage\"")).find("mask"),
             std::string::npos);
   // Within the per-axis limit but 2^36 nodes: refused before any size arithmetic or allocation.
-  EXPECT_NE(maskWith("{\"dims\":[4096,4096,4096],\"kind\":\"point-coverage\"}").find("mask"),
+  EXPECT_NE(
+      maskWith(withBytes("\"dims\":[4096,4096,4096],\"kind\":\"point-coverage\"")).find("mask"),
+      std::string::npos);
+  EXPECT_NE(maskWith(withBytes("\"dims\":[-5,6,7],\"kind\":\"point-coverage\"")), "");
+  EXPECT_NE(maskWith(withBytes("\"dims\":[9223372036854775807,2,2],\"kind\":\"point-coverage\"")),
+            "");
+  // The compressed byte count: missing, not an integer, zero, or beyond zlib's bound.
+  EXPECT_NE(maskWith("{\"dims\":[5,6,7],\"kind\":\"point-coverage\"}").find("byte count"),
             std::string::npos);
-  EXPECT_NE(maskWith("{\"dims\":[-5,6,7],\"kind\":\"point-coverage\"}"), "");
-  EXPECT_NE(maskWith("{\"dims\":[9223372036854775807,2,2],\"kind\":\"point-coverage\"}"), "");
-  // Dims that do not match the mask bytes: 5 x 6 x 8 needs 30 bytes, 27 are there.
-  EXPECT_NE(maskWith("{\"dims\":[5,6,8],\"kind\":\"point-coverage\"}").find("truncated"),
+  EXPECT_NE(maskWith("{\"bytes\":\"9\",\"dims\":[5,6,7],\"kind\":\"point-coverage\"}"), "");
+  EXPECT_NE(
+      maskWith("{\"bytes\":0,\"dims\":[5,6,7],\"kind\":\"point-coverage\"}").find("byte count"),
+      std::string::npos);
+  EXPECT_NE(maskWith("{\"bytes\":100000,\"dims\":[5,6,7],\"kind\":\"point-coverage\"}")
+                .find("byte count"),
             std::string::npos);
-  EXPECT_NE(maskWith("{\"dims\":[5,6,6],\"kind\":\"point-coverage\"}").find("trailing"),
+  // Dims that do not match the stream: 5 x 6 x 8 needs 30 packed bytes, 5 x 6 x 6 needs 23;
+  // the stream holds 27.
+  EXPECT_NE(maskWith(withBytes("\"dims\":[5,6,8],\"kind\":\"point-coverage\"")).find("corrupt"),
+            std::string::npos);
+  EXPECT_NE(maskWith(withBytes("\"dims\":[5,6,6],\"kind\":\"point-coverage\"")).find("corrupt"),
             std::string::npos);
 
-  // Padding bits (210 nodes: the top 6 bits of the last mask byte) must be zero.
+  const std::vector<std::uint8_t> bits = packedMaskBits(full, 27);
+  EXPECT_NO_THROW(parseModel(withMaskSection(full, compressed(bits))));
+  // Padding bits (210 nodes: the top 6 bits of the last packed byte) must be zero.
   for (int bit = 2; bit < 8; ++bit) {
-    auto b = full;
-    b[b.size() - 5] = static_cast<std::uint8_t>(b[b.size() - 5] | (1u << bit));
-    fixChecksum(b);
-    EXPECT_NE(errorOf(b).find("padding"), std::string::npos) << bit;
+    auto padded = bits;
+    padded.back() = static_cast<std::uint8_t>(padded.back() | (1u << bit));
+    EXPECT_NE(errorOf(withMaskSection(full, compressed(padded))).find("padding"), std::string::npos)
+        << bit;
   }
-  // A flipped node bit behind a repaired checksum is a different, valid mask.
-  auto flipped = full;
-  flipped[flipped.size() - 10] ^= 1;
-  fixChecksum(flipped);
-  const Model r = parseModel(flipped);
+  // A flipped node bit is a different, valid mask.
+  auto flippedBits = bits;
+  flippedBits[3] ^= 1;
+  const Model r = parseModel(withMaskSection(full, compressed(flippedBits)));
   EXPECT_NE(r.mask().nodes(), maskedModel().mask().nodes());
+  // A stream that is not zlib, or ends early, behind a valid checksum and byte count.
+  EXPECT_NE(errorOf(withMaskSection(full, std::vector<std::uint8_t>(20, 0x55))).find("corrupt"),
+            std::string::npos);
+  auto shortStream = compressed(bits);
+  shortStream.resize(shortStream.size() - 3);
+  EXPECT_NE(errorOf(withMaskSection(full, shortStream)).find("corrupt"), std::string::npos);
   // A mask section cut short (the checksum repaired) or missing altogether.
   auto cut = full;
   cut.erase(cut.end() - 6);
   fixChecksum(cut);
   EXPECT_NE(errorOf(cut).find("truncated"), std::string::npos);
   auto none = full;
-  none.erase(none.end() - 4 - 27, none.end() - 4);
+  none.erase(none.end() - 4 - static_cast<long>(maskSectionBytes(full)), none.end() - 4);
   fixChecksum(none);
   EXPECT_NE(errorOf(none).find("truncated"), std::string::npos);
 }

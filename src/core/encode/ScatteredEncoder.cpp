@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <optional>
 #include <sstream>
@@ -393,9 +394,10 @@ Model encodeScatteredWithKnots(const ScatteredData& data, std::array<KnotVector,
     x = cg.solveWithGuess(rhs, x);
     iterations += static_cast<int>(cg.iterations());
     residual = cg.error();
-    progress(std::min(0.9, 0.9 * iterations / options.maxIterations),
-             "solve (" + std::to_string(iterations) + " iterations, residual " +
-                 std::to_string(residual) + ")");
+    char stage[96];
+    std::snprintf(stage, sizeof stage, "solve (%d iterations, residual %.1e)", iterations,
+                  residual);
+    progress(std::min(0.9, 0.9 * iterations / options.maxIterations), stage);
     if (cg.info() == Eigen::Success || cg.iterations() == 0) break;
   }
 

@@ -69,7 +69,30 @@ Provenance provenanceFromJson(const json& j) {
   return p;
 }
 
-std::string headerText(const Model& m) {
+// Mask nodes, 0/1 bytes, as bits: node i is bit i % 8 (least significant first) of byte i / 8.
+std::int64_t maskBytes(const Index3& dims) {
+  return (dims[0] * dims[1] * dims[2] + 7) / 8;
+}
+
+// The packed bits, zlib-compressed: masks are long runs of 0 and 1, and compress to a few
+// percent of their packed size.
+std::string compressedMask(const DomainMask& mask) {
+  const auto& nodes = mask.nodes();
+  std::string bits(static_cast<size_t>(maskBytes(mask.dims())), '\0');
+  for (size_t i = 0; i < nodes.size(); ++i)
+    if (nodes[i]) bits[i / 8] = static_cast<char>(bits[i / 8] | (1u << (i % 8)));
+  uLongf size = compressBound(static_cast<uLong>(bits.size()));
+  std::string out(size, '\0');
+  if (compress2(reinterpret_cast<Bytef*>(out.data()), &size,
+                reinterpret_cast<const Bytef*>(bits.data()), static_cast<uLong>(bits.size()),
+                Z_BEST_COMPRESSION) != Z_OK)
+    throw Error("cannot compress the domain mask");
+  out.resize(size);
+  return out;
+}
+
+// compressedMaskBytes: the size of the mask section (ignored without a mask).
+std::string headerText(const Model& m, std::int64_t compressedMaskBytes) {
   const TensorBSpline& s = m.spline();
   const DomainBox& d = m.domain();
   json h = {{"format", "mfadvr-model"},
@@ -80,7 +103,9 @@ std::string headerText(const Model& m) {
             {"value_range", {m.valueMin(), m.valueMax()}},
             {"provenance", provenanceToJson(m.provenance())}};
   if (!m.mask().empty())
-    h["mask"] = {{"kind", maskKindName(m.mask().kind())}, {"dims", m.mask().dims()}};
+    h["mask"] = {{"kind", maskKindName(m.mask().kind())},
+                 {"dims", m.mask().dims()},
+                 {"bytes", compressedMaskBytes}};
   return h.dump();
 }
 
@@ -107,23 +132,6 @@ std::uint32_t crc(const std::uint8_t* data, size_t n) {
   return static_cast<std::uint32_t>(c);
 }
 
-// Mask nodes, 0/1 bytes, as bits: node i is bit i % 8 (least significant first) of byte i / 8.
-std::int64_t maskBytes(const Index3& dims) {
-  return (dims[0] * dims[1] * dims[2] + 7) / 8;
-}
-
-std::int64_t maskBytes(const DomainMask& mask) {
-  return mask.empty() ? 0 : maskBytes(mask.dims());
-}
-
-void appendMaskBits(std::string& out, const DomainMask& mask) {
-  const auto& nodes = mask.nodes();
-  std::string bits(static_cast<size_t>(maskBytes(mask)), '\0');
-  for (size_t i = 0; i < nodes.size(); ++i)
-    if (nodes[i]) bits[i / 8] = static_cast<char>(bits[i / 8] | (1u << (i % 8)));
-  out += bits;
-}
-
 Vec3d vec3(const json& j, const char* key) {
   const auto a = j.at(key).get<std::array<double, 3>>();
   return Vec3d(a[0], a[1], a[2]);
@@ -132,9 +140,11 @@ Vec3d vec3(const json& j, const char* key) {
 }  // namespace
 
 std::string serializeModel(const Model& model) {
-  const std::string header = headerText(model);
+  const std::string mask = model.mask().empty() ? std::string() : compressedMask(model.mask());
+  const std::string header = headerText(model, static_cast<std::int64_t>(mask.size()));
   std::string out;
-  out.reserve(static_cast<size_t>(modelFileSize(model)));
+  out.reserve(kPrefixBytes + header.size() + 4 * model.spline().controlPoints().size() +
+              mask.size() + 4096);
   out.append(kMagic, sizeof(kMagic));
   append(out, kModelFormatVersion);
   append(out, static_cast<std::uint32_t>(header.size()));
@@ -143,18 +153,19 @@ std::string serializeModel(const Model& model) {
     for (double k : model.spline().knots(a).knots()) append(out, k);
   const auto& ctrl = model.spline().controlPoints();
   out.append(reinterpret_cast<const char*>(ctrl.data()), ctrl.size() * sizeof(float));
-  if (!model.mask().empty()) appendMaskBits(out, model.mask());
+  out += mask;
   append(out, crc(reinterpret_cast<const std::uint8_t*>(out.data()), out.size()));
   return out;
 }
 
 std::int64_t modelFileSize(const Model& model) {
+  const std::int64_t mask =
+      model.mask().empty() ? 0 : static_cast<std::int64_t>(compressedMask(model.mask()).size());
   std::int64_t knots = 0;
   for (int a = 0; a < 3; ++a)
     knots += static_cast<std::int64_t>(model.spline().knots(a).knots().size());
-  return static_cast<std::int64_t>(kPrefixBytes + headerText(model).size()) + 8 * knots +
-         4 * static_cast<std::int64_t>(model.spline().controlPoints().size()) +
-         maskBytes(model.mask()) + 4;
+  return static_cast<std::int64_t>(kPrefixBytes + headerText(model, mask).size()) + 8 * knots +
+         4 * static_cast<std::int64_t>(model.spline().controlPoints().size()) + mask + 4;
 }
 
 Model parseModel(std::span<const std::uint8_t> b, const std::string& name,
@@ -183,6 +194,7 @@ Model parseModel(std::span<const std::uint8_t> b, const std::string& name,
   Provenance prov;
   std::optional<MaskKind> maskKind;  // version 2 on; a version-1 file has no mask
   Index3 maskDims{0, 0, 0};
+  std::int64_t storedMaskBytes = 0;  // compressed size
   try {
     h = json::parse(b.begin() + kPrefixBytes, b.begin() + kPrefixBytes + headerBytes);
     if (h.value("format", "") != "mfadvr-model") throw bad("header is not an mfadvr-model header");
@@ -208,6 +220,7 @@ Model parseModel(std::span<const std::uint8_t> b, const std::string& name,
         throw bad(e.what());
       }
       maskDims = integers3(m, "dims");
+      storedMaskBytes = integerOr(m, "bytes", -1);
     }
   } catch (const json::exception& e) {
     throw bad(std::string("header is corrupt (") + e.what() + ")");
@@ -228,6 +241,11 @@ Model parseModel(std::span<const std::uint8_t> b, const std::string& name,
     }
   }
   const std::int64_t packedMaskBytes = maskKind ? maskBytes(maskDims) : 0;
+  // zlib never grows data by more than 0.1% + 12 bytes (compressBound).
+  if (maskKind && (storedMaskBytes < 1 ||
+                   storedMaskBytes > static_cast<std::int64_t>(
+                                         compressBound(static_cast<uLong>(packedMaskBytes)))))
+    throw bad("mask byte count is missing or out of range");
 
   // Sizes: every factor is at most 2^20, so the products below cannot overflow int64.
   const std::int64_t knotCount = (n[0] + p[0] + 1) + (n[1] + p[1] + 1) + (n[2] + p[2] + 1);
@@ -235,7 +253,7 @@ Model parseModel(std::span<const std::uint8_t> b, const std::string& name,
   if (ctrlCount > std::numeric_limits<std::int64_t>::max() / 8)
     throw bad("too many control points");
   const std::int64_t expected = static_cast<std::int64_t>(kPrefixBytes + headerBytes) +
-                                8 * knotCount + 4 * ctrlCount + packedMaskBytes + 4;
+                                8 * knotCount + 4 * ctrlCount + storedMaskBytes + 4;
   if (static_cast<std::int64_t>(b.size()) != expected)
     throw bad("size is " + std::to_string(b.size()) + " bytes but the header describes " +
               std::to_string(expected) +
@@ -264,7 +282,14 @@ Model parseModel(std::span<const std::uint8_t> b, const std::string& name,
   Model model(TensorBSpline(std::move(knots), std::move(ctrl)), DomainBox{lo, hi}, range[0],
               range[1], std::move(prov));
   if (maskKind) {
-    const std::uint8_t* bits = b.data() + offset;
+    std::vector<std::uint8_t> packed(static_cast<size_t>(packedMaskBytes));
+    uLongf size = static_cast<uLongf>(packed.size());
+    if (uncompress(packed.data(), &size, b.data() + offset, static_cast<uLong>(storedMaskBytes)) !=
+            Z_OK ||
+        size != packed.size())
+      throw bad("mask data is corrupt or does not hold its " + std::to_string(maskDims[0]) + "x" +
+                std::to_string(maskDims[1]) + "x" + std::to_string(maskDims[2]) + " nodes");
+    const std::uint8_t* bits = packed.data();
     const std::int64_t count = maskDims[0] * maskDims[1] * maskDims[2];
     if (count % 8 != 0 && (bits[packedMaskBytes - 1] >> (count % 8)) != 0)
       throw bad("mask padding bits are not zero");
