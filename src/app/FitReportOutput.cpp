@@ -58,7 +58,9 @@ std::string formatFitReport(const FitReport& r, const std::string& modelPath) {
   o << "model size      " << groupDigits(r.modelBytes) << " bytes"
     << (modelPath.empty() ? std::string("  (not written: no -o)") : "  -> " + modelPath) << "\n";
   o << "compression     " << fmt("%.2f", r.compressionRatio())
-    << " : 1  (input bytes / model bytes)\n";
+    << (r.points > 0 ? " : 1  (bytes of the input values / model bytes; coordinates and cells "
+                       "not counted)\n"
+                     : " : 1  (input bytes / model bytes)\n");
   return o.str();
 }
 

@@ -55,10 +55,11 @@ void multiply(const RowSparse& A, const Eigen::VectorXd& x, Eigen::VectorXd& y) 
 // The normal matrix A = (1/P) N^T N + lambda D^T D of the regularized fit, as an operator.
 struct NormalSystem {
   RowSparse basis, basisT;  // N (P x C) and its transpose
-  RowSparse diff, diffT;    // D (weighted second differences) and its transpose
+  RowSparse penalty;        // D^T D (D: weighted second differences), multiplied out: it has
+                            // at most 13 entries per row, fewer than D and D^T together
   double dataScale = 1.0, lambda = 0.0;
   Eigen::VectorXd inverseDiagonal;
-  mutable Eigen::VectorXd pointTmp, ctrlTmp, diffTmp;
+  mutable Eigen::VectorXd pointTmp, ctrlTmp;
 
   Eigen::Index size() const { return basis.cols(); }
   void apply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
@@ -66,8 +67,7 @@ struct NormalSystem {
     multiply(basisT, pointTmp, y);
     y *= dataScale;
     if (lambda > 0.0) {
-      multiply(diff, x, diffTmp);
-      multiply(diffT, diffTmp, ctrlTmp);
+      multiply(penalty, x, ctrlTmp);
       y += lambda * ctrlTmp;
     }
   }
@@ -351,12 +351,12 @@ Model encodeScatteredWithKnots(const ScatteredData& data, std::array<KnotVector,
   NormalSystem sys;
   sys.basis = assembleBasis(params, knots);
   sys.basisT = sys.basis.transpose();
-  sys.diff = assembleSecondDifferences(knots);
-  sys.diffT = sys.diff.transpose();
+  const RowSparse diff = assembleSecondDifferences(knots);
+  sys.penalty = RowSparse(diff.transpose()) * diff;
   sys.dataScale = 1.0 / static_cast<double>(params.size());
   sys.lambda = options.smoothing;
   Eigen::VectorXd diagonal = sys.dataScale * columnSquaredNorms(sys.basisT);
-  if (sys.lambda > 0.0) diagonal += sys.lambda * columnSquaredNorms(sys.diffT);
+  if (sys.lambda > 0.0) diagonal += sys.lambda * sys.penalty.diagonal();
   sys.inverseDiagonal = diagonal.unaryExpr([](double d) { return d > 0.0 ? 1.0 / d : 0.0; });
   if (sys.lambda == 0.0 && (diagonal.array() <= 0.0).any())
     throw Error(
