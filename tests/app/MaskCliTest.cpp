@@ -30,13 +30,19 @@ Model halfMaskedModel() {
   return m;
 }
 
-TEST(MaskCli, InfoReportsTheMask) {
-  const auto dir = test::scratchDir();
+// The half-masked model and the same model without its mask, as files in `dir`.
+std::pair<std::string, std::string> writeMaskedAndPlain(const std::filesystem::path& dir) {
   const std::string masked = (dir / "masked.mfa").string(), plain = (dir / "plain.mfa").string();
   saveModel(halfMaskedModel(), masked);
   Model unmasked = halfMaskedModel();
   unmasked.setMask(DomainMask());
   saveModel(unmasked, plain);
+  return {masked, plain};
+}
+
+TEST(MaskCli, InfoReportsTheMask) {
+  const auto dir = test::scratchDir();
+  const auto [masked, plain] = writeMaskedAndPlain(dir);
 
   auto r = test::runMfadvr("info " + masked + " --json");
   ASSERT_EQ(r.status, 0) << r.err;
@@ -65,11 +71,7 @@ TEST(MaskCli, InfoReportsTheMask) {
 
 TEST(MaskCli, QueryFlagsPointsOutsideTheMask) {
   const auto dir = test::scratchDir();
-  const std::string masked = (dir / "masked.mfa").string(), plain = (dir / "plain.mfa").string();
-  saveModel(halfMaskedModel(), masked);
-  Model unmasked = halfMaskedModel();
-  unmasked.setMask(DomainMask());
-  saveModel(unmasked, plain);
+  const auto [masked, plain] = writeMaskedAndPlain(dir);
 
   std::ofstream(dir / "points.txt") << "0.5 0.5 0.5\n1.5 0.5 0.5\n1 0 1\n";
   auto r = test::runMfadvr("query " + masked + " --points " + (dir / "points.txt").string());
