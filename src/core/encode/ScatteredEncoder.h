@@ -14,8 +14,9 @@
 // arbitrary values, and multilinear functions carry no penalty at all.
 //
 // The normal equations are solved by conjugate gradients (Eigen) with a Jacobi preconditioner,
-// matrix-free: the sparse basis matrix (P rows of (p+1)^3 entries, about 12 bytes each) and the
-// difference matrix are assembled in parallel and applied as products, never multiplied out.
+// matrix-free in the data term: the sparse basis matrix N (P rows of (p+1)^3 entries, about 12
+// bytes each) is assembled in parallel and applied as N^T (N x), never multiplied out; the
+// penalty D^T D is multiplied out once (at most 13 entries per row).
 // Empty regions converge slowly on one grid (their modes have eigenvalues of order lambda), so
 // the fit runs coarse to fine: each level starts from the previous level's spline sampled at its
 // own Greville abscissae.
