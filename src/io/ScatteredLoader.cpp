@@ -32,6 +32,7 @@
 #include "core/util/Error.h"
 #include "core/util/PointList.h"
 #include "io/InputFile.h"
+#include "io/VtkDataConversion.h"
 #include "io/VtkSupport.h"
 
 namespace mfadvr {
@@ -236,10 +237,8 @@ void appendTets(vtkDataSet* data, std::vector<Tetrahedron>& tets) {
   }
 }
 
-ScatteredData readMeshData(const std::string& path, const std::string& ext,
-                           const std::string& field) {
-  vtkSmartPointer<vtkDataSet> input = readMesh(path, ext);
-  if (input->GetNumberOfPoints() == 0) throw Error(path + ": the file holds no points");
+ScatteredData meshDataOf(vtkDataSet* input, const std::string& path, const std::string& field) {
+  if (!input || input->GetNumberOfPoints() == 0) throw Error(path + ": the data set holds no points");
 
   ScatteredData out;
   const SelectedArray selected = selectArray(path, input, field);
@@ -312,6 +311,13 @@ ScatteredData readMeshData(const std::string& path, const std::string& ext,
   return out;
 }
 
+ScatteredData readMeshData(const std::string& path, const std::string& ext,
+                           const std::string& field) {
+  vtkSmartPointer<vtkDataSet> input = readMesh(path, ext);
+  if (input->GetNumberOfPoints() == 0) throw Error(path + ": the file holds no points");
+  return meshDataOf(input, path, field);
+}
+
 ScatteredData readTextData(const std::string& path, const std::string& field) {
   ScatteredData out = parsePointValueList(readTextFile(path), path);
   if (!field.empty() && field != out.fieldName) {
@@ -339,6 +345,14 @@ ScatteredData loadScatteredData(const std::string& path, const ScatteredLoadOpti
   data.source = path;
   data.validate();
   return data;
+}
+
+ScatteredData scatteredFromVtkDataSet(vtkDataSet* data, const std::string& field,
+                                     const std::string& source) {
+  ScatteredData out = meshDataOf(data, source, field);
+  out.source = source;
+  out.validate();
+  return out;
 }
 
 bool isScatteredInput(const std::string& path) {

@@ -22,6 +22,7 @@
 #include <vtkXMLImageDataReader.h>
 
 #include "core/util/Error.h"
+#include "io/VtkDataConversion.h"
 #include "io/VtkSupport.h"
 
 namespace mfadvr {
@@ -261,6 +262,16 @@ StructuredGrid readVtkVolume(const std::string& path, VtkVolumeFormat format,
     image = runReader(path, format, capture);
   }
   return toGrid(path, format, image, field);
+}
+
+StructuredGrid gridFromVtkImage(vtkImageData* image, const std::string& field,
+                                const std::string& source) {
+  if (!image || image->GetNumberOfPoints() == 0)
+    throw Error(source + ": the image data holds no samples");
+  // The NRRD-specific advice never applies to in-memory images.
+  StructuredGrid grid = toGrid(source, VtkVolumeFormat::kXmlImageData, image, field);
+  grid.source = source;
+  return grid;
 }
 
 }  // namespace mfadvr

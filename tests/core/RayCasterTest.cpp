@@ -2,6 +2,7 @@
 // termination, thread count, fairness of the comparison (MFA vs trilinear against the truth).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/analytic/BuiltinFunction.h"
@@ -70,6 +71,27 @@ TEST(RayCaster, ConstantSlabIsExactlyBeerLambert) {
                 stats.raysHit * static_cast<std::int64_t>(std::ceil(2.0 / dt - 1e-9)));
     }
   }
+}
+
+// Opaque geometry in a VTK scene ends rays early: the slab in front of each pixel's ray end
+// composites exactly as a thinner slab, with the end anywhere inside a step.
+TEST(RayCaster, RayEndsCutTheSlabPerPixel) {
+  const LayeredField slab;
+  RenderSettings s = slabSettings();
+  s.sampleDistance = 0.07;
+  s.rayEnd.resize(static_cast<size_t>(s.width) * s.height);
+  // The camera is 4 units above the slab's top face; ray ends go from before the slab to past it.
+  for (int i = 0; i < s.width * s.height; ++i)
+    s.rayEnd[i] = i == 0 ? INFINITY : static_cast<float>(3.5 + 3.0 * i / (s.width * s.height));
+  const Image image = renderVolume(slab, s);
+  for (int y = 0; y < s.height; ++y)
+    for (int x = 0; x < s.width; ++x) {
+      const double end = s.rayEnd[static_cast<size_t>(y) * s.width + x];
+      const double thickness = std::clamp(end - 4.0, 0.0, 2.0);
+      EXPECT_NEAR(image.pixel(x, y)[3], 1.0 - std::pow(0.4, thickness), 2e-6) << x << "," << y;
+    }
+  s.rayEnd.pop_back();
+  EXPECT_THROW(renderVolume(slab, s), Error);
 }
 
 TEST(RayCaster, CompositesFrontToBack) {

@@ -14,6 +14,8 @@
 //
 // A field whose sampler has `bool inside(x)` (a model with a domain mask) is empty where it
 // answers false: such samples are neither evaluated nor composited, as if their opacity were 0.
+// Rays may end early, per pixel (RenderSettings::rayEnd): opaque geometry in a VTK scene.
+//
 // The ray loop is instantiated twice, with and without that test, and a sampler with
 // `bool masked()` answering false (a model without a mask) gets the loop without it.
 //
@@ -164,7 +166,10 @@ class RayCaster {
     float red = 0.0f, green = 0.0f, blue = 0.0f, alpha = 0.0f;
     double tEnter, tExit;
     const Vec3d lo = field_.boxMin(), hi = field_.boxMax();
-    if (intersectBox(o, d, lo, hi, tEnter, tExit) && tExit > std::max(tEnter, 0.0)) {
+    const bool crosses = intersectBox(o, d, lo, hi, tEnter, tExit);
+    if (crosses && !s_.rayEnd.empty())
+      tExit = std::min(tExit, static_cast<double>(s_.rayEnd[std::size_t(y) * s_.width + x]));
+    if (crosses && tExit > std::max(tEnter, 0.0)) {
       ++counters.hits;
       tEnter = std::max(tEnter, 0.0);
       const double dt = s_.sampleDistance;

@@ -22,6 +22,13 @@ void RenderSettings::validate() const {
   if (!(earlyTerminationOpacity > 0.0) || !std::isfinite(earlyTerminationOpacity))
     throw Error("early ray termination opacity must be in (0, 1] (or above 1 to disable it)");
   if (!background.allFinite()) throw Error("background colour must be finite");
+  if (!rayEnd.empty()) {
+    if (rayEnd.size() != static_cast<size_t>(width) * static_cast<size_t>(height))
+      throw Error("ray ends must hold one distance per pixel (" + std::to_string(width) + "x" +
+                  std::to_string(height) + "), got " + std::to_string(rayEnd.size()));
+    for (float t : rayEnd)
+      if (std::isnan(t)) throw Error("ray ends must not be NaN");
+  }
   if (threads < 0) throw Error("thread count must be >= 0 (0: all cores)");
   if (shade) lighting.validate();
 }

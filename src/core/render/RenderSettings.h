@@ -2,6 +2,7 @@
 // Everything about a render except the field: image size, camera, transfer function, shading,
 // sampling and compositing. The same settings render every reconstruction method.
 #include <functional>
+#include <vector>
 
 #include "core/render/Camera.h"
 #include "core/render/Lighting.h"
@@ -24,6 +25,11 @@ struct RenderSettings {
   // Stop a ray once its accumulated opacity reaches this (>= 1 disables early termination).
   double earlyTerminationOpacity = 0.99;
   Vec3f background = Vec3f::Zero();
+  // Where each pixel's ray ends, for opaque geometry in front of the volume's far side: empty
+  // (rays end where they leave the field's box) or width * height distances along the rays
+  // from their origins (RayGenerator), row 0 at the top; +inf means no limit for that pixel.
+  // Nothing beyond is sampled, and the last step is shortened to end there.
+  std::vector<float> rayEnd;
   // Worker threads; 0 uses all cores. The image does not depend on it.
   int threads = 0;
   // Called now and then with the finished fraction (0..1], from one thread at a time.
