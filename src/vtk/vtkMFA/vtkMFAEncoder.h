@@ -1,0 +1,127 @@
+/**
+ * @class   vtkMFAEncoder
+ * @brief   fits an MFA model to image data, a mesh or a point cloud
+ *
+ * The input is any vtkDataSet. vtkImageData (axis-aligned) is fitted as a grid by separable
+ * least squares; every other data set is fitted as scattered points (regularized least squares)
+ * and gets a domain mask: mesh occupancy when it has 3-D cells, point coverage otherwise. The
+ * output is a vtkMFAModelData. The options are those of `mfadvr encode` (docs/encoding.md).
+ *
+ * The scalar field is chosen with SetInputArrayToProcess(0, 0, 0, association, name); by
+ * default the active point scalars (else the first one-component point array, else a cell
+ * array, averaged to the points).
+ *
+ * Errors (no scalar field, bad options, a flat box) are reported with vtkErrorMacro and leave
+ * the output empty.
+ */
+#ifndef vtkMFAEncoder_h
+#define vtkMFAEncoder_h
+
+#include "vtkMFAModelAlgorithm.h"
+#include "vtkMFAModule.h"  // for export macro
+
+class VTKMFA_EXPORT vtkMFAEncoder : public vtkMFAModelAlgorithm
+{
+public:
+  static vtkMFAEncoder* New();
+  vtkTypeMacro(vtkMFAEncoder, vtkMFAModelAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /**
+   * The data set to encode, without a pipeline (SetInputConnection connects one).
+   */
+  void SetInputData(vtkDataObject* data) { this->SetInputDataObject(0, data); }
+
+  //@{
+  /**
+   * Spline degree on every axis, 1..7 (default 3).
+   */
+  vtkSetClampMacro(Degree, int, 1, 7);
+  vtkGetMacro(Degree, int);
+  //@}
+
+  //@{
+  /**
+   * Control points per axis (0: the default, which for a grid is the sample count, i.e.
+   * interpolation). With MaxError set, the starting counts of adaptive refinement.
+   */
+  vtkSetVector3Macro(NumberOfControlPoints, int);
+  vtkGetVector3Macro(NumberOfControlPoints, int);
+  //@}
+
+  //@{
+  /**
+   * Adaptive encoding: refine the knots until the maximum error at every input sample is at
+   * most MaxError times the value range (0, the default: a fixed-size fit).
+   */
+  vtkSetClampMacro(MaxError, double, 0.0, 1.0);
+  vtkGetMacro(MaxError, double);
+  //@}
+
+  //@{
+  /**
+   * Adaptive encoding: per-axis cap on control points (0: the sample count for grids, 256 for
+   * scattered data) and on refinement rounds (default 30).
+   */
+  vtkSetVector3Macro(MaxNumberOfControlPoints, int);
+  vtkGetVector3Macro(MaxNumberOfControlPoints, int);
+  vtkSetClampMacro(MaxRounds, int, 1, 1000);
+  vtkGetMacro(MaxRounds, int);
+  //@}
+
+  //@{
+  /**
+   * Scattered inputs: weight of the curvature penalty (default 1e-2, dimensionless).
+   */
+  vtkSetClampMacro(Smoothing, double, 0.0, 1e6);
+  vtkGetMacro(Smoothing, double);
+  //@}
+
+  //@{
+  /**
+   * Scattered inputs: whether the model gets a domain mask (default on), and the mask's nodes
+   * along the longest box axis (0: the default for the kind of input).
+   */
+  vtkSetMacro(DomainMask, bool);
+  vtkGetMacro(DomainMask, bool);
+  vtkBooleanMacro(DomainMask, bool);
+  vtkSetClampMacro(MaskResolution, int, 0, 4096);
+  vtkGetMacro(MaskResolution, int);
+  //@}
+
+  //@{
+  /**
+   * Results of the last fit: maximum and RMS error over every input sample, relative to the
+   * value range, and the fit's wall time in seconds.
+   */
+  vtkGetMacro(LastMaxRelativeError, double);
+  vtkGetMacro(LastRMSRelativeError, double);
+  vtkGetMacro(LastFitSeconds, double);
+  //@}
+
+protected:
+  vtkMFAEncoder();
+  ~vtkMFAEncoder() override;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  int Degree = 3;
+  int NumberOfControlPoints[3] = { 0, 0, 0 };
+  double MaxError = 0.0;
+  int MaxNumberOfControlPoints[3] = { 0, 0, 0 };
+  int MaxRounds = 30;
+  double Smoothing = 1e-2;
+  bool DomainMask = true;
+  int MaskResolution = 0;
+
+  double LastMaxRelativeError = 0.0;
+  double LastRMSRelativeError = 0.0;
+  double LastFitSeconds = 0.0;
+
+private:
+  vtkMFAEncoder(const vtkMFAEncoder&) = delete;
+  void operator=(const vtkMFAEncoder&) = delete;
+};
+
+#endif

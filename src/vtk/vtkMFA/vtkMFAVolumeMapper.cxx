@@ -1,0 +1,340 @@
+#include "vtkMFAVolumeMapper.h"
+
+#include "vtkAlgorithmOutput.h"
+#include "vtkCamera.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkMFAEncoder.h"
+#include "vtkMFAModelData.h"
+#include "vtkMath.h"
+#include "vtkMatrix4x4.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkOpenGLRayCastImageDisplayHelper.h"
+#include "vtkPlaneCollection.h"
+#include "vtkRenderWindow.h"
+#include "vtkRenderer.h"
+#include "vtkSmartPointer.h"
+#include "vtkTimerLog.h"
+#include "vtkVolume.h"
+#include "vtkVolumeProperty.h"
+
+#include <algorithm>
+#include <cmath>
+#include <exception>
+#include <set>
+#include <vector>
+
+#include "VtkSceneConversion.h"
+#include "core/field/ModelField.h"
+#include "core/model/Model.h"
+#include "core/render/RayCaster.h"
+
+vtkStandardNewMacro(vtkMFAVolumeMapper);
+
+struct vtkMFAVolumeMapper::Internals
+{
+  vtkNew<vtkMFAEncoder> Encoder;
+  // Drawn directly rather than through the object factory, so that programs need no autoinit
+  // of the volume rendering module for it.
+  vtkNew<vtkOpenGLRayCastImageDisplayHelper> Display;
+  vtkSmartPointer<vtkMFAModelData> Model;
+  std::set<std::string> Warned;
+  std::vector<float> Depth;
+  std::vector<unsigned char> Pixels;
+  double LastSeconds = 0.0;
+};
+
+vtkMFAVolumeMapper::vtkMFAVolumeMapper()
+  : Internal(new Internals)
+{
+  this->SetNumberOfInputPorts(2);
+  this->Internal->Display->PreMultipliedColorsOn();
+}
+
+vtkMFAVolumeMapper::~vtkMFAVolumeMapper() = default;
+
+void vtkMFAVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "SampleDistance: " << this->SampleDistance << "\n";
+  os << indent << "ImageSampleDistance: " << this->ImageSampleDistance << "\n";
+  os << indent << "MinimumImageSampleDistance: " << this->MinimumImageSampleDistance << "\n";
+  os << indent << "MaximumImageSampleDistance: " << this->MaximumImageSampleDistance << "\n";
+  os << indent << "AutoAdjustSampleDistances: " << this->AutoAdjustSampleDistances << "\n";
+  os << indent << "EarlyRayTerminationOpacity: " << this->EarlyRayTerminationOpacity << "\n";
+  os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
+}
+
+int vtkMFAVolumeMapper::FillInputPortInformation(int port, vtkInformation* info)
+{
+  if (port == 0)
+  {
+    info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
+  }
+  else
+  {
+    info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkMFAModelData");
+  }
+  info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);
+  return 1;
+}
+
+void vtkMFAVolumeMapper::SetMFAInputConnection(vtkAlgorithmOutput* output)
+{
+  this->SetInputConnection(1, output);
+}
+
+void vtkMFAVolumeMapper::SetMFAInputData(vtkMFAModelData* model)
+{
+  this->SetInputDataInternal(1, model);
+}
+
+vtkMFAEncoder* vtkMFAVolumeMapper::GetEncoder()
+{
+  return this->Internal->Encoder;
+}
+
+vtkDataObject* vtkMFAVolumeMapper::GetDataObjectInput()
+{
+  if (this->GetNumberOfInputConnections(1) > 0)
+  {
+    return this->GetInputDataObject(1, 0);
+  }
+  return this->Superclass::GetDataObjectInput();
+}
+
+vtkMFAModelData* vtkMFAVolumeMapper::GetMFAInput()
+{
+  return this->Internal->Model;
+}
+
+vtkMFAModelData* vtkMFAVolumeMapper::UpdateModel()
+{
+  vtkSmartPointer<vtkMFAModelData> model;
+  if (this->GetNumberOfInputConnections(1) > 0)
+  {
+    vtkAlgorithmOutput* connection = this->GetInputConnection(1, 0);
+    connection->GetProducer()->Update(connection->GetIndex());
+    model = vtkMFAModelData::SafeDownCast(this->GetInputDataObject(1, 0));
+  }
+  else if (this->GetNumberOfInputConnections(0) > 0)
+  {
+    vtkAlgorithmOutput* connection = this->GetInputConnection(0, 0);
+    connection->GetProducer()->Update(connection->GetIndex());
+    if (auto* image = vtkImageData::SafeDownCast(this->GetInputDataObject(0, 0)))
+    {
+      // The encoder's pipeline re-fits only when the image or the options change.
+      this->Internal->Encoder->SetInputData(image);
+      this->Internal->Encoder->Update();
+      model = this->Internal->Encoder->GetOutput();
+    }
+  }
+  this->Internal->Model = (model && model->HasModel()) ? model : nullptr;
+  return this->Internal->Model;
+}
+
+double* vtkMFAVolumeMapper::GetBounds()
+{
+  vtkMFAModelData* model = this->UpdateModel();
+  if (model)
+  {
+    model->GetBounds(this->Bounds);
+  }
+  else
+  {
+    vtkMath::UninitializeBounds(this->Bounds);
+  }
+  return this->Bounds;
+}
+
+void vtkMFAVolumeMapper::GetBounds(double bounds[6])
+{
+  const double* b = this->GetBounds();
+  std::copy(b, b + 6, bounds);
+}
+
+void vtkMFAVolumeMapper::WarnOnce(const std::string& note)
+{
+  if (this->Internal->Warned.insert(note).second)
+  {
+    vtkWarningMacro(<< note);
+  }
+}
+
+double vtkMFAVolumeMapper::ChooseImageSampleDistance(vtkVolume* vol)
+{
+  const double lo = std::min(this->MinimumImageSampleDistance, this->MaximumImageSampleDistance);
+  const double hi = std::max(this->MinimumImageSampleDistance, this->MaximumImageSampleDistance);
+  const double allocated = vol->GetAllocatedRenderTime();
+  // Still frames get allocated very long times (1 / the still update rate).
+  if (!this->AutoAdjustSampleDistances || !(allocated > 0.0) || allocated >= 1.0 ||
+    this->Internal->LastSeconds <= 0.0)
+  {
+    return this->ImageSampleDistance;
+  }
+  // Frame time scales with the number of rays, i.e. with 1 / distance^2.
+  const double wanted =
+    this->LastImageSampleDistance * std::sqrt(this->Internal->LastSeconds / allocated);
+  return std::clamp(wanted, lo, hi);
+}
+
+void vtkMFAVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
+{
+  vtkNew<vtkTimerLog> timer;
+  timer->StartTimer();
+  vtkMFAModelData* data = this->UpdateModel();
+  if (!data)
+  {
+    return;
+  }
+  const std::shared_ptr<const mfadvr::Model> model = data->GetModel();
+
+  if (this->BlendMode != vtkVolumeMapper::COMPOSITE_BLEND)
+  {
+    this->WarnOnce("only composite blending is supported; rendering with it");
+  }
+  if (this->Cropping)
+  {
+    this->WarnOnce("cropping is not supported and is ignored");
+  }
+  if (this->ClippingPlanes && this->ClippingPlanes->GetNumberOfItems() > 0)
+  {
+    this->WarnOnce("clipping planes are not supported and are ignored");
+  }
+
+  int width = 0, height = 0, originX = 0, originY = 0;
+  ren->GetTiledSizeAndOrigin(&width, &height, &originX, &originY);
+  if (width <= 0 || height <= 0)
+  {
+    return;
+  }
+  const double isd = this->ChooseImageSampleDistance(vol);
+  const int rw = std::max(1, static_cast<int>(std::lround(width / isd)));
+  const int rh = std::max(1, static_cast<int>(std::lround(height / isd)));
+
+  const mfadvr::vtkglue::WorldToModel toModel = mfadvr::vtkglue::worldToModelOf(vol->GetMatrix());
+  if (!toModel.similarity)
+  {
+    this->WarnOnce("the volume's matrix scales its axes unequally or shears them; the image is "
+                   "approximate (rotations, translations and uniform scales are exact)");
+  }
+  vtkVolumeProperty* property = vol->GetProperty();
+  std::vector<std::string> notes;
+
+  mfadvr::RenderSettings s;
+  try
+  {
+    s.width = rw;
+    s.height = rh;
+    s.camera = mfadvr::vtkglue::cameraFromVtk(ren->GetActiveCamera(), toModel);
+    s.transferFunction = mfadvr::vtkglue::transferFunctionFromVtk(property, notes);
+    s.opacityUnitDistance = property->GetScalarOpacityUnitDistance(0) * toModel.scale;
+    // Half the smallest data spacing: the model's sample grid, or its control points.
+    const mfadvr::Vec3d extent = model->domain().extent();
+    const auto& prov = model->provenance();
+    const auto counts = model->spline().counts();
+    double spacing = INFINITY;
+    for (int a = 0; a < 3; ++a)
+    {
+      const auto n = prov.sampleDims[a] > 1 ? prov.sampleDims[a] : counts[a];
+      spacing = std::min(spacing, extent[a] / static_cast<double>(std::max<std::int64_t>(n - 1, 1)));
+    }
+    s.sampleDistance =
+      this->SampleDistance > 0.0 ? this->SampleDistance * toModel.scale : 0.5 * spacing;
+    s.earlyTerminationOpacity = this->EarlyRayTerminationOpacity;
+    s.shade = property->GetShade(0) != 0;
+    if (s.shade)
+    {
+      s.lighting = mfadvr::vtkglue::lightingFromVtk(ren, property, toModel, notes);
+    }
+    s.background = mfadvr::Vec3f::Zero();  // premultiplied colour over nothing
+    s.threads = this->NumberOfThreads;
+
+    // Ray ends from the depth buffer: the opaque geometry drawn so far.
+    auto& depth = this->Internal->Depth;
+    depth.resize(static_cast<size_t>(width) * height);
+    ren->GetRenderWindow()->GetZbufferData(
+      originX, originY, originX + width - 1, originY + height - 1, depth.data());
+    vtkMatrix4x4* worldToClip = ren->GetActiveCamera()->GetCompositeProjectionTransformMatrix(
+      static_cast<double>(width) / height, -1, 1);
+    vtkNew<vtkMatrix4x4> clipToWorld;
+    vtkMatrix4x4::Invert(worldToClip, clipToWorld);
+    const mfadvr::RayGenerator rays(s.camera, rw, rh);
+    s.rayEnd.assign(static_cast<size_t>(rw) * rh, INFINITY);
+    bool anyGeometry = false;
+    for (int y = 0; y < rh; ++y)
+    {
+      // Our row 0 is the top; the depth buffer's is the bottom.
+      const int py = std::min(height - 1, static_cast<int>((rh - 1 - y + 0.5) * height / rh));
+      for (int x = 0; x < rw; ++x)
+      {
+        const int px = std::min(width - 1, static_cast<int>((x + 0.5) * width / rw));
+        const float z = depth[static_cast<size_t>(py) * width + px];
+        if (!(z < 1.0f))
+        {
+          continue;
+        }
+        anyGeometry = true;
+        const double clip[4] = { 2.0 * (px + 0.5) / width - 1.0, 2.0 * (py + 0.5) / height - 1.0,
+          2.0 * z - 1.0, 1.0 };
+        double world[4];
+        clipToWorld->MultiplyPoint(clip, world);
+        const mfadvr::Vec3d p =
+          toModel.point(mfadvr::Vec3d(world[0], world[1], world[2]) / world[3]);
+        mfadvr::Vec3d o, d;
+        rays.ray(x, y, o, d);
+        s.rayEnd[static_cast<size_t>(y) * rw + x] = static_cast<float>(std::max(0.0, (p - o).dot(d)));
+      }
+    }
+    if (!anyGeometry)
+    {
+      s.rayEnd.clear();
+    }
+
+    const mfadvr::ModelField field(*model);
+    const mfadvr::Image image = mfadvr::renderVolume(field, s);
+
+    // 8-bit premultiplied RGBA, row 0 at the bottom as OpenGL wants it.
+    auto& pixels = this->Internal->Pixels;
+    pixels.resize(static_cast<size_t>(4) * rw * rh);
+    for (int y = 0; y < rh; ++y)
+    {
+      unsigned char* row = pixels.data() + static_cast<size_t>(4) * rw * (rh - 1 - y);
+      for (int x = 0; x < rw; ++x)
+      {
+        const float* p = image.pixel(x, y);
+        for (int c = 0; c < 4; ++c)
+        {
+          row[4 * x + c] =
+            static_cast<unsigned char>(std::lround(std::clamp(p[c], 0.0f, 1.0f) * 255.0f));
+        }
+      }
+    }
+  }
+  catch (const std::exception& e)
+  {
+    vtkErrorMacro(<< "cannot render the model: " << e.what());
+    return;
+  }
+  for (const std::string& note : notes)
+  {
+    this->WarnOnce(note);
+  }
+
+  int size[2] = { rw, rh };
+  int origin[2] = { 0, 0 };
+  // A depth at the near plane: the image already accounts for the geometry in front.
+  this->Internal->Display->RenderTexture(vol, ren, size, size, size, origin, 1e-6f,
+    this->Internal->Pixels.data());
+
+  timer->StopTimer();
+  this->TimeToDraw = timer->GetElapsedTime();
+  this->Internal->LastSeconds = this->TimeToDraw;
+  this->LastImageSampleDistance = isd;
+}
+
+void vtkMFAVolumeMapper::ReleaseGraphicsResources(vtkWindow* window)
+{
+  this->Internal->Display->ReleaseGraphicsResources(window);
+}

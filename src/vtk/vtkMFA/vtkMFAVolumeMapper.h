@@ -1,0 +1,150 @@
+/**
+ * @class   vtkMFAVolumeMapper
+ * @brief   renders an MFA model directly, with exact values and gradients at every sample
+ *
+ * A volume mapper for ordinary VTK scenes: it takes the camera, the renderer's lights and the
+ * vtkVolumeProperty (colour and scalar opacity functions, shading, ambient / diffuse /
+ * specular / specular power, scalar opacity unit distance) and ray casts the model with the
+ * mfadvr ray caster on the CPU, all cores. Rays stop at opaque geometry already drawn (the
+ * depth buffer), so the volume blends correctly with surfaces in the scene. The image is drawn
+ * with VTK's ray-cast image display helper, like VTK's own CPU ray casters.
+ *
+ * Inputs: an MFA model on the MFA port (SetMFAInputConnection / SetMFAInputData, from
+ * vtkMFAReader or vtkMFAEncoder), or vtkImageData on the standard input port, which is encoded
+ * with GetEncoder()'s options (by default an interpolating cubic fit) when it changes. The MFA
+ * port wins when both are connected.
+ *
+ * Not supported (a warning says so once): blend modes other than composite, cropping, clipping
+ * planes, gradient opacity, multi-component data.
+ */
+#ifndef vtkMFAVolumeMapper_h
+#define vtkMFAVolumeMapper_h
+
+#include "vtkMFAModule.h"  // for export macro
+#include "vtkVolumeMapper.h"
+
+#include <memory>  // for std::unique_ptr
+#include <string>  // for std::string
+
+class vtkAlgorithmOutput;
+class vtkMFAEncoder;
+class vtkMFAModelData;
+class vtkRayCastImageDisplayHelper;
+
+class VTKMFA_EXPORT vtkMFAVolumeMapper : public vtkVolumeMapper
+{
+public:
+  static vtkMFAVolumeMapper* New();
+  vtkTypeMacro(vtkMFAVolumeMapper, vtkVolumeMapper);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  //@{
+  /**
+   * The model to render (input port 1).
+   */
+  void SetMFAInputConnection(vtkAlgorithmOutput* output);
+  void SetMFAInputData(vtkMFAModelData* model);
+  //@}
+
+  /**
+   * The model rendered by the last Render (or the one the inputs give now, after an update);
+   * null when there is none.
+   */
+  vtkMFAModelData* GetMFAInput();
+
+  /**
+   * The encoder used for vtkImageData on the standard input port; set its options before the
+   * first render.
+   */
+  vtkMFAEncoder* GetEncoder();
+
+  //@{
+  /**
+   * Distance between samples along a ray, in world units. 0 (the default): half the smallest
+   * spacing of the data the model was fitted to (its control points for scattered data).
+   */
+  vtkSetClampMacro(SampleDistance, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(SampleDistance, double);
+  //@}
+
+  //@{
+  /**
+   * Rays are cast for every ImageSampleDistance-th pixel in x and y and the image is
+   * magnified (1: every pixel). With AutoAdjustSampleDistances on (the default), interactive
+   * frames (an allocated render time below one second, as set by the interactor's desired
+   * update rate) pick a distance between the minimum and maximum that meets the allocated
+   * time; still frames use ImageSampleDistance.
+   */
+  vtkSetClampMacro(ImageSampleDistance, double, 1.0, 32.0);
+  vtkGetMacro(ImageSampleDistance, double);
+  vtkSetClampMacro(MinimumImageSampleDistance, double, 1.0, 32.0);
+  vtkGetMacro(MinimumImageSampleDistance, double);
+  vtkSetClampMacro(MaximumImageSampleDistance, double, 1.0, 32.0);
+  vtkGetMacro(MaximumImageSampleDistance, double);
+  vtkSetMacro(AutoAdjustSampleDistances, bool);
+  vtkGetMacro(AutoAdjustSampleDistances, bool);
+  vtkBooleanMacro(AutoAdjustSampleDistances, bool);
+  //@}
+
+  //@{
+  /**
+   * A ray stops once its opacity reaches this (default 0.99; above 1 disables it).
+   */
+  vtkSetClampMacro(EarlyRayTerminationOpacity, double, 0.01, 2.0);
+  vtkGetMacro(EarlyRayTerminationOpacity, double);
+  //@}
+
+  //@{
+  /**
+   * Worker threads (0, the default: all cores). Images do not depend on it.
+   */
+  vtkSetClampMacro(NumberOfThreads, int, 0, 1024);
+  vtkGetMacro(NumberOfThreads, int);
+  //@}
+
+  /**
+   * The image sample distance the last frame used.
+   */
+  vtkGetMacro(LastImageSampleDistance, double);
+
+  //@{
+  /**
+   * The volume's bounds: the model's box in world coordinates.
+   */
+  double* GetBounds() VTK_SIZEHINT(6) override;
+  void GetBounds(double bounds[6]) override;
+  //@}
+
+  vtkDataObject* GetDataObjectInput() override;
+
+  void Render(vtkRenderer* ren, vtkVolume* vol) override;
+  void ReleaseGraphicsResources(vtkWindow* window) override;
+
+protected:
+  vtkMFAVolumeMapper();
+  ~vtkMFAVolumeMapper() override;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+
+  double SampleDistance = 0.0;
+  double ImageSampleDistance = 1.0;
+  double MinimumImageSampleDistance = 1.0;
+  double MaximumImageSampleDistance = 8.0;
+  bool AutoAdjustSampleDistances = true;
+  double EarlyRayTerminationOpacity = 0.99;
+  int NumberOfThreads = 0;
+  double LastImageSampleDistance = 1.0;
+
+private:
+  vtkMFAVolumeMapper(const vtkMFAVolumeMapper&) = delete;
+  void operator=(const vtkMFAVolumeMapper&) = delete;
+
+  vtkMFAModelData* UpdateModel();
+  double ChooseImageSampleDistance(vtkVolume* vol);
+  void WarnOnce(const std::string& note);
+
+  struct Internals;
+  std::unique_ptr<Internals> Internal;
+};
+
+#endif
