@@ -97,6 +97,18 @@ void vtkMFAModelData::GetBounds(double bounds[6])
   }
 }
 
+double* vtkMFAModelData::GetBounds()
+{
+  this->GetBounds(this->Bounds);
+  return this->Bounds;
+}
+
+double* vtkMFAModelData::GetScalarRange()
+{
+  this->GetScalarRange(this->ScalarRange);
+  return this->ScalarRange;
+}
+
 void vtkMFAModelData::GetScalarRange(double range[2])
 {
   range[0] = this->Model ? this->Model->valueMin() : 0.0;

@@ -44,12 +44,14 @@ public:
    * The model's box (xmin, xmax, ymin, ymax, zmin, zmax); all zero without a model.
    */
   void GetBounds(double bounds[6]);
+  double* GetBounds() VTK_SIZEHINT(6);
 
   /**
    * The value range of the data the model was fitted to (what normalized transfer functions
    * refer to).
    */
   void GetScalarRange(double range[2]);
+  double* GetScalarRange() VTK_SIZEHINT(2);
 
   /**
    * Spline degree and control-point count per axis.
@@ -102,6 +104,9 @@ public:
 protected:
   vtkMFAModelData();
   ~vtkMFAModelData() override;
+
+  double Bounds[6] = { 0, 0, 0, 0, 0, 0 };
+  double ScalarRange[2] = { 0, 0 };
 
 private:
   vtkMFAModelData(const vtkMFAModelData&) = delete;

@@ -10,7 +10,8 @@
 #include "vtkMatrix4x4.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
-#include "vtkOpenGLRayCastImageDisplayHelper.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLState.h"
 #include "vtkPlaneCollection.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
@@ -18,6 +19,7 @@
 #include "vtkTimerLog.h"
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
+#include "vtk_glew.h"
 
 #include <algorithm>
 #include <cmath>
@@ -35,9 +37,6 @@ vtkStandardNewMacro(vtkMFAVolumeMapper);
 struct vtkMFAVolumeMapper::Internals
 {
   vtkNew<vtkMFAEncoder> Encoder;
-  // Drawn directly rather than through the object factory, so that programs need no autoinit
-  // of the volume rendering module for it.
-  vtkNew<vtkOpenGLRayCastImageDisplayHelper> Display;
   vtkSmartPointer<vtkMFAModelData> Model;
   std::set<std::string> Warned;
   std::vector<float> Depth;
@@ -49,7 +48,6 @@ vtkMFAVolumeMapper::vtkMFAVolumeMapper()
   : Internal(new Internals)
 {
   this->SetNumberOfInputPorts(2);
-  this->Internal->Display->PreMultipliedColorsOn();
 }
 
 vtkMFAVolumeMapper::~vtkMFAVolumeMapper() = default;
@@ -322,11 +320,26 @@ void vtkMFAVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     this->WarnOnce(note);
   }
 
-  int size[2] = { rw, rh };
-  int origin[2] = { 0, 0 };
-  // A depth at the near plane: the image already accounts for the geometry in front.
-  this->Internal->Display->RenderTexture(vol, ren, size, size, size, origin, 1e-6f,
-    this->Internal->Pixels.data());
+  // Drawn pixel for pixel over the viewport (magnified when the image sample distance is above
+  // 1), blended as premultiplied colour: out = image + (1 - alpha) * frame. The image already
+  // accounts for the geometry in front, so the depth test is off; the GL state is restored.
+  auto* glWindow = vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow());
+  if (!glWindow)
+  {
+    this->WarnOnce("the render window is not an OpenGL window; nothing is drawn");
+    return;
+  }
+  vtkOpenGLState* state = glWindow->GetState();
+  vtkOpenGLState::ScopedglBlendFuncSeparate blendFunction(state);
+  vtkOpenGLState::ScopedglEnableDisable blend(state, GL_BLEND);
+  vtkOpenGLState::ScopedglEnableDisable depthTest(state, GL_DEPTH_TEST);
+  vtkOpenGLState::ScopedglEnableDisable scissorTest(state, GL_SCISSOR_TEST);
+  vtkOpenGLState::ScopedglDepthMask depthMask(state);
+  state->vtkglEnable(GL_BLEND);
+  state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+  state->vtkglDepthMask(GL_FALSE);
+  glWindow->DrawPixels(originX, originY, originX + width - 1, originY + height - 1, 0, 0, rw - 1,
+    rh - 1, rw, rh, 4, VTK_UNSIGNED_CHAR, this->Internal->Pixels.data());
 
   timer->StopTimer();
   this->TimeToDraw = timer->GetElapsedTime();
@@ -336,5 +349,6 @@ void vtkMFAVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
 
 void vtkMFAVolumeMapper::ReleaseGraphicsResources(vtkWindow* window)
 {
-  this->Internal->Display->ReleaseGraphicsResources(window);
+  // The pixels are drawn with the window's own texture, which the window releases.
+  this->Superclass::ReleaseGraphicsResources(window);
 }

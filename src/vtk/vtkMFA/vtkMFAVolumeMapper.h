@@ -7,7 +7,7 @@
  * specular / specular power, scalar opacity unit distance) and ray casts the model with the
  * mfadvr ray caster on the CPU, all cores. Rays stop at opaque geometry already drawn (the
  * depth buffer), so the volume blends correctly with surfaces in the scene. The image is drawn
- * with VTK's ray-cast image display helper, like VTK's own CPU ray casters.
+ * pixel for pixel over the viewport as premultiplied colour (OpenGL render windows).
  *
  * Inputs: an MFA model on the MFA port (SetMFAInputConnection / SetMFAInputData, from
  * vtkMFAReader or vtkMFAEncoder), or vtkImageData on the standard input port, which is encoded
@@ -29,7 +29,6 @@
 class vtkAlgorithmOutput;
 class vtkMFAEncoder;
 class vtkMFAModelData;
-class vtkRayCastImageDisplayHelper;
 
 class VTKMFA_EXPORT vtkMFAVolumeMapper : public vtkVolumeMapper
 {

@@ -1,0 +1,236 @@
+// The pipeline classes of the VTK module: vtkMFAReader, vtkMFAEncoder (image data, meshes,
+// point clouds, array selection, adaptive fits) and vtkMFAModelData's queries. Errors are
+// reported through VTK's error events and leave the output empty.
+#include <gtest/gtest.h>
+
+#include <vtkCallbackCommand.h>
+#include <vtkCellArray.h>
+#include <vtkCommand.h>
+#include <vtkDataSetTriangleFilter.h>
+#include <vtkDoubleArray.h>
+#include <vtkImageData.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkUnstructuredGrid.h>
+
+#include <fstream>
+#include <random>
+#include <string>
+
+#include "TestSupport.h"
+#include "VtkSceneFixture.h"
+#include "core/model/ModelFile.h"
+#include "vtkMFAEncoder.h"
+#include "vtkMFAReader.h"
+
+namespace mfadvr::test {
+namespace {
+
+// Collects the error messages an algorithm reports.
+struct ErrorLog {
+  std::string text;
+  vtkNew<vtkCallbackCommand> callback;
+  explicit ErrorLog(vtkObject* object) {
+    callback->SetClientData(this);
+    callback->SetCallback([](vtkObject*, unsigned long, void* self, void* message) {
+      static_cast<ErrorLog*>(self)->text += static_cast<const char*>(message);
+    });
+    object->AddObserver(vtkCommand::ErrorEvent, callback);
+  }
+};
+
+vtkSmartPointer<vtkImageData> imageOf(const StructuredGrid& grid, const char* name = "value") {
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetDimensions(int(grid.dims[0]), int(grid.dims[1]), int(grid.dims[2]));
+  image->SetOrigin(grid.origin.data());
+  image->SetSpacing(grid.spacing.data());
+  vtkNew<vtkDoubleArray> values;
+  values->SetName(name);
+  values->SetNumberOfTuples(static_cast<vtkIdType>(grid.values.size()));
+  std::copy(grid.values.begin(), grid.values.end(), values->GetPointer(0));
+  image->GetPointData()->SetScalars(values);
+  return image;
+}
+
+StructuredGrid mlGrid(std::int64_t n) {
+  return sampleBuiltin(*makeBuiltin("marschner-lobb"), {n, n, n});
+}
+
+TEST(MFAReader, ReadsAModelFile) {
+  const auto path = scratchDir() / "ml.mfa";
+  saveModel(*marschnerLobbModel(), path);
+  ASSERT_TRUE(vtkMFAReader::CanReadFile(path.c_str()));
+  vtkNew<vtkMFAReader> reader;
+  reader->SetFileName(path.c_str());
+  reader->Update();
+  vtkMFAModelData* out = reader->GetOutput();
+  ASSERT_TRUE(out->HasModel());
+  double b[6], r[2], g[3];
+  out->GetBounds(b);
+  out->GetScalarRange(r);
+  EXPECT_DOUBLE_EQ(b[0], -1.0);
+  EXPECT_DOUBLE_EQ(b[5], 1.0);
+  EXPECT_DOUBLE_EQ(r[0], marschnerLobbModel()->valueMin());
+  const Vec3d p(0.1, -0.3, 0.2);
+  EXPECT_FLOAT_EQ(out->EvaluateValue(p[0], p[1], p[2]), marschnerLobbModel()->value(p));
+  out->EvaluateGradient(p[0], p[1], p[2], g);
+  EXPECT_FLOAT_EQ(float(g[1]), marschnerLobbModel()->valueGradient(p).gradient[1]);
+  EXPECT_TRUE(out->IsInside(0, 0, 0));
+  EXPECT_FALSE(out->IsInside(2, 0, 0));
+  EXPECT_FALSE(out->HasDomainMask());
+}
+
+TEST(MFAReader, ReportsBadFilesWithoutOutput) {
+  const auto dir = scratchDir();
+  const auto garbage = dir / "garbage.mfa";
+  std::ofstream(garbage) << "not a model at all";
+  const auto truncated = dir / "truncated.mfa";
+  const std::string bytes = serializeModel(*marschnerLobbModel());
+  std::ofstream(truncated, std::ios::binary).write(bytes.data(), bytes.size() / 2);
+  for (const auto& [path, expected] :
+       std::vector<std::pair<std::string, std::string>>{{garbage.string(), "magic"},
+                                                        {truncated.string(), "truncated"},
+                                                        {(dir / "missing.mfa").string(), "missing"}}) {
+    vtkNew<vtkMFAReader> reader;
+    ErrorLog log(reader);
+    reader->SetFileName(path.c_str());
+    reader->Update();
+    EXPECT_FALSE(reader->GetOutput()->HasModel()) << path;
+    EXPECT_FALSE(log.text.empty()) << path;
+    EXPECT_FALSE(vtkMFAReader::CanReadFile(path.c_str()) && expected != "truncated") << path;
+  }
+}
+
+TEST(MFAEncoder, FitsImageDataWithTheGivenControlCounts) {
+  const StructuredGrid grid = mlGrid(21);
+  vtkNew<vtkMFAEncoder> encoder;
+  encoder->SetInputData(imageOf(grid));
+  encoder->SetNumberOfControlPoints(12, 14, 16);
+  encoder->SetDegree(2);
+  encoder->Update();
+  vtkMFAModelData* out = encoder->GetOutput();
+  ASSERT_TRUE(out->HasModel());
+  int counts[3], degree[3];
+  out->GetNumberOfControlPoints(counts);
+  out->GetDegree(degree);
+  EXPECT_EQ(counts[0], 12);
+  EXPECT_EQ(counts[2], 16);
+  EXPECT_EQ(degree[1], 2);
+  EXPECT_STREQ(out->GetFieldName(), "value");
+  // The reported error is the model's error at every sample.
+  double worst = 0.0;
+  for (std::int64_t k = 0; k < 21; k += 2)
+    for (std::int64_t j = 0; j < 21; j += 2)
+      for (std::int64_t i = 0; i < 21; i += 2) {
+        const Vec3d p = grid.position(i, j, k);
+        const double v = grid.values[static_cast<size_t>(i + 21 * (j + 21 * k))];
+        worst = std::max(worst, std::abs(out->EvaluateValue(p[0], p[1], p[2]) - v));
+      }
+  double r[2];
+  out->GetScalarRange(r);
+  EXPECT_LE(worst / (r[1] - r[0]), encoder->GetLastMaxRelativeError() + 1e-6);
+  EXPECT_GT(encoder->GetLastMaxRelativeError(), 0.0);
+}
+
+TEST(MFAEncoder, AdaptiveFitMeetsTheBound) {
+  vtkNew<vtkMFAEncoder> encoder;
+  encoder->SetInputData(imageOf(mlGrid(33)));
+  encoder->SetMaxError(0.05);
+  encoder->Update();
+  ASSERT_TRUE(encoder->GetOutput()->HasModel());
+  EXPECT_LE(encoder->GetLastMaxRelativeError(), 0.05);
+  int counts[3];
+  encoder->GetOutput()->GetNumberOfControlPoints(counts);
+  EXPECT_LT(counts[0], 33);
+}
+
+TEST(MFAEncoder, PicksTheNamedArray) {
+  vtkSmartPointer<vtkImageData> image = imageOf(mlGrid(11), "first");
+  vtkNew<vtkDoubleArray> second;
+  second->SetName("second");
+  second->SetNumberOfTuples(image->GetNumberOfPoints());
+  for (vtkIdType i = 0; i < image->GetNumberOfPoints(); ++i) second->SetValue(i, 100.0 + i % 5);
+  image->GetPointData()->AddArray(second);
+
+  vtkNew<vtkMFAEncoder> encoder;
+  encoder->SetInputData(image);
+  encoder->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "second");
+  encoder->Update();
+  double r[2];
+  encoder->GetOutput()->GetScalarRange(r);
+  EXPECT_DOUBLE_EQ(r[0], 100.0);
+  EXPECT_DOUBLE_EQ(r[1], 104.0);
+  EXPECT_STREQ(encoder->GetOutput()->GetFieldName(), "second");
+
+  ErrorLog log(encoder);
+  encoder->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "third");
+  encoder->Update();
+  EXPECT_FALSE(encoder->GetOutput()->HasModel());
+  EXPECT_NE(log.text.find("third"), std::string::npos) << log.text;
+  EXPECT_NE(log.text.find("second"), std::string::npos) << "lists the arrays: " << log.text;
+}
+
+TEST(MFAEncoder, FitsATetrahedralMeshWithAMask) {
+  // The grid split into tetrahedra: a mesh whose occupancy mask covers its whole box.
+  vtkNew<vtkDataSetTriangleFilter> tets;
+  tets->SetInputData(imageOf(mlGrid(15)));
+  tets->TetrahedraOnlyOn();
+  vtkNew<vtkMFAEncoder> encoder;
+  encoder->SetInputConnection(tets->GetOutputPort());
+  encoder->SetNumberOfControlPoints(10, 10, 10);
+  encoder->Update();
+  vtkMFAModelData* out = encoder->GetOutput();
+  ASSERT_TRUE(out->HasModel());
+  EXPECT_TRUE(out->HasDomainMask());
+  EXPECT_TRUE(out->IsInside(0.1, 0.2, -0.3));
+  EXPECT_LT(encoder->GetLastRMSRelativeError(), 0.1);
+
+  encoder->DomainMaskOff();
+  encoder->Update();
+  EXPECT_FALSE(encoder->GetOutput()->HasDomainMask());
+}
+
+TEST(MFAEncoder, FitsAPointCloud) {
+  // Points in a ball: the point-coverage mask excludes the box corners.
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkDoubleArray> values;
+  values->SetName("f");
+  while (points->GetNumberOfPoints() < 6000) {
+    const Vec3d p(u(rng), u(rng), u(rng));
+    if (p.norm() > 1.0) continue;
+    points->InsertNextPoint(p.data());
+    values->InsertNextValue(p[0] + 2.0 * p[1] * p[2]);
+  }
+  vtkNew<vtkPolyData> cloud;
+  cloud->SetPoints(points);
+  cloud->GetPointData()->SetScalars(values);
+  vtkNew<vtkMFAEncoder> encoder;
+  encoder->SetInputData(cloud);
+  encoder->SetNumberOfControlPoints(8, 8, 8);
+  encoder->Update();
+  vtkMFAModelData* out = encoder->GetOutput();
+  ASSERT_TRUE(out->HasModel());
+  EXPECT_TRUE(out->HasDomainMask());
+  double b[6];
+  out->GetBounds(b);
+  EXPECT_TRUE(out->IsInside(0, 0, 0));
+  EXPECT_FALSE(out->IsInside(b[0], b[2], b[4]));
+  EXPECT_NEAR(out->EvaluateValue(0.3, 0.2, -0.4), 0.3 + 2.0 * 0.2 * -0.4, 0.02);
+}
+
+TEST(MFAEncoder, ReportsInputsItCannotFit) {
+  vtkNew<vtkMFAEncoder> encoder;
+  ErrorLog log(encoder);
+  vtkNew<vtkPolyData> empty;
+  encoder->SetInputData(empty);
+  encoder->Update();
+  EXPECT_FALSE(encoder->GetOutput()->HasModel());
+  EXPECT_NE(log.text.find("no points"), std::string::npos) << log.text;
+}
+
+}  // namespace
+}  // namespace mfadvr::test

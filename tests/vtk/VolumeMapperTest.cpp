@@ -1,0 +1,209 @@
+// vtkMFAVolumeMapper inside real VTK scenes (off screen, under xvfb-run): its image against the
+// core renderer's image of the same scene, written out independently; blending with opaque
+// geometry; volume transforms; image sample distance; image data on the standard port.
+#include <gtest/gtest.h>
+
+#include <vtkActor.h>
+#include <vtkPolyDataMapper.h>
+#include <vtkProperty.h>
+#include <vtkSphereSource.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+
+#include "VtkSceneFixture.h"
+#include "core/field/ModelField.h"
+#include "core/image/ImageMetrics.h"
+#include "core/image/PngFile.h"
+#include "core/render/RayCaster.h"
+
+namespace mfadvr::test {
+namespace {
+
+Image8 coreImage(const Model& model, const RenderSettings& s) {
+  const ModelField field(model);
+  return toImage8(renderVolume(field, s));
+}
+
+// Fraction of pixels that differ from the background colour by more than a few levels.
+double coverage(const Image8& img, const Vec3f& background) {
+  size_t covered = 0;
+  for (size_t p = 0; p < img.data.size() / 3; ++p)
+    for (int c = 0; c < 3; ++c)
+      if (std::abs(img.data[3 * p + c] - background[c] * 255.0f) > 4.0f) {
+        ++covered;
+        break;
+      }
+  return static_cast<double>(covered) / (img.data.size() / 3);
+}
+
+TEST(VolumeMapper, ShadedImageMatchesTheCoreRenderer) {
+  VtkVolumeScene scene(marschnerLobbModel(), true);
+  const Image8 mapped = scene.render();
+  const Image8 core = coreImage(*marschnerLobbModel(), scene.coreSettings());
+  EXPECT_GT(coverage(core, scene.coreSettings().background), 0.3);
+  const ImageComparison c = compareImages(mapped, core);
+  if (std::getenv("MFADVR_DEBUG_IMAGES")) {
+    writePng("/tmp/mapped.png", mapped);
+    writePng("/tmp/core.png", core);
+    writePng("/tmp/diff.png", differenceImage(mapped, core, 8.0));
+  }
+  // Only 8-bit rounding of the mapper's premultiplied image and of the window's blending
+  // separate them.
+  EXPECT_GT(c.psnr, 45.0);
+  EXPECT_GT(c.ssim, 0.995);
+  std::printf("mapper vs core, shaded: PSNR %.2f dB, SSIM %.4f\n", c.psnr, c.ssim);
+
+  // The bound can fail: a slightly different camera is far below it.
+  RenderSettings moved = scene.coreSettings();
+  moved.camera.azimuth(2.0);
+  EXPECT_LT(compareImages(mapped, coreImage(*marschnerLobbModel(), moved)).psnr, 35.0);
+}
+
+TEST(VolumeMapper, UnshadedImageMatchesTheCoreRenderer) {
+  VtkVolumeScene scene(marschnerLobbModel(), false);
+  const Image8 mapped = scene.render();
+  EXPECT_GT(compareImages(mapped, coreImage(*marschnerLobbModel(), scene.coreSettings())).psnr,
+            40.0);
+  EXPECT_GT(scene.mapper->GetTimeToDraw(), 0.0);
+}
+
+// An opaque sphere half inside the volume: the volume in front of it is composited over it,
+// the volume behind it is hidden. The expected image is the core renderer's volume, with rays
+// ending on the exact sphere, composited over VTK's image of the sphere alone.
+TEST(VolumeMapper, BlendsWithOpaqueGeometryByDepth) {
+  VtkVolumeScene scene(marschnerLobbModel(), false);
+  const Vec3d centre(0.4, 0.0, 0.5);
+  const double radius = 0.55;
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetCenter(centre[0], centre[1], centre[2]);
+  sphere->SetRadius(radius);
+  sphere->SetThetaResolution(256);
+  sphere->SetPhiResolution(256);
+  vtkNew<vtkPolyDataMapper> sphereMapper;
+  sphereMapper->SetInputConnection(sphere->GetOutputPort());
+  vtkNew<vtkActor> actor;
+  actor->SetMapper(sphereMapper);
+  actor->GetProperty()->SetColor(0.9, 0.8, 0.2);
+  scene.renderer->AddActor(actor);
+
+  scene.renderer->RemoveVolume(scene.volume);
+  const Image8 sphereOnly = scene.render();
+  scene.renderer->AddVolume(scene.volume);
+  const Image8 both = scene.render();
+
+  RenderSettings s = scene.coreSettings();
+  s.background = Vec3f::Zero();
+  const RayGenerator rays(s.camera, s.width, s.height);
+  std::vector<float> ends(static_cast<size_t>(s.width) * s.height, INFINITY);
+  for (int y = 0; y < s.height; ++y)
+    for (int x = 0; x < s.width; ++x) {
+      Vec3d o, d;
+      rays.ray(x, y, o, d);
+      const Vec3d oc = o - centre;
+      const double b = oc.dot(d), disc = b * b - (oc.squaredNorm() - radius * radius);
+      if (disc >= 0) ends[static_cast<size_t>(y) * s.width + x] = float(-b - std::sqrt(disc));
+    }
+  auto composite = [&](bool withEnds) {
+    RenderSettings t = s;
+    if (withEnds) t.rayEnd = ends;
+    const Image volume = renderVolume(ModelField(*marschnerLobbModel()), t);
+    Image8 out = sphereOnly;
+    for (int y = 0; y < s.height; ++y)
+      for (int x = 0; x < s.width; ++x) {
+        const float* v = volume.pixel(x, y);
+        for (int c = 0; c < 3; ++c) {
+          uint8_t& o = out.data[3 * (static_cast<size_t>(y) * s.width + x) + c];
+          o = static_cast<uint8_t>(
+            std::lround(255.0f * std::clamp(v[c] + (1 - v[3]) * o / 255.0f, 0.0f, 1.0f)));
+        }
+      }
+    return out;
+  };
+  const double cut = compareImages(both, composite(true)).psnr;
+  const double uncut = compareImages(both, composite(false)).psnr;
+  std::printf("opaque sphere: PSNR %.2f dB with ray ends, %.2f dB without\n", cut, uncut);
+  // Polygonal vs exact sphere silhouettes and 8-bit rounding separate the first pair.
+  EXPECT_GT(cut, 40.0);
+  // Ignoring the depth (the volume drawn over the whole sphere) is clearly worse.
+  EXPECT_LT(uncut, cut - 6.0) << "cut " << cut << " uncut " << uncut;
+}
+
+// Moving the volume and the camera together, or scaling both (with the world-unit distances),
+// leaves the image unchanged.
+TEST(VolumeMapper, FollowsTheVolumeTransform) {
+  VtkVolumeScene reference(marschnerLobbModel(), true);
+  const Image8 base = reference.render();
+
+  VtkVolumeScene moved(marschnerLobbModel(), true);
+  const Vec3d shift(5.0, -2.0, 1.0);
+  moved.volume->SetPosition(shift[0], shift[1], shift[2]);
+  vtkCamera* c = moved.renderer->GetActiveCamera();
+  const Vec3d position = Vec3d(2.2, 1.6, 3.4) + shift, focal = Vec3d(0.05, -0.05, 0.0) + shift;
+  c->SetPosition(position[0], position[1], position[2]);
+  c->SetFocalPoint(focal[0], focal[1], focal[2]);
+  EXPECT_GT(compareImages(base, moved.render()).psnr, 45.0);
+  double b[6];
+  moved.volume->GetBounds(b);
+  EXPECT_NEAR(b[0], -1.0 + shift[0], 1e-9);
+  EXPECT_NEAR(b[5], 1.0 + shift[2], 1e-9);
+
+  VtkVolumeScene scaled(marschnerLobbModel(), true);
+  scaled.volume->SetScale(2.0);
+  scaled.mapper->SetSampleDistance(0.04);
+  scaled.property->SetScalarOpacityUnitDistance(0.2);
+  c = scaled.renderer->GetActiveCamera();
+  c->SetPosition(4.4, 3.2, 6.8);
+  c->SetFocalPoint(0.1, -0.1, 0.0);
+  EXPECT_GT(compareImages(base, scaled.render()).psnr, 40.0);
+}
+
+TEST(VolumeMapper, ImageSampleDistanceRendersFewerRays) {
+  VtkVolumeScene scene(marschnerLobbModel(), true);
+  const Image8 full = scene.render();
+  scene.mapper->AutoAdjustSampleDistancesOff();
+  scene.mapper->SetImageSampleDistance(2.0);
+  const Image8 coarse = scene.render();
+  EXPECT_DOUBLE_EQ(scene.mapper->GetLastImageSampleDistance(), 2.0);
+  const double psnr = compareImages(full, coarse).psnr;
+  EXPECT_GT(psnr, 20.0);  // the same picture, magnified
+  EXPECT_LT(psnr, 40.0);  // but not the full-resolution one
+}
+
+TEST(VolumeMapper, EncodesImageDataOnTheStandardPort) {
+  const auto ml = makeBuiltin("marschner-lobb");
+  const StructuredGrid grid = sampleBuiltin(*ml, {41, 41, 41});
+  vtkNew<vtkImageData> image;
+  image->SetDimensions(41, 41, 41);
+  image->SetOrigin(grid.origin.data());
+  image->SetSpacing(grid.spacing.data());
+  image->AllocateScalars(VTK_DOUBLE, 1);
+  std::copy(grid.values.begin(), grid.values.end(),
+            static_cast<double*>(image->GetScalarPointer()));
+
+  VtkVolumeScene scene(marschnerLobbModel(), true);
+  const Image8 viaModel = scene.render();
+  scene.mapper->RemoveAllInputConnections(1);
+  scene.mapper->SetInputData(image);
+  const Image8 viaImage = scene.render();
+  ASSERT_NE(scene.mapper->GetMFAInput(), nullptr);
+  int counts[3];
+  scene.mapper->GetMFAInput()->GetNumberOfControlPoints(counts);
+  EXPECT_EQ(counts[0], 41);  // the default fit interpolates
+  EXPECT_GT(compareImages(viaModel, viaImage).psnr, 45.0);
+  double b[6];
+  scene.mapper->GetBounds(b);
+  EXPECT_DOUBLE_EQ(b[0], -1.0);
+  EXPECT_DOUBLE_EQ(b[3], 1.0);
+}
+
+TEST(VolumeMapper, RendersNothingWithoutInput) {
+  VtkVolumeScene scene(marschnerLobbModel(), true);
+  scene.mapper->RemoveAllInputConnections(1);
+  const Image8 empty = scene.render();
+  EXPECT_EQ(coverage(empty, scene.coreSettings().background), 0.0);
+}
+
+}  // namespace
+}  // namespace mfadvr::test
