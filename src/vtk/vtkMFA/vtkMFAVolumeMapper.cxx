@@ -24,6 +24,7 @@
 #include <algorithm>
 #include <cmath>
 #include <exception>
+#include <stdexcept>
 #include <set>
 #include <vector>
 
@@ -41,6 +42,7 @@ struct vtkMFAVolumeMapper::Internals
   std::set<std::string> Warned;
   std::vector<float> Depth;
   std::vector<unsigned char> Pixels;
+  std::function<mfadvr::Image(const mfadvr::RenderSettings&)> FieldRenderer;
   double LastSeconds = 0.0;
 };
 
@@ -91,6 +93,13 @@ void vtkMFAVolumeMapper::SetMFAInputData(vtkMFAModelData* model)
 vtkMFAEncoder* vtkMFAVolumeMapper::GetEncoder()
 {
   return this->Internal->Encoder;
+}
+
+void vtkMFAVolumeMapper::SetFieldRenderer(
+  std::function<mfadvr::Image(const mfadvr::RenderSettings&)> render)
+{
+  this->Internal->FieldRenderer = std::move(render);
+  this->Modified();
 }
 
 vtkDataObject* vtkMFAVolumeMapper::GetDataObjectInput()
@@ -290,8 +299,13 @@ void vtkMFAVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
       s.rayEnd.clear();
     }
 
-    const mfadvr::ModelField field(*model);
-    const mfadvr::Image image = mfadvr::renderVolume(field, s);
+    const mfadvr::Image image = this->Internal->FieldRenderer
+      ? this->Internal->FieldRenderer(s)
+      : mfadvr::renderVolume(mfadvr::ModelField(*model), s);
+    if (image.width != rw || image.height != rh)
+    {
+      throw std::runtime_error("the field renderer returned an image of the wrong size");
+    }
 
     // 8-bit premultiplied RGBA, row 0 at the bottom as OpenGL wants it.
     auto& pixels = this->Internal->Pixels;

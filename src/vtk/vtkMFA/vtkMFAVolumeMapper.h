@@ -23,6 +23,13 @@
 #include "vtkMFAModule.h"  // for export macro
 #include "vtkVolumeMapper.h"
 
+#ifndef __VTK_WRAP__
+#include <functional>  // for std::function
+namespace mfadvr {
+struct Image;
+struct RenderSettings;
+}
+#endif
 #include <memory>  // for std::unique_ptr
 #include <string>  // for std::string
 
@@ -115,6 +122,17 @@ public:
   //@}
 
   vtkDataObject* GetDataObjectInput() override;
+
+#ifndef __VTK_WRAP__
+  /**
+   * C++ only: renders the scene with `render` instead of the model (which still gives the
+   * bounds), e.g. another reconstruction of the same data through the same ray caster, for side
+   * by side comparisons (the `mfadvr view` command). The function receives the settings the
+   * mapper derived from the VTK scene, in the model's coordinates, and returns the premultiplied
+   * image (background 0). An empty function restores the model.
+   */
+  void SetFieldRenderer(std::function<mfadvr::Image(const mfadvr::RenderSettings&)> render);
+#endif
 
   void Render(vtkRenderer* ren, vtkVolume* vol) override;
   void ReleaseGraphicsResources(vtkWindow* window) override;

@@ -1,0 +1,284 @@
+// mfadvr view INPUT [--method M] [scene options] [--screenshot OUT.png]
+//
+// An interactive VTK window on a scene: the model rendered by vtkMFAVolumeMapper inside an
+// ordinary vtkRenderer, with a trackball camera. Keys switch the reconstruction method (every
+// method goes through the same ray caster), the colour map and the opacity preset, and toggle
+// shading. --screenshot renders one frame off screen to a PNG instead (how it is tested, under
+// xvfb-run). docs/vtk-module.md describes the keys.
+#include <vtkCallbackCommand.h>
+#include <vtkCamera.h>
+#include <vtkCommand.h>
+#include <vtkImageData.h>
+#include <vtkInteractorStyleTrackballCamera.h>
+#include <vtkNew.h>
+#include <vtkObjectFactory.h>
+#include <vtkPointData.h>
+#include <vtkRenderWindow.h>
+#include <vtkRenderWindowInteractor.h>
+#include <vtkRenderer.h>
+#include <vtkTextActor.h>
+#include <vtkTextProperty.h>
+#include <vtkUnsignedCharArray.h>
+#include <vtkVolume.h>
+#include <vtkVolumeProperty.h>
+#include <vtkWindowToImageFilter.h>
+
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "app/Commands.h"
+#include "app/EncodeCliOptions.h"
+#include "app/OptionParsing.h"
+#include "app/RenderOptions.h"
+#include "app/SceneLoader.h"
+#include "core/image/Image.h"
+#include "core/image/PngFile.h"
+#include "core/render/ReconstructionMethod.h"
+#include "core/render/TransferFunction.h"
+#include "core/util/Error.h"
+#include "io/ScatteredLoader.h"
+#include "io/VolumeLoader.h"
+#include "vtkMFAModelData.h"
+#include "vtkMFAVolumeMapper.h"
+#include "vtkrender/DisplayCheck.h"
+#include "vtkrender/VtkSceneSetup.h"
+
+namespace mfadvr::app {
+namespace {
+
+const std::vector<std::string> kOpacityCycle = {"ramp", "step:0.3", "step:0.5", "step:0.7",
+                                                "tent:0.5:0.2"};
+
+// What the keys change, and the VTK objects they change.
+struct Viewer {
+  const LoadedScene* scene = nullptr;
+  RenderOptions options;
+  std::vector<ReconstructionMethod> methods;
+  size_t method = 0;
+  vtkNew<vtkMFAModelData> data;
+  vtkNew<vtkMFAVolumeMapper> mapper;
+  vtkNew<vtkVolumeProperty> property;
+  vtkNew<vtkVolume> volume;
+  vtkNew<vtkRenderer> renderer;
+  vtkNew<vtkRenderWindow> window;
+  vtkNew<vtkTextActor> status;
+
+  // Re-derives the transfer function and shading from the options; keeps the live camera.
+  void applyOptions() {
+    const RenderSettings s = options.settingsFor(*scene);
+    applyTransferFunction(s, property);
+    applyLighting(s.lighting, renderer);
+    mapper->SetSampleDistance(s.sampleDistance);
+    const ReconstructionMethod m = methods[method];
+    if (m == ReconstructionMethod::Mfa) {
+      mapper->SetFieldRenderer({});
+    } else {
+      const SceneData view = scene->view();
+      mapper->SetFieldRenderer([view, m](const RenderSettings& settings) {
+        MethodSpec spec;
+        spec.method = m;
+        return renderMethod(view, spec, settings);
+      });
+    }
+    updateStatus();
+  }
+
+  void updateStatus() {
+    char text[512];
+    std::snprintf(text, sizeof(text), "%s | colours %s | opacity %s | %s | %.0f ms",
+                  methodName(methods[method]).c_str(),
+                  options.colormap.empty() ? "cool-to-warm" : options.colormap.c_str(),
+                  options.tf.empty() ? "ramp" : options.tf.c_str(),
+                  options.shade ? "shaded" : "unshaded", 1000.0 * mapper->GetTimeToDraw());
+    status->SetInput(text);
+  }
+
+  void onKey(const std::string& key) {
+    if (key == "m") {
+      method = (method + 1) % methods.size();
+    } else if (key == "t") {
+      const auto names = colorMapPresetNames();
+      size_t i = 0;
+      while (i < names.size() && names[i] != options.colormap) ++i;
+      options.colormap = names[(i + 1) % names.size()];
+    } else if (key == "o") {
+      size_t i = 0;
+      while (i < kOpacityCycle.size() && kOpacityCycle[i] != options.tf) ++i;
+      options.tf = kOpacityCycle[(i + 1) % kOpacityCycle.size()];
+    } else if (key == "s") {
+      options.shade = !options.shade;
+    } else {
+      return;
+    }
+    applyOptions();
+    window->Render();
+    updateStatus();  // with this frame's time
+    window->Render();
+  }
+};
+
+// The trackball camera, with the viewer's keys taking precedence over the style's own.
+class ViewerStyle : public vtkInteractorStyleTrackballCamera {
+ public:
+  static ViewerStyle* New();
+  vtkTypeMacro(ViewerStyle, vtkInteractorStyleTrackballCamera);
+  Viewer* viewer = nullptr;
+
+  void OnChar() override {
+    const std::string key = this->Interactor->GetKeySym() ? this->Interactor->GetKeySym() : "";
+    if (key == "m" || key == "t" || key == "o" || key == "s") {
+      viewer->onKey(key);
+      return;
+    }
+    if (key == "h") {
+      std::cout << kKeyHelp;
+      return;
+    }
+    vtkInteractorStyleTrackballCamera::OnChar();
+  }
+
+  static constexpr const char* kKeyHelp =
+      "keys: m method, t colour map, o opacity preset, s shading on/off, r reset camera, "
+      "h help, q quit; drag to rotate, shift-drag to pan, wheel to zoom\n";
+};
+vtkStandardNewMacro(ViewerStyle);
+
+Image8 grabWindow(vtkRenderWindow* window) {
+  vtkNew<vtkWindowToImageFilter> grab;
+  grab->SetInput(window);
+  grab->SetInputBufferTypeToRGB();
+  grab->ReadFrontBufferOff();
+  grab->Update();
+  vtkImageData* out = grab->GetOutput();
+  int dims[3];
+  out->GetDimensions(dims);
+  auto* rgb = vtkUnsignedCharArray::SafeDownCast(out->GetPointData()->GetScalars());
+  if (!rgb || rgb->GetNumberOfComponents() != 3) throw Error("cannot read the window back");
+  Image8 img;
+  img.width = dims[0];
+  img.height = dims[1];
+  img.channels = 3;
+  img.data.resize(static_cast<size_t>(3) * dims[0] * dims[1]);
+  const size_t row = static_cast<size_t>(3) * dims[0];
+  for (int y = 0; y < dims[1]; ++y)  // VTK's row 0 is the bottom
+    std::copy_n(rgb->GetPointer(0) + static_cast<size_t>(dims[1] - 1 - y) * row, row,
+                img.data.data() + static_cast<size_t>(y) * row);
+  return img;
+}
+
+}  // namespace
+
+Command addViewCommand(CLI::App& app) {
+  struct Options {
+    std::string input, method = "mfa", screenshot, spacing, origin, field;
+    EncodeCliOptions encode;
+    RenderOptions render;
+    bool quiet = false;
+  };
+  auto o = std::make_shared<Options>();
+  CLI::App* sub = app.add_subcommand(
+      "view", "Interactive VTK window on a model, volume or mesh (vtkMFAVolumeMapper)");
+  sub->add_option("input", o->input,
+                  "A model (.mfa), a volume, mesh or point file, or builtin:NAME[:N|:NXxNYxNZ]")
+      ->required();
+  sub->add_option("--method", o->method,
+                  "Reconstruction shown first; key m cycles through those the input allows")
+      ->check(CLI::IsMember(reconstructionMethodNames()))
+      ->capture_default_str();
+  sub->add_option("--screenshot", o->screenshot,
+                  "Render one frame off screen to this PNG and exit (no window)");
+  o->render.addTo(sub);
+  o->encode.addTo(sub, "Encoding (non-model inputs)");
+  const char* in = "Input";
+  sub->add_option("--spacing", o->spacing, "Sample spacing S or SX,SY,SZ (overrides the file's)")
+      ->group(in);
+  sub->add_option("--origin", o->origin, "Position of the first sample X,Y,Z")->group(in);
+  sub->add_option("--field", o->field, "Scalar array to render")->group(in);
+  sub->add_flag("-q,--quiet", o->quiet, "No progress on stderr");
+
+  auto run = [o]() -> int {
+    requireRenderDisplay();
+    // Grid methods need the samples: volumes and built-in functions have them; model files
+    // and scattered inputs do not (a model of a built-in function has its truth).
+    SceneNeeds needs;
+    needs.model = true;
+    needs.grid = !isModelFile(o->input) && !isScatteredInput(o->input);
+    SceneLoadOptions load;
+    load.encode = o->encode.parse();
+    load.volume = parseVolumeLoadOptions(o->spacing, o->origin, o->field);
+    load.progress = wantProgress(o->quiet);
+    const LoadedScene scene = loadScene(o->input, needs, load);
+
+    auto viewer = std::make_unique<Viewer>();
+    viewer->scene = &scene;
+    viewer->options = o->render;
+    viewer->methods.push_back(ReconstructionMethod::Mfa);
+    if (scene.grid)
+      for (auto m : {ReconstructionMethod::Trilinear, ReconstructionMethod::Tricubic,
+                     ReconstructionMethod::CatmullRom, ReconstructionMethod::BSpline})
+        viewer->methods.push_back(m);
+    if (scene.truth) viewer->methods.push_back(ReconstructionMethod::Truth);
+    const ReconstructionMethod first = parseReconstructionMethod(o->method);
+    viewer->method = 0;
+    while (viewer->method < viewer->methods.size() && viewer->methods[viewer->method] != first)
+      ++viewer->method;
+    if (viewer->method == viewer->methods.size())
+      throw Error("--method " + o->method + " needs data that " + o->input +
+                  " does not provide; available: " + [&] {
+                    std::string list;
+                    for (auto m : viewer->methods) list += (list.empty() ? "" : ", ") + methodName(m);
+                    return list;
+                  }());
+
+    // The scene as the render command would draw it, set up in VTK.
+    const RenderSettings settings = o->render.settingsFor(scene);
+    viewer->data->SetModel(std::make_shared<const Model>(*scene.model));
+    viewer->mapper->SetMFAInputData(viewer->data);
+    viewer->mapper->SetEarlyRayTerminationOpacity(settings.earlyTerminationOpacity);
+    viewer->mapper->SetNumberOfThreads(settings.threads);
+    viewer->property->SetScalarOpacityUnitDistance(settings.opacityUnitDistance);
+    viewer->volume->SetMapper(viewer->mapper);
+    viewer->volume->SetProperty(viewer->property);
+    viewer->renderer->AddVolume(viewer->volume);
+    applyBackground(settings.background, viewer->renderer);
+    viewer->window->AddRenderer(viewer->renderer);
+    viewer->window->SetSize(settings.width, settings.height);
+    viewer->window->SetMultiSamples(0);
+    viewer->window->SetWindowName(("mfadvr view " + o->input).c_str());
+    applyCamera(settings.camera, viewer->renderer);
+    viewer->applyOptions();
+
+    if (!o->screenshot.empty()) {
+      viewer->window->SetOffScreenRendering(1);
+      viewer->window->Render();
+      writePng(o->screenshot, grabWindow(viewer->window));
+      std::printf("%s: %s, %dx%d, frame %.3f s\n", o->screenshot.c_str(),
+                  methodName(viewer->methods[viewer->method]).c_str(), settings.width,
+                  settings.height, viewer->mapper->GetTimeToDraw());
+      return 0;
+    }
+
+    viewer->status->GetTextProperty()->SetFontSize(14);
+    viewer->status->SetDisplayPosition(8, 8);
+    viewer->renderer->AddViewProp(viewer->status);
+    vtkNew<vtkRenderWindowInteractor> interactor;
+    vtkNew<ViewerStyle> style;
+    style->viewer = viewer.get();
+    interactor->SetInteractorStyle(style);
+    interactor->SetRenderWindow(viewer->window);
+    // Still frames at full resolution; while dragging the mapper lowers the image sample
+    // distance to keep about this many frames per second.
+    interactor->SetDesiredUpdateRate(10.0);
+    std::cout << ViewerStyle::kKeyHelp;
+    viewer->window->Render();
+    viewer->updateStatus();
+    interactor->Start();
+    return 0;
+  };
+  return {sub, run};
+}
+
+}  // namespace mfadvr::app
