@@ -2,25 +2,10 @@
 // 9.1's vtkFixedPointVolumeRayCastMapper, side by side in one run (DESIGN.md sections 4 and 6;
 // docs/benchmarks.md). The scene is the Gaussian beam sampled at N^3 on [-1,1]^3; the MFA model
 // interpolates it (degree 2, N^3 control points, as the paper). Both renderers get the same
-// volume, camera, transfer function, lighting coefficients, image size and sample distance.
+// volume, camera, transfer function, lighting coefficients, image size and sample distance (the
+// VTK scene comes from the mfadvr_vtkrender library, as `mfadvr render --method vtk-fixedpoint`).
 //
 // Debian's VTK needs an X display even off screen: run under `xvfb-run -a`.
-#include <vtkCamera.h>
-#include <vtkColorTransferFunction.h>
-#include <vtkFixedPointVolumeRayCastMapper.h>
-#include <vtkFloatArray.h>
-#include <vtkImageData.h>
-#include <vtkLight.h>
-#include <vtkNew.h>
-#include <vtkPiecewiseFunction.h>
-#include <vtkPointData.h>
-#include <vtkRenderWindow.h>
-#include <vtkRenderer.h>
-#include <vtkUnsignedCharArray.h>
-#include <vtkVolume.h>
-#include <vtkVolumeProperty.h>
-#include <vtkWindowToImageFilter.h>
-
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
@@ -45,6 +30,7 @@
 #include "core/render/RenderSettings.h"
 #include "core/render/TransferFunction.h"
 #include "core/util/Error.h"
+#include "vtkrender/VtkBaselineRenderer.h"
 
 namespace {
 
@@ -53,12 +39,6 @@ using Clock = std::chrono::steady_clock;
 
 double secondsSince(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
 std::vector<std::string> splitCommas(const std::string& text) {
@@ -78,125 +58,6 @@ struct Options {
   std::string outDir;
   std::string tf = "ramp", colormap = "cool-to-warm";
   double azimuth = 30.0, elevation = 20.0;
-};
-
-// One VTK pipeline per volume: image data, mapper, property, renderer, off-screen window.
-class VtkScene {
- public:
-  VtkScene(const StructuredGrid& grid, const RenderSettings& s) {
-    image_->SetDimensions(static_cast<int>(grid.dims[0]), static_cast<int>(grid.dims[1]),
-                          static_cast<int>(grid.dims[2]));
-    image_->SetOrigin(grid.origin[0], grid.origin[1], grid.origin[2]);
-    image_->SetSpacing(grid.spacing[0], grid.spacing[1], grid.spacing[2]);
-    vtkNew<vtkFloatArray> scalars;
-    scalars->SetName("value");
-    scalars->SetNumberOfComponents(1);
-    scalars->SetNumberOfTuples(static_cast<vtkIdType>(grid.values.size()));
-    // Both are x fastest.
-    for (size_t i = 0; i < grid.values.size(); ++i)
-      scalars->SetValue(static_cast<vtkIdType>(i), static_cast<float>(grid.values[i]));
-    image_->GetPointData()->SetScalars(scalars);
-
-    mapper_->SetInputData(image_);
-    mapper_->AutoAdjustSampleDistancesOff();
-    mapper_->LockSampleDistanceToInputSpacingOff();
-    mapper_->SetSampleDistance(static_cast<float>(s.sampleDistance));
-    mapper_->SetInteractiveSampleDistance(static_cast<float>(s.sampleDistance));
-    mapper_->SetImageSampleDistance(1.0f);
-    mapper_->SetMinimumImageSampleDistance(1.0f);
-    mapper_->SetMaximumImageSampleDistance(1.0f);
-
-    // The resolved transfer function, point by point (a repeated x replaces the earlier point in
-    // VTK; the presets used here have none).
-    for (const ColorPoint& p : s.transferFunction.color)
-      color_->AddRGBPoint(p.x, p.rgb[0], p.rgb[1], p.rgb[2]);
-    for (const OpacityPoint& p : s.transferFunction.opacity) opacity_->AddPoint(p.x, p.alpha);
-    property_->SetColor(color_);
-    property_->SetScalarOpacity(opacity_);
-    property_->SetInterpolationTypeToLinear();
-    property_->SetScalarOpacityUnitDistance(s.opacityUnitDistance);
-    property_->SetAmbient(s.lighting.ambient);
-    property_->SetDiffuse(s.lighting.diffuse);
-    property_->SetSpecular(s.lighting.specular);
-    property_->SetSpecularPower(s.lighting.specularPower);
-    volume_->SetMapper(mapper_);
-    volume_->SetProperty(property_);
-
-    renderer_->AddVolume(volume_);
-    renderer_->SetBackground(s.background[0], s.background[1], s.background[2]);
-    // A headlight like the one the renderer would create (vtkRenderer::CreateLight), but with a
-    // white ambient colour: vtkLight's default ambient colour is black, and the fixed-point
-    // mapper's shading tables multiply the property's Ambient by it, so VTK's default scene has
-    // no ambient term at all. Ours is ambient * TF colour.
-    light_->SetLightTypeToHeadlight();
-    light_->SetAmbientColor(1.0, 1.0, 1.0);
-    light_->SetDiffuseColor(1.0, 1.0, 1.0);
-    light_->SetSpecularColor(1.0, 1.0, 1.0);
-    light_->SetIntensity(1.0);
-    renderer_->AddLight(light_);
-    renderer_->AutomaticLightCreationOff();
-    window_->SetOffScreenRendering(1);
-    window_->SetMultiSamples(0);
-    window_->SetSize(s.width, s.height);
-    window_->AddRenderer(renderer_);
-
-    vtkCamera* c = renderer_->GetActiveCamera();
-    c->SetPosition(s.camera.position.data());
-    c->SetFocalPoint(s.camera.focalPoint.data());
-    c->SetViewUp(s.camera.viewUp.data());
-    c->SetViewAngle(s.camera.viewAngle);
-    c->SetParallelProjection(s.camera.parallelProjection);
-    c->SetParallelScale(s.camera.parallelScale);
-    renderer_->ResetCameraClippingRange();  // not ResetCamera: keep our framing exactly
-  }
-
-  void setShade(bool shade) { property_->SetShade(shade ? 1 : 0); }
-
-  // One full re-render; returns its wall time.
-  double render() {
-    renderer_->GetActiveCamera()->Modified();
-    renderer_->ResetCameraClippingRange();
-    const auto start = Clock::now();
-    window_->Render();
-    window_->WaitForCompletion();  // the frame is on screen, not just queued
-    return secondsSince(start);
-  }
-
-  // The window's RGB, flipped so that row 0 is at the top like ours.
-  Image8 readBack() {
-    vtkNew<vtkWindowToImageFilter> grab;
-    grab->SetInput(window_);
-    grab->SetInputBufferTypeToRGB();
-    grab->ReadFrontBufferOff();
-    grab->Update();
-    vtkImageData* out = grab->GetOutput();
-    int dims[3];
-    out->GetDimensions(dims);
-    auto* data = vtkUnsignedCharArray::SafeDownCast(out->GetPointData()->GetScalars());
-    if (!data || data->GetNumberOfComponents() != 3)
-      throw Error("VTK read-back did not give 8-bit RGB");
-    Image8 img;
-    img.width = dims[0];
-    img.height = dims[1];
-    img.channels = 3;
-    img.data.resize(size_t(3) * dims[0] * dims[1]);
-    const unsigned char* src = data->GetPointer(0);
-    const size_t row = size_t(3) * dims[0];
-    for (int y = 0; y < dims[1]; ++y)
-      std::copy_n(src + size_t(dims[1] - 1 - y) * row, row, img.data.data() + size_t(y) * row);
-    return img;
-  }
-
- private:
-  vtkNew<vtkImageData> image_;
-  vtkNew<vtkFixedPointVolumeRayCastMapper> mapper_;
-  vtkNew<vtkColorTransferFunction> color_;
-  vtkNew<vtkPiecewiseFunction> opacity_;
-  vtkNew<vtkVolumeProperty> property_;
-  vtkNew<vtkVolume> volume_;
-  vtkNew<vtkRenderer> renderer_;
-  vtkNew<vtkLight> light_;
-  vtkNew<vtkRenderWindow> window_;
 };
 
 struct Row {
@@ -289,17 +150,18 @@ int run(const Options& o) {
     s.earlyTerminationOpacity = 0.99;
     s.threads = 0;
 
-    VtkScene vtk(grid, s);
+    VtkBaselineRenderer vtk(VtkMethod::FixedPoint, {&grid, nullptr}, s);
     for (const bool shade : shadings) {
       s.shade = shade;
       const std::string tag = std::to_string(n) + (shade ? "_shaded" : "_unshaded");
 
       vtk.setShade(shade);
       Row vtkRow{"vtk-fixedpt", 0, 0, 0};
-      vtkRow.setup = vtk.render();  // first frame: builds tables (and gradients when shaded)
+      // First frame: builds tables (and gradients when shaded); then the timed frames.
+      const VtkFrameTimes vtkTimes = vtk.renderFrames(1 + o.repeats);
+      vtkRow.setup = vtkTimes.firstSeconds;
+      vtkRow.seconds = vtkTimes.medianSeconds;
       std::vector<double> times;
-      for (int r = 0; r < o.repeats; ++r) times.push_back(vtk.render());
-      vtkRow.seconds = median(times);
       const Image8 vtkImage = vtk.readBack();
       if (!o.outDir.empty()) writePng(o.outDir + "/" + tag + "_vtk.png", vtkImage);
 
@@ -323,7 +185,7 @@ int run(const Options& o) {
           image = renderMethod(scene, spec, s, &stats);
           times.push_back(stats.seconds);
         }
-        row.seconds = median(times);
+        row.seconds = medianSeconds(times);
         row.setup = stats.setupSeconds;
         row.samples = static_cast<double>(stats.samples);
         frame[m] = row.seconds;

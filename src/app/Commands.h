@@ -17,5 +17,6 @@ Command addQueryCommand(CLI::App& app);
 Command addRenderCommand(CLI::App& app);
 Command addDemoCommand(CLI::App& app);
 Command addCompareCommand(CLI::App& app);
+Command addViewCommand(CLI::App& app);
 
 }  // namespace mfadvr::app

@@ -14,30 +14,145 @@
 #include "core/util/Error.h"
 #include "io/ScatteredLoader.h"
 #include "io/VolumeLoader.h"
+#include "vtkrender/VtkBaselineRenderer.h"
 
 namespace mfadvr::app {
 
 namespace {
 
-std::string methodList() {
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+std::vector<std::string> allMethodNames() {
+  std::vector<std::string> names = reconstructionMethodNames();
+  for (const auto& n : vtkMethodNames()) names.push_back(n);
+  return names;
+}
+
+std::string methodList(const std::vector<std::string>& names) {
   std::string list;
-  for (const auto& n : reconstructionMethodNames()) list += (list.empty() ? "" : "|") + n;
+  for (const auto& n : names) list += (list.empty() ? "" : "|") + n;
   return list;
+}
+
+struct Options {
+  std::string input, output, floatOutput, method, gradientFrom, gradient = "analytic";
+  std::string spacing, origin, field;
+  EncodeCliOptions encode;
+  bool json = false, quiet = false, alpha = false;
+  int frames = 0;  // 0: 1 for our methods, 3 for VTK's
+  RenderOptions render;
+};
+
+// Load and settings, shared by both kinds of method.
+SceneLoadOptions loadOptions(const Options& o, bool progress) {
+  SceneLoadOptions load;
+  load.encode = o.encode.parse();
+  load.volume = parseVolumeLoadOptions(o.spacing, o.origin, o.field);
+  load.progress = progress;
+  return load;
+}
+
+// --method vtk-*: VTK's own renderer on the input's grid or mesh.
+int renderWithVtk(const Options& o, VtkMethod method, Clock::time_point start) {
+  const std::string name = vtkMethodName(method);
+  if (!o.gradientFrom.empty())
+    throw CLI::ValidationError("--gradient-from",
+                               "the gradient test runs on our ray caster, not on " + name);
+  if (o.gradient != "analytic")
+    throw CLI::ValidationError("--gradient", name + " computes its own gradients");
+  if (o.alpha || !o.floatOutput.empty())
+    throw CLI::ValidationError(o.alpha ? "--alpha" : "--float",
+                               name + " gives an 8-bit RGB image only (read back from VTK)");
+  if (method == VtkMethod::FixedPoint && !isModelFile(o.input) && isScatteredInput(o.input))
+    throw Error(name + " (" + vtkMapperClassName(method) + ") renders regular grids; " + o.input +
+                " holds a mesh or points: use vtk-bunyk, vtk-zsweep or vtk-pt (meshes with "
+                "tetrahedra), or --method mfa");
+
+  const bool progress = wantProgress(o.quiet || o.json);
+  SceneNeeds needs;
+  needs.grid = method == VtkMethod::FixedPoint;
+  needs.cells = vtkMethodNeedsTetrahedra(method);
+  const LoadedScene scene = loadScene(o.input, needs, loadOptions(o, progress));
+  const RenderSettings settings = o.render.settingsFor(scene);
+  const int frames = o.frames > 0 ? o.frames : 3;
+
+  if (!o.quiet && !o.json) {
+    if (settings.shade && !vtkMethodShades(method))
+      std::cerr << "mfadvr render: warning: " << name << " does not shade; --shade is ignored\n";
+    if (o.render.step > 0 && !vtkMethodUsesSampleDistance(method))
+      std::cerr << "mfadvr render: warning: " << name
+                << " integrates across each cell; --step is ignored\n";
+  }
+
+  VtkBaselineInput input;
+  input.grid = scene.grid ? &*scene.grid : nullptr;
+  input.mesh = scene.scattered ? &*scene.scattered : nullptr;
+  VtkBaselineRenderer renderer(method, input, settings);
+  if (progress) std::cerr << "rendering " << frames << " frame(s) with " << name << "\n";
+  const VtkFrameTimes times = renderer.renderFrames(frames);
+  writePng(o.output, renderer.readBack());
+  const double total = secondsSince(start);
+
+  const bool shaded = settings.shade && vtkMethodShades(method);
+  const std::string cells = renderer.tetrahedralized() ? "tetrahedra (from the grid's voxels)"
+                            : method == VtkMethod::FixedPoint ? "voxels"
+                                                              : "tetrahedra";
+  if (o.json) {
+    nlohmann::json j;
+    j["input"] = o.input;
+    j["output"] = o.output;
+    j["method"] = name;
+    j["mapper"] = vtkMapperClassName(method);
+    j["width"] = settings.width;
+    j["height"] = settings.height;
+    j["sample_distance"] = vtkMethodUsesSampleDistance(method)
+                               ? nlohmann::json(settings.sampleDistance)
+                               : nlohmann::json(nullptr);
+    j["opacity_unit_distance"] = settings.opacityUnitDistance;
+    j["shade"] = shaded;
+    j["shade_requested"] = settings.shade;
+    j["value_range"] = {scene.valueMin, scene.valueMax};
+    j["points"] = renderer.pointCount();
+    j["cells"] = renderer.cellCount();
+    j["tetrahedralized"] = renderer.tetrahedralized();
+    j["frames"] = frames;
+    j["frame_seconds"] = times.seconds;
+    j["seconds"] = {{"load", scene.loadSeconds},
+                    {"encode", scene.encodeSeconds},
+                    {"setup", renderer.preparationSeconds()},
+                    {"first_frame", times.firstSeconds},
+                    {"render", times.medianSeconds},
+                    {"total", total}};
+    std::cout << j.dump(2) << "\n";
+  } else {
+    std::printf("%s: %s (%s), %dx%d, %lld %s, ", o.output.c_str(), name.c_str(),
+                vtkMapperClassName(method).c_str(), settings.width, settings.height,
+                static_cast<long long>(renderer.cellCount()), cells.c_str());
+    if (vtkMethodUsesSampleDistance(method)) std::printf("step %.4g, ", settings.sampleDistance);
+    std::printf("%s\n", shaded ? "shaded" : "unshaded");
+    if (frames > 1)
+      std::printf("  render %.3f s (median of %d frames after the first), first frame %.3f s",
+                  times.medianSeconds, frames - 1, times.firstSeconds);
+    else
+      std::printf("  render %.3f s (one frame, building VTK's structures included)",
+                  times.firstSeconds);
+    std::printf(", setup %.3f s, total %.3f s\n", renderer.preparationSeconds(), total);
+  }
+  return 0;
 }
 
 }  // namespace
 
 Command addRenderCommand(CLI::App& app) {
-  struct Options {
-    std::string input, output, floatOutput, method, gradientFrom, gradient = "analytic";
-    std::string spacing, origin, field;
-    EncodeCliOptions encode;
-    bool json = false, quiet = false, alpha = false;
-    RenderOptions render;
-  };
   auto o = std::make_shared<Options>();
   CLI::App* sub = app.add_subcommand(
-      "render", "Ray-cast a volume image of an MFA model, a grid filter or the analytic truth");
+      "render",
+      "Ray-cast a volume image of an MFA model, a grid filter or the analytic truth, or render "
+      "the data with one of VTK's volume renderers");
   sub->add_option("input", o->input,
                   "A model (.mfa), a volume, mesh or point file, or builtin:NAME[:N|:NXxNYxNZ]\n" +
                       supportedVolumeFormats() + "\n" + supportedScatteredFormats())
@@ -45,10 +160,11 @@ Command addRenderCommand(CLI::App& app) {
   sub->add_option("-o,--output", o->output, "PNG to write (8-bit RGB; RGBA with --alpha)")
       ->required();
   sub->add_option("--method", o->method,
-                  "Reconstruction: " + methodList() +
+                  "Reconstruction: " + methodList(reconstructionMethodNames()) +
                       " [default: mfa; a non-model input is encoded first with the encoding "
-                      "options]")
-      ->check(CLI::IsMember(reconstructionMethodNames()));
+                      "options]; or a VTK baseline: vtk-fixedpoint (grids), vtk-bunyk, "
+                      "vtk-zsweep, vtk-pt (tetrahedral meshes; a grid is tetrahedralized)")
+      ->check(CLI::IsMember(allMethodNames()));
   sub->add_option("--gradient-from", o->gradientFrom,
                   "Gradient test (paper Table 1): value from the truth, gradient from this method")
       ->check(CLI::IsMember(reconstructionMethodNames()));
@@ -57,6 +173,11 @@ Command addRenderCommand(CLI::App& app) {
                   "one data spacing apart)")
       ->check(CLI::IsMember({"analytic", "central"}))
       ->capture_default_str();
+  sub->add_option("--frames", o->frames,
+                  "Frames to render and time: the first is reported apart (for VTK it builds "
+                  "the mapper's structures), the frame time is the median of the others "
+                  "[default: 3 for vtk-*, 1 otherwise]")
+      ->check(CLI::Range(1, 1000));
   sub->add_flag("--alpha", o->alpha, "Write RGBA (alpha = accumulated opacity)");
   sub->add_option("--float", o->floatOutput,
                   "Also write the linear float RGBA image as NRRD (for analysis)");
@@ -71,8 +192,8 @@ Command addRenderCommand(CLI::App& app) {
   sub->add_flag("-q,--quiet", o->quiet, "No progress on stderr");
 
   auto run = [o]() -> int {
-    using Clock = std::chrono::steady_clock;
     const auto start = Clock::now();
+    if (const auto vtk = findVtkMethod(o->method)) return renderWithVtk(*o, *vtk, start);
     MethodSpec spec;
     if (!o->gradientFrom.empty()) {
       spec.gradientFrom = parseReconstructionMethod(o->gradientFrom);
@@ -93,20 +214,26 @@ Command addRenderCommand(CLI::App& app) {
       needs.grid |= isGridMethod(*m);
     }
 
-    SceneLoadOptions load;
-    load.encode = o->encode.parse();
-    load.volume = parseVolumeLoadOptions(o->spacing, o->origin, o->field);
     const bool progress = wantProgress(o->quiet || o->json);
-    load.progress = progress;
-
-    const LoadedScene scene = loadScene(o->input, needs, load);
+    const LoadedScene scene = loadScene(o->input, needs, loadOptions(*o, progress));
     RenderSettings settings = o->render.settingsFor(scene);
     if (progress) settings.progress = [](double f) { printProgress("rendering", f); };
+    const int frames = o->frames > 0 ? o->frames : 1;
     MethodRenderStats stats;
-    const Image image = renderMethod(scene.view(), spec, settings, &stats);
+    Image image;
+    std::vector<double> frameSeconds;
+    for (int i = 0; i < frames; ++i) {
+      image = renderMethod(scene.view(), spec, settings, &stats);
+      frameSeconds.push_back(stats.seconds);
+    }
+    const double firstFrame = frameSeconds.front();
+    const double frameTime =
+        frames == 1
+            ? firstFrame
+            : medianSeconds(std::vector<double>(frameSeconds.begin() + 1, frameSeconds.end()));
     writePng(o->output, toImage8(image, o->alpha));
     if (!o->floatOutput.empty()) writeFloatImage(o->floatOutput, image);
-    const double total = std::chrono::duration<double>(Clock::now() - start).count();
+    const double total = secondsSince(start);
 
     std::string label = methodName(spec.method);
     if (spec.gradientFrom) label += " (gradient from " + methodName(*spec.gradientFrom) + ")";
@@ -125,24 +252,26 @@ Command addRenderCommand(CLI::App& app) {
       j["opacity_unit_distance"] = settings.opacityUnitDistance;
       j["shade"] = settings.shade;
       j["value_range"] = {scene.valueMin, scene.valueMax};
-      j["seconds"] = {{"load", scene.loadSeconds},
-                      {"encode", scene.encodeSeconds},
-                      {"setup", stats.setupSeconds},
-                      {"render", stats.seconds},
-                      {"total", total}};
+      j["frames"] = frames;
+      j["frame_seconds"] = frameSeconds;
+      j["seconds"] = {{"load", scene.loadSeconds},   {"encode", scene.encodeSeconds},
+                      {"setup", stats.setupSeconds}, {"first_frame", firstFrame},
+                      {"render", frameTime},         {"total", total}};
       j["rays"] = stats.rays;
       j["rays_hit"] = stats.raysHit;
       j["samples"] = stats.samples;
       j["rays_terminated_early"] = stats.terminated;
-      j["samples_per_second"] = stats.seconds > 0 ? stats.samples / stats.seconds : 0.0;
+      j["samples_per_second"] = frameTime > 0 ? stats.samples / frameTime : 0.0;
       std::cout << j.dump(2) << "\n";
     } else {
       std::printf("%s: %s, %dx%d, step %.4g, %s\n", o->output.c_str(), label.c_str(),
                   settings.width, settings.height, settings.sampleDistance,
                   settings.shade ? "shaded" : "unshaded");
-      std::printf("  render %.3f s (%.1f M samples, %.1f M samples/s)", stats.seconds,
-                  stats.samples / 1e6,
-                  stats.seconds > 0 ? stats.samples / stats.seconds / 1e6 : 0.0);
+      std::printf("  render %.3f s (%.1f M samples, %.1f M samples/s)", frameTime,
+                  stats.samples / 1e6, frameTime > 0 ? stats.samples / frameTime / 1e6 : 0.0);
+      if (frames > 1)
+        std::printf(", median of %d frames after the first, first frame %.3f s", frames - 1,
+                    firstFrame);
       if (scene.encodeSeconds > 0) std::printf(", encode %.3f s", scene.encodeSeconds);
       if (stats.setupSeconds > 0.001) std::printf(", setup %.3f s", stats.setupSeconds);
       std::printf(", total %.3f s\n", total);

@@ -46,6 +46,26 @@ void takeModelFacts(LoadedScene& s) {
   }
 }
 
+// Box, value range and spacing of scattered data that is not encoded: the spacing that
+// takeModelFacts would find in the model `encodePoints` makes with these options, so that the
+// default step and opacity unit distance match those of --method mfa on the same input.
+void takeScatteredFacts(LoadedScene& s, const ScatteredData& data, const EncodeOptions& encode) {
+  s.boxMin = data.boxMin();
+  s.boxMax = data.boxMax();
+  const auto [lo, hi] = std::minmax_element(data.values.begin(), data.values.end());
+  s.valueMin = *lo;
+  s.valueMax = *hi;
+  ScatteredFitOptions fit;
+  fit.degree = encode.degree;
+  fit.controlCounts = encode.controlCounts;
+  const Index3 counts = resolveScatteredControlCounts(data, fit);
+  const Index3 mask = encode.mask.enabled ? maskDimsFor(data, encode.mask) : Index3{1, 1, 1};
+  for (int a = 0; a < 3; ++a) {
+    const std::int64_t n = std::max(counts[a], mask[a]);
+    s.spacing[a] = (s.boxMax[a] - s.boxMin[a]) / double(std::max<std::int64_t>(n - 1, 1));
+  }
+}
+
 }  // namespace
 
 bool isModelFile(const std::string& path) {
@@ -73,12 +93,18 @@ LoadedScene loadScene(const std::string& input, const SceneNeeds& needs,
     if (isBuiltinSpec(p.source)) {
       // A model of a built-in function: the truth is known, and its samples can be recomputed.
       s.truth = makeBuiltin(parseBuiltinSpec(p.source).name);
-      if (needs.grid && p.sampleDims[0] > 0) s.grid = sampleBuiltin(*s.truth, p.sampleDims);
+      if ((needs.grid || needs.cells) && p.sampleDims[0] > 0)
+        s.grid = sampleBuiltin(*s.truth, p.sampleDims);
     }
     if (needs.grid && !s.grid)
       throw Error(
           "grid methods need the samples, which a model file does not hold; render the "
           "volume file it was encoded from (" +
+          p.source + ") instead");
+    if (needs.cells && !s.grid)
+      throw Error(
+          "VTK's renderers render the data, which a model file does not hold; render the "
+          "file it was encoded from (" +
           p.source + ") instead");
     s.loadSeconds = since(start);
     return s;
@@ -95,12 +121,17 @@ LoadedScene loadScene(const std::string& input, const SceneNeeds& needs,
                   " holds scattered points or a mesh: render it with --method mfa");
     ScatteredLoadOptions load;
     load.field = options.volume.field;
-    const ScatteredData data = loadScatteredData(input, load);
+    ScatteredData data = loadScatteredData(input, load);
     s.loadSeconds = since(start);
-    const auto encodeStart = Clock::now();
-    s.model = encodePoints(data, encode);
-    s.encodeSeconds = since(encodeStart);
-    takeModelFacts(s);
+    if (needs.model) {
+      const auto encodeStart = Clock::now();
+      s.model = encodePoints(data, encode);
+      s.encodeSeconds = since(encodeStart);
+      takeModelFacts(s);
+    } else {
+      takeScatteredFacts(s, data, encode);
+    }
+    if (needs.cells) s.scattered = std::move(data);
     return s;
   }
   s.grid = loadStructuredVolume(input, options.volume);

@@ -1,13 +1,15 @@
 #pragma once
 // Turns a render command's INPUT into what the methods reconstruct from: a model (loaded, or
-// encoded on the fly from a volume, mesh or point cloud), the grid samples, and the analytic
-// truth when the input is a built-in function (or a model encoded from one).
+// encoded on the fly from a volume, mesh or point cloud), the grid samples, the mesh or point
+// cloud itself (for VTK's tetrahedral baselines), and the analytic truth when the input is a
+// built-in function (or a model encoded from one).
 #include <memory>
 #include <optional>
 #include <string>
 
 #include "core/analytic/BuiltinFunction.h"
 #include "core/encode/Encoder.h"
+#include "core/mesh/ScatteredData.h"
 #include "core/model/Model.h"
 #include "core/render/ReconstructionMethod.h"
 #include "io/VolumeLoader.h"
@@ -17,12 +19,16 @@ namespace mfadvr::app {
 struct SceneNeeds {
   bool model = false;  // some method is mfa
   bool grid = false;   // some method filters the grid
+  // Some method renders the input's cells (VTK's tetrahedral mappers): a mesh or point cloud is
+  // kept as it was read, a volume (or a model of a builtin) as its grid.
+  bool cells = false;
 };
 
 struct LoadedScene {
   std::string input;
   std::optional<Model> model;
   std::optional<StructuredGrid> grid;
+  std::optional<ScatteredData> scattered;  // a mesh or point cloud input, when needs.cells
   std::unique_ptr<BuiltinFunction> truth;
   Vec3d boxMin = Vec3d::Zero(), boxMax = Vec3d::Ones();
   Vec3d spacing = Vec3d::Ones();          // of the data samples: default step and difference step

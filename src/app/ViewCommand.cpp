@@ -16,8 +16,6 @@
 #include <vtkRenderWindow.h>
 #include <vtkRenderWindowInteractor.h>
 #include <vtkRenderer.h>
-#include <vtkTextActor.h>
-#include <vtkTextProperty.h>
 #include <vtkUnsignedCharArray.h>
 #include <vtkVolume.h>
 #include <vtkVolumeProperty.h>
@@ -64,7 +62,6 @@ struct Viewer {
   vtkNew<vtkVolume> volume;
   vtkNew<vtkRenderer> renderer;
   vtkNew<vtkRenderWindow> window;
-  vtkNew<vtkTextActor> status;
 
   // Re-derives the transfer function and shading from the options; keeps the live camera.
   void applyOptions() {
@@ -88,12 +85,14 @@ struct Viewer {
 
   void updateStatus() {
     char text[512];
-    std::snprintf(text, sizeof(text), "%s | colours %s | opacity %s | %s | %.0f ms",
+    std::snprintf(text, sizeof(text), "mfadvr view: %s | colours %s | opacity %s | %s | %.0f ms",
                   methodName(methods[method]).c_str(),
                   options.colormap.empty() ? "cool-to-warm" : options.colormap.c_str(),
                   options.tf.empty() ? "ramp" : options.tf.c_str(),
                   options.shade ? "shaded" : "unshaded", 1000.0 * mapper->GetTimeToDraw());
-    status->SetInput(text);
+    // The window title: a text actor would need VTK's FreeType module, whose CMake package
+    // drags in MPI on Debian.
+    window->SetWindowName(text);
   }
 
   void onKey(const std::string& key) {
@@ -247,7 +246,6 @@ Command addViewCommand(CLI::App& app) {
     viewer->window->AddRenderer(viewer->renderer);
     viewer->window->SetSize(settings.width, settings.height);
     viewer->window->SetMultiSamples(0);
-    viewer->window->SetWindowName(("mfadvr view " + o->input).c_str());
     applyCamera(settings.camera, viewer->renderer);
     viewer->applyOptions();
 
@@ -261,9 +259,6 @@ Command addViewCommand(CLI::App& app) {
       return 0;
     }
 
-    viewer->status->GetTextProperty()->SetFontSize(14);
-    viewer->status->SetDisplayPosition(8, 8);
-    viewer->renderer->AddViewProp(viewer->status);
     vtkNew<vtkRenderWindowInteractor> interactor;
     vtkNew<ViewerStyle> style;
     style->viewer = viewer.get();

@@ -17,7 +17,8 @@ int main(int argc, char** argv) {
   const mfadvr::app::Command commands[] = {
       mfadvr::app::addEncodeCommand(app),  mfadvr::app::addInfoCommand(app),
       mfadvr::app::addQueryCommand(app),   mfadvr::app::addRenderCommand(app),
-      mfadvr::app::addCompareCommand(app), mfadvr::app::addDemoCommand(app)};
+      mfadvr::app::addCompareCommand(app), mfadvr::app::addDemoCommand(app),
+      mfadvr::app::addViewCommand(app)};
 
   try {
     app.parse(argc, argv);

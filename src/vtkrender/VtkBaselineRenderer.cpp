@@ -1,0 +1,271 @@
+#include "vtkrender/VtkBaselineRenderer.h"
+
+#include <vtkCamera.h>
+#include <vtkCommand.h>
+#include <vtkDataSet.h>
+#include <vtkFixedPointVolumeRayCastMapper.h>
+#include <vtkImageData.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkProjectedTetrahedraMapper.h>
+#include <vtkRenderWindow.h>
+#include <vtkRenderer.h>
+#include <vtkSmartPointer.h>
+#include <vtkUnsignedCharArray.h>
+#include <vtkUnstructuredGrid.h>
+#include <vtkUnstructuredGridVolumeRayCastMapper.h>
+#include <vtkUnstructuredGridVolumeZSweepMapper.h>
+#include <vtkVolume.h>
+#include <vtkVolumeProperty.h>
+#include <vtkWindowToImageFilter.h>
+
+#include <algorithm>
+#include <chrono>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/util/Error.h"
+#include "vtkrender/DisplayCheck.h"
+#include "vtkrender/VtkSceneSetup.h"
+
+namespace mfadvr {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// Collects the error messages VTK objects report (instead of printing them), so that a failed
+// render becomes an mfadvr::Error.
+class ErrorCollector : public vtkCommand {
+ public:
+  static ErrorCollector* New() { return new ErrorCollector; }
+  void Execute(vtkObject*, unsigned long, void* callData) override {
+    if (messages.empty() && callData) messages = static_cast<const char*>(callData);
+  }
+  std::string messages;
+};
+
+// The renderers of finished pipelines, kept (without their props) for the life of the process.
+// With Debian's VTK 9.1, a vtkRenderer allocated at the address of a destroyed one sometimes
+// renders with the aspect ratio of a square viewport: the CPU mappers' images come out
+// stretched sideways (seen in the silhouette tests, 1 run in 3). Keeping the old renderer
+// alive prevents the address reuse; an empty renderer costs about a kilobyte.
+void retireRenderer(vtkSmartPointer<vtkRenderer> renderer) {
+  static auto* retired = new std::vector<vtkSmartPointer<vtkRenderer>>;  // never destroyed
+  retired->push_back(std::move(renderer));
+}
+
+}  // namespace
+
+double medianSeconds(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  const size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+struct VtkBaselineRenderer::Impl {
+  VtkMethod method;
+  vtkSmartPointer<vtkDataSet> data;
+  vtkSmartPointer<vtkAbstractVolumeMapper> mapper;
+  vtkNew<vtkVolumeProperty> property;
+  vtkNew<vtkVolume> volume;
+  vtkSmartPointer<vtkRenderer> renderer = vtkSmartPointer<vtkRenderer>::New();
+  vtkNew<vtkRenderWindow> window;
+  vtkNew<ErrorCollector> errors;
+  std::int64_t cells = 0;
+  bool tetrahedralized = false;
+  double preparationSeconds = 0.0;
+};
+
+VtkBaselineRenderer::VtkBaselineRenderer(VtkMethod method, const VtkBaselineInput& input,
+                                         const RenderSettings& settings)
+    : impl_(std::make_unique<Impl>()) {
+  Impl& d = *impl_;
+  d.method = method;
+  const std::string name = vtkMethodName(method);
+  settings.validate();
+  if (!input.grid && !input.mesh) throw Error(name + ": no grid or mesh to render");
+
+  const auto prepareStart = Clock::now();
+  if (method == VtkMethod::FixedPoint) {
+    if (!input.grid) {
+      const ScatteredData& m = *input.mesh;
+      throw Error(name + " (" + vtkMapperClassName(method) + ") renders regular grids; " +
+                  m.source + " is a " + (m.kind.empty() ? "mesh" : m.kind) +
+                  ": use vtk-bunyk, vtk-zsweep or vtk-pt for meshes");
+    }
+    auto image = makeImageData(*input.grid);
+    d.cells = image->GetNumberOfCells();
+    d.data = image;
+  } else if (input.mesh) {
+    auto mesh = makeTetrahedralMesh(*input.mesh);
+    d.cells = mesh->GetNumberOfCells();
+    d.data = mesh;
+  } else {
+    auto mesh = tetrahedralize(makeImageData(*input.grid));
+    d.cells = mesh->GetNumberOfCells();
+    d.data = mesh;
+    d.tetrahedralized = true;
+  }
+  d.preparationSeconds = secondsSince(prepareStart);
+
+  switch (method) {
+    case VtkMethod::FixedPoint: {
+      vtkNew<vtkFixedPointVolumeRayCastMapper> m;
+      m->SetInputData(d.data);
+      m->AutoAdjustSampleDistancesOff();
+      m->LockSampleDistanceToInputSpacingOff();
+      m->SetSampleDistance(static_cast<float>(settings.sampleDistance));
+      m->SetInteractiveSampleDistance(static_cast<float>(settings.sampleDistance));
+      m->SetImageSampleDistance(1.0f);
+      m->SetMinimumImageSampleDistance(1.0f);
+      m->SetMaximumImageSampleDistance(1.0f);
+      if (settings.threads > 0) m->SetNumberOfThreads(settings.threads);
+      d.mapper = m;
+      break;
+    }
+    case VtkMethod::Bunyk: {
+      vtkNew<vtkUnstructuredGridVolumeRayCastMapper> m;
+      m->SetInputData(d.data);
+      m->AutoAdjustSampleDistancesOff();
+      m->SetImageSampleDistance(1.0f);
+      m->SetMinimumImageSampleDistance(1.0f);
+      m->SetMaximumImageSampleDistance(1.0f);
+      if (settings.threads > 0) m->SetNumberOfThreads(settings.threads);
+      d.mapper = m;
+      break;
+    }
+    case VtkMethod::ZSweep: {
+      vtkNew<vtkUnstructuredGridVolumeZSweepMapper> m;
+      m->SetInputData(d.data);
+      m->AutoAdjustSampleDistancesOff();
+      m->SetImageSampleDistance(1.0f);
+      m->SetMinimumImageSampleDistance(1.0f);
+      m->SetMaximumImageSampleDistance(1.0f);
+      d.mapper = m;
+      break;
+    }
+    case VtkMethod::ProjectedTetrahedra: {
+      // The object factory gives vtkOpenGLProjectedTetrahedraMapper.
+      vtkSmartPointer<vtkProjectedTetrahedraMapper> m =
+          vtkSmartPointer<vtkProjectedTetrahedraMapper>::New();
+      if (!m) throw Error(name + ": VTK has no OpenGL projected tetrahedra mapper");
+      m->SetInputData(d.data);
+      d.mapper = m;
+      break;
+    }
+  }
+  d.mapper->AddObserver(vtkCommand::ErrorEvent, d.errors);
+
+  applyTransferFunction(settings, d.property);
+  d.volume->SetMapper(d.mapper);
+  d.volume->SetProperty(d.property);
+  d.renderer->AddVolume(d.volume);
+  applyBackground(settings.background, d.renderer);
+  applyLighting(settings.lighting, d.renderer);
+  applyCamera(settings.camera, d.renderer);
+
+  requireRenderDisplay();  // before the window touches X, which aborts without a display
+  d.window->SetOffScreenRendering(1);
+  d.window->SetMultiSamples(0);
+  d.window->SetSize(settings.width, settings.height);
+  d.window->AddRenderer(d.renderer);
+  // Open the window and its OpenGL context now, with nothing to draw, so that the first timed
+  // frame measures the mapper (its tables, gradients, cell structures) and not the window.
+  d.volume->VisibilityOff();
+  d.window->Render();
+  d.window->WaitForCompletion();
+  d.volume->VisibilityOn();
+  // An OpenGL context without what projected tetrahedra need makes the mapper report an error
+  // on the first frame, which renderFrame turns into an mfadvr::Error.
+}
+
+VtkBaselineRenderer::~VtkBaselineRenderer() {
+  Impl& d = *impl_;
+  d.window->RemoveRenderer(d.renderer);
+  d.renderer->RemoveAllViewProps();
+  retireRenderer(d.renderer);
+}
+
+VtkMethod VtkBaselineRenderer::method() const {
+  return impl_->method;
+}
+
+void VtkBaselineRenderer::setShade(bool shade) {
+  impl_->property->SetShade(shade ? 1 : 0);
+}
+
+double VtkBaselineRenderer::renderFrame() {
+  Impl& d = *impl_;
+  d.renderer->GetActiveCamera()->Modified();
+  d.renderer->ResetCameraClippingRange();
+  d.errors->messages.clear();
+  const auto start = Clock::now();
+  d.window->Render();
+  d.window->WaitForCompletion();  // the frame is drawn, not just queued
+  const double seconds = secondsSince(start);
+  if (!d.errors->messages.empty())
+    throw Error(vtkMethodName(d.method) + ": VTK failed to render: " + d.errors->messages);
+  return seconds;
+}
+
+VtkFrameTimes VtkBaselineRenderer::renderFrames(int frames) {
+  if (frames < 1) throw Error("frames must be at least 1, got " + std::to_string(frames));
+  VtkFrameTimes t;
+  for (int i = 0; i < frames; ++i) t.seconds.push_back(renderFrame());
+  t.firstSeconds = t.seconds.front();
+  t.medianSeconds =
+      frames == 1 ? t.firstSeconds
+                  : medianSeconds(std::vector<double>(t.seconds.begin() + 1, t.seconds.end()));
+  return t;
+}
+
+Image8 VtkBaselineRenderer::readBack() {
+  vtkNew<vtkWindowToImageFilter> grab;
+  grab->SetInput(impl_->window);
+  grab->SetInputBufferTypeToRGB();
+  grab->ReadFrontBufferOff();
+  grab->Update();
+  vtkImageData* out = grab->GetOutput();
+  int dims[3];
+  out->GetDimensions(dims);
+  auto* data = vtkUnsignedCharArray::SafeDownCast(out->GetPointData()->GetScalars());
+  if (!data || data->GetNumberOfComponents() != 3 ||
+      data->GetNumberOfTuples() != vtkIdType(dims[0]) * dims[1])
+    throw Error("VTK read-back did not give 8-bit RGB");
+  Image8 img;
+  img.width = dims[0];
+  img.height = dims[1];
+  img.channels = 3;
+  img.data.resize(size_t(3) * dims[0] * dims[1]);
+  // VTK's row 0 is at the bottom; ours at the top.
+  const unsigned char* src = data->GetPointer(0);
+  const size_t row = size_t(3) * dims[0];
+  for (int y = 0; y < dims[1]; ++y)
+    std::copy_n(src + size_t(dims[1] - 1 - y) * row, row, img.data.data() + size_t(y) * row);
+  return img;
+}
+
+std::int64_t VtkBaselineRenderer::pointCount() const {
+  return impl_->data->GetNumberOfPoints();
+}
+
+std::int64_t VtkBaselineRenderer::cellCount() const {
+  return impl_->cells;
+}
+
+bool VtkBaselineRenderer::tetrahedralized() const {
+  return impl_->tetrahedralized;
+}
+
+double VtkBaselineRenderer::preparationSeconds() const {
+  return impl_->preparationSeconds;
+}
+
+}  // namespace mfadvr

@@ -1,0 +1,189 @@
+#include "vtkrender/VtkSceneSetup.h"
+
+#include <vtkCamera.h>
+#include <vtkCellArray.h>
+#include <vtkColorTransferFunction.h>
+#include <vtkDataSetTriangleFilter.h>
+#include <vtkFloatArray.h>
+#include <vtkImageData.h>
+#include <vtkLight.h>
+#include <vtkNew.h>
+#include <vtkPiecewiseFunction.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkRenderer.h>
+#include <vtkUnstructuredGrid.h>
+#include <vtkVolumeProperty.h>
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <utility>
+#include <vector>
+
+#include "core/util/Error.h"
+
+namespace mfadvr {
+
+namespace {
+
+vtkSmartPointer<vtkFloatArray> floatScalars(const std::vector<double>& values) {
+  auto scalars = vtkSmartPointer<vtkFloatArray>::New();
+  scalars->SetName("value");
+  scalars->SetNumberOfComponents(1);
+  scalars->SetNumberOfTuples(static_cast<vtkIdType>(values.size()));
+  for (size_t i = 0; i < values.size(); ++i)
+    scalars->SetValue(static_cast<vtkIdType>(i), static_cast<float>(values[i]));
+  return scalars;
+}
+
+// x of each point, with a repeated x (a jump) turned into a jump over `eps` by moving the earlier
+// point left.
+template <typename Point>
+std::vector<double> separatedX(const std::vector<Point>& points, double eps) {
+  std::vector<double> x;
+  for (const Point& p : points) x.push_back(p.x);
+  for (size_t i = x.size() - 1; i-- > 0;)
+    if (x[i] > x[i + 1] - eps) x[i] = x[i + 1] - eps;
+  return x;
+}
+
+}  // namespace
+
+vtkSmartPointer<vtkImageData> makeImageData(const StructuredGrid& grid) {
+  grid.validate();
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetDimensions(static_cast<int>(grid.dims[0]), static_cast<int>(grid.dims[1]),
+                       static_cast<int>(grid.dims[2]));
+  image->SetOrigin(grid.origin[0], grid.origin[1], grid.origin[2]);
+  image->SetSpacing(grid.spacing[0], grid.spacing[1], grid.spacing[2]);
+  image->GetPointData()->SetScalars(floatScalars(grid.values));  // both are x fastest
+  return image;
+}
+
+vtkSmartPointer<vtkUnstructuredGrid> makeTetrahedralMesh(const ScatteredData& data) {
+  if (!data.hasCells())
+    throw Error(data.source + " is a " + (data.kind.empty() ? "point cloud" : data.kind) +
+                " without cells: VTK's unstructured volume mappers need tetrahedra (a mesh such "
+                "as .vtu or unstructured legacy .vtk)");
+  data.validate();
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(data.pointCount());
+  for (std::int64_t i = 0; i < data.pointCount(); ++i) {
+    const Vec3d& p = data.points[static_cast<size_t>(i)];
+    points->SetPoint(i, p[0], p[1], p[2]);
+  }
+  vtkNew<vtkCellArray> cells;
+  cells->AllocateExact(static_cast<vtkIdType>(data.tets.size()),
+                       static_cast<vtkIdType>(4 * data.tets.size()));
+  for (const Tetrahedron& t : data.tets) {
+    vtkIdType ids[4] = {t[0], t[1], t[2], t[3]};
+    // VTK's orientation: the first three points counter-clockwise seen from the fourth.
+    const Vec3d& p0 = data.points[size_t(t[0])];
+    const Vec3d a = data.points[size_t(t[1])] - p0, b = data.points[size_t(t[2])] - p0,
+                c = data.points[size_t(t[3])] - p0;
+    if (a.cross(b).dot(c) < 0.0) std::swap(ids[2], ids[3]);
+    cells->InsertNextCell(4, ids);
+  }
+  auto mesh = vtkSmartPointer<vtkUnstructuredGrid>::New();
+  mesh->SetPoints(points);
+  mesh->SetCells(VTK_TETRA, cells);
+  mesh->GetPointData()->SetScalars(floatScalars(data.values));
+  return mesh;
+}
+
+vtkSmartPointer<vtkUnstructuredGrid> tetrahedralize(vtkImageData* image) {
+  vtkNew<vtkDataSetTriangleFilter> filter;
+  filter->SetInputData(image);
+  filter->TetrahedraOnlyOn();
+  filter->Update();
+  auto mesh = vtkSmartPointer<vtkUnstructuredGrid>::New();
+  mesh->ShallowCopy(filter->GetOutput());
+  if (mesh->GetNumberOfCells() == 0)
+    throw Error("tetrahedralizing the grid gave no cells (it needs at least 2 samples per axis)");
+  return mesh;
+}
+
+void applyCamera(const Camera& camera, vtkRenderer* renderer) {
+  vtkCamera* c = renderer->GetActiveCamera();
+  c->SetPosition(camera.position.data());
+  c->SetFocalPoint(camera.focalPoint.data());
+  c->SetViewUp(camera.viewUp.data());
+  c->SetViewAngle(camera.viewAngle);
+  c->SetParallelProjection(camera.parallelProjection ? 1 : 0);
+  c->SetParallelScale(camera.parallelScale);
+  renderer->ResetCameraClippingRange();  // not ResetCamera: keep our framing exactly
+}
+
+void applyTransferFunction(const RenderSettings& s, vtkVolumeProperty* property) {
+  const TransferFunction& tf = s.transferFunction;
+  double lo = tf.opacity.front().x, hi = tf.opacity.back().x;
+  lo = std::min(lo, tf.color.front().x);
+  hi = std::max(hi, tf.color.back().x);
+  const double eps = 1e-6 * std::max(hi - lo, 1e-300);
+
+  vtkNew<vtkColorTransferFunction> color;
+  color->SetColorSpaceToRGB();
+  const std::vector<double> cx = separatedX(tf.color, eps);
+  for (size_t i = 0; i < cx.size(); ++i) {
+    const Vec3f& rgb = tf.color[i].rgb;
+    color->AddRGBPoint(cx[i], rgb[0], rgb[1], rgb[2]);
+  }
+  vtkNew<vtkPiecewiseFunction> opacity;
+  const std::vector<double> ox = separatedX(tf.opacity, eps);
+  for (size_t i = 0; i < ox.size(); ++i) opacity->AddPoint(ox[i], tf.opacity[i].alpha);
+
+  property->SetColor(color);
+  property->SetScalarOpacity(opacity);
+  property->SetInterpolationTypeToLinear();
+  property->SetScalarOpacityUnitDistance(s.opacityUnitDistance);
+  property->SetShade(s.shade ? 1 : 0);
+  property->SetAmbient(s.lighting.ambient);
+  property->SetDiffuse(s.lighting.diffuse);
+  property->SetSpecular(s.lighting.specular);
+  property->SetSpecularPower(s.lighting.specularPower);
+}
+
+void applyLighting(const Lighting& lighting, vtkRenderer* renderer) {
+  renderer->AutomaticLightCreationOff();
+  renderer->RemoveAllLights();
+  renderer->TwoSidedLightingOn();  // ours is two-sided: a volume has no outside
+
+  // The ambient term, once.
+  vtkNew<vtkLight> ambient;
+  ambient->SetLightTypeToHeadlight();
+  ambient->SetAmbientColor(1.0, 1.0, 1.0);
+  ambient->SetDiffuseColor(0.0, 0.0, 0.0);
+  ambient->SetSpecularColor(0.0, 0.0, 0.0);
+  ambient->SetIntensity(1.0);
+  renderer->AddLight(ambient);
+
+  if (lighting.headlight) {
+    vtkNew<vtkLight> head;
+    head->SetLightTypeToHeadlight();
+    head->SetAmbientColor(0.0, 0.0, 0.0);
+    head->SetDiffuseColor(1.0, 1.0, 1.0);
+    head->SetSpecularColor(1.0, 1.0, 1.0);
+    head->SetIntensity(1.0);
+    renderer->AddLight(head);
+  }
+  for (const DirectionalLight& l : lighting.lights) {
+    vtkNew<vtkLight> light;
+    light->SetLightTypeToSceneLight();
+    light->PositionalOff();
+    // Shines from its position towards its focal point.
+    light->SetPosition(-l.direction[0], -l.direction[1], -l.direction[2]);
+    light->SetFocalPoint(0.0, 0.0, 0.0);
+    light->SetAmbientColor(0.0, 0.0, 0.0);
+    light->SetDiffuseColor(l.color[0], l.color[1], l.color[2]);
+    light->SetSpecularColor(l.color[0], l.color[1], l.color[2]);
+    light->SetIntensity(l.intensity);
+    renderer->AddLight(light);
+  }
+}
+
+void applyBackground(const Vec3f& background, vtkRenderer* renderer) {
+  renderer->SetBackground(background[0], background[1], background[2]);
+}
+
+}  // namespace mfadvr

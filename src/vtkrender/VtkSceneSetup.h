@@ -1,0 +1,51 @@
+#pragma once
+// Our scene in VTK's terms: VTK data sets made from our grids and meshes, and RenderSettings
+// applied to a vtkRenderer, its camera and a vtkVolumeProperty, so that VTK's volume mappers
+// render the scene our ray caster renders (docs/rendering.md, "VTK baselines").
+#include <vtkSmartPointer.h>
+
+#include "core/grid/StructuredGrid.h"
+#include "core/mesh/ScatteredData.h"
+#include "core/render/RenderSettings.h"
+
+class vtkImageData;
+class vtkRenderer;
+class vtkUnstructuredGrid;
+class vtkVolumeProperty;
+
+namespace mfadvr {
+
+// The grid as vtkImageData with its origin and spacing and the values as float32 point scalars
+// named "value" (both x fastest).
+vtkSmartPointer<vtkImageData> makeImageData(const StructuredGrid& grid);
+
+// The mesh's tetrahedra as VTK_TETRA cells, its values as float32 point scalars "value".
+// Throws mfadvr::Error when the data have no cells (a point cloud).
+vtkSmartPointer<vtkUnstructuredGrid> makeTetrahedralMesh(const ScatteredData& data);
+
+// The grid's voxels split into tetrahedra (vtkDataSetTriangleFilter: 5 per voxel, alternating so
+// that neighbouring voxels share faces), with the point scalars carried over.
+vtkSmartPointer<vtkUnstructuredGrid> tetrahedralize(vtkImageData* image);
+
+// Copies position, focal point, view-up, view angle, projection and parallel scale into the
+// renderer's active camera, then fits only the clipping range (never ResetCamera, which would
+// change the framing).
+void applyCamera(const Camera& camera, vtkRenderer* renderer);
+
+// The resolved transfer function point by point (vtkColorTransferFunction in RGB space,
+// vtkPiecewiseFunction), linear interpolation, ScalarOpacityUnitDistance, shading on/off and the
+// Blinn-Phong coefficients. Our TFs may repeat an x to make a jump; VTK replaces a point with a
+// repeated x, so the earlier point moves left by 1e-6 of the TF's span instead.
+void applyTransferFunction(const RenderSettings& settings, vtkVolumeProperty* property);
+
+// Our lights as vtkLights, replacing the renderer's automatic one: the headlight as a vtkLight
+// headlight, each directional light as a scene light shining along its direction. VTK's shading
+// adds property.Ambient x light.AmbientColor x light.Intensity for every light, and a vtkLight's
+// ambient colour is black by default; our ambient term is added once, so one extra light carries
+// it (ambient colour white, diffuse and specular black) and the others have black ambient.
+void applyLighting(const Lighting& lighting, vtkRenderer* renderer);
+
+// Background colour of the renderer.
+void applyBackground(const Vec3f& background, vtkRenderer* renderer);
+
+}  // namespace mfadvr

@@ -1,0 +1,52 @@
+// `mfadvr view`: the interactive viewer is tested headless, by rendering one frame off screen
+// (--screenshot) under the virtual display the CLI test program runs on (tests/CMakeLists.txt).
+// Its frame goes through vtkMFAVolumeMapper in a VTK scene set up from the render options, so
+// comparing it with `render` checks the whole chain: options -> VTK scene -> mapper -> pixels.
+#include <gtest/gtest.h>
+
+#include "TestSupport.h"
+#include "app/CliRunner.h"
+#include "core/image/ImageMetrics.h"
+#include "core/image/PngFile.h"
+
+namespace mfadvr {
+namespace {
+
+using test::runMfadvr;
+
+TEST(CliView, ScreenshotMatchesRenderForEveryMethod) {
+  const auto dir = test::scratchDir();
+  const std::string scene = " --size 96x80 --azimuth 30 --elevation 20 --tf step:0.5 -q";
+  for (const char* method : {"mfa", "tricubic", "truth"}) {
+    for (const char* shade : {"", " --shade"}) {
+      const std::string view = (dir / "view.png").string(), render = (dir / "render.png").string();
+      const std::string common = std::string(" --method ") + method + shade + scene;
+      const auto v = runMfadvr("view builtin:marschner-lobb:33 --screenshot " + view + common);
+      ASSERT_EQ(v.status, 0) << v.err;
+      EXPECT_NE(v.out.find(method), std::string::npos) << v.out;
+      const auto r = runMfadvr("render builtin:marschner-lobb:33 -o " + render + common);
+      ASSERT_EQ(r.status, 0) << r.err;
+      // Measured: identical for mfa; within one 8-bit level for the others.
+      const double psnr = compareImages(readPng(view), readPng(render)).psnr;
+      EXPECT_GT(psnr, 48.0) << method << shade;
+    }
+  }
+}
+
+TEST(CliView, RejectsMethodsTheInputCannotProvide) {
+  const auto dir = test::scratchDir();
+  const std::string model = (dir / "ml.mfa").string();
+  ASSERT_EQ(runMfadvr("encode builtin:marschner-lobb:17 -q -o " + model).status, 0);
+  const std::string shot = (dir / "shot.png").string();
+  // A model file holds no samples for the grid filters.
+  const auto r = runMfadvr("view " + model + " --method trilinear --screenshot " + shot);
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("available: mfa, truth"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(shot));
+  const auto ok = runMfadvr("view " + model + " --screenshot " + shot + " --size 32x32");
+  EXPECT_EQ(ok.status, 0) << ok.err;
+  EXPECT_TRUE(std::filesystem::exists(shot));
+}
+
+}  // namespace
+}  // namespace mfadvr
