@@ -8,18 +8,14 @@
 #include <vtkCallbackCommand.h>
 #include <vtkCamera.h>
 #include <vtkCommand.h>
-#include <vtkImageData.h>
 #include <vtkInteractorStyleTrackballCamera.h>
 #include <vtkNew.h>
 #include <vtkObjectFactory.h>
-#include <vtkPointData.h>
 #include <vtkRenderWindow.h>
 #include <vtkRenderWindowInteractor.h>
 #include <vtkRenderer.h>
-#include <vtkUnsignedCharArray.h>
 #include <vtkVolume.h>
 #include <vtkVolumeProperty.h>
-#include <vtkWindowToImageFilter.h>
 
 #include <cstdio>
 #include <iostream>
@@ -145,28 +141,6 @@ class ViewerStyle : public vtkInteractorStyleTrackballCamera {
 };
 vtkStandardNewMacro(ViewerStyle);
 
-Image8 grabWindow(vtkRenderWindow* window) {
-  vtkNew<vtkWindowToImageFilter> grab;
-  grab->SetInput(window);
-  grab->SetInputBufferTypeToRGB();
-  grab->ReadFrontBufferOff();
-  grab->Update();
-  vtkImageData* out = grab->GetOutput();
-  int dims[3];
-  out->GetDimensions(dims);
-  auto* rgb = vtkUnsignedCharArray::SafeDownCast(out->GetPointData()->GetScalars());
-  if (!rgb || rgb->GetNumberOfComponents() != 3) throw Error("cannot read the window back");
-  Image8 img;
-  img.width = dims[0];
-  img.height = dims[1];
-  img.channels = 3;
-  img.data.resize(static_cast<size_t>(3) * dims[0] * dims[1]);
-  const size_t row = static_cast<size_t>(3) * dims[0];
-  for (int y = 0; y < dims[1]; ++y)  // VTK's row 0 is the bottom
-    std::copy_n(rgb->GetPointer(0) + static_cast<size_t>(dims[1] - 1 - y) * row, row,
-                img.data.data() + static_cast<size_t>(y) * row);
-  return img;
-}
 
 }  // namespace
 
@@ -252,7 +226,7 @@ Command addViewCommand(CLI::App& app) {
     if (!o->screenshot.empty()) {
       viewer->window->SetOffScreenRendering(1);
       viewer->window->Render();
-      writePng(o->screenshot, grabWindow(viewer->window));
+      writePng(o->screenshot, readWindowRgb(viewer->window));
       std::printf("%s: %s, %dx%d, frame %.3f s\n", o->screenshot.c_str(),
                   methodName(viewer->methods[viewer->method]).c_str(), settings.width,
                   settings.height, viewer->mapper->GetTimeToDraw());

@@ -227,29 +227,7 @@ VtkFrameTimes VtkBaselineRenderer::renderFrames(int frames) {
 }
 
 Image8 VtkBaselineRenderer::readBack() {
-  vtkNew<vtkWindowToImageFilter> grab;
-  grab->SetInput(impl_->window);
-  grab->SetInputBufferTypeToRGB();
-  grab->ReadFrontBufferOff();
-  grab->Update();
-  vtkImageData* out = grab->GetOutput();
-  int dims[3];
-  out->GetDimensions(dims);
-  auto* data = vtkUnsignedCharArray::SafeDownCast(out->GetPointData()->GetScalars());
-  if (!data || data->GetNumberOfComponents() != 3 ||
-      data->GetNumberOfTuples() != vtkIdType(dims[0]) * dims[1])
-    throw Error("VTK read-back did not give 8-bit RGB");
-  Image8 img;
-  img.width = dims[0];
-  img.height = dims[1];
-  img.channels = 3;
-  img.data.resize(size_t(3) * dims[0] * dims[1]);
-  // VTK's row 0 is at the bottom; ours at the top.
-  const unsigned char* src = data->GetPointer(0);
-  const size_t row = size_t(3) * dims[0];
-  for (int y = 0; y < dims[1]; ++y)
-    std::copy_n(src + size_t(dims[1] - 1 - y) * row, row, img.data.data() + size_t(y) * row);
-  return img;
+  return readWindowRgb(impl_->window);
 }
 
 std::int64_t VtkBaselineRenderer::pointCount() const {

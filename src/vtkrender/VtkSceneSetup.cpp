@@ -11,7 +11,10 @@
 #include <vtkPiecewiseFunction.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
+#include <vtkRenderWindow.h>
 #include <vtkRenderer.h>
+#include <vtkUnsignedCharArray.h>
+#include <vtkWindowToImageFilter.h>
 #include <vtkUnstructuredGrid.h>
 #include <vtkVolumeProperty.h>
 
@@ -184,6 +187,32 @@ void applyLighting(const Lighting& lighting, vtkRenderer* renderer) {
 
 void applyBackground(const Vec3f& background, vtkRenderer* renderer) {
   renderer->SetBackground(background[0], background[1], background[2]);
+}
+
+Image8 readWindowRgb(vtkRenderWindow* window) {
+  vtkNew<vtkWindowToImageFilter> grab;
+  grab->SetInput(window);
+  grab->SetInputBufferTypeToRGB();
+  grab->ReadFrontBufferOff();
+  grab->Update();
+  vtkImageData* out = grab->GetOutput();
+  int dims[3];
+  out->GetDimensions(dims);
+  auto* data = vtkUnsignedCharArray::SafeDownCast(out->GetPointData()->GetScalars());
+  if (!data || data->GetNumberOfComponents() != 3 ||
+      data->GetNumberOfTuples() != vtkIdType(dims[0]) * dims[1])
+    throw Error("VTK read-back did not give 8-bit RGB");
+  Image8 img;
+  img.width = dims[0];
+  img.height = dims[1];
+  img.channels = 3;
+  img.data.resize(size_t(3) * dims[0] * dims[1]);
+  // VTK's row 0 is at the bottom; ours at the top.
+  const unsigned char* src = data->GetPointer(0);
+  const size_t row = size_t(3) * dims[0];
+  for (int y = 0; y < dims[1]; ++y)
+    std::copy_n(src + size_t(dims[1] - 1 - y) * row, row, img.data.data() + size_t(y) * row);
+  return img;
 }
 
 }  // namespace mfadvr

@@ -6,9 +6,11 @@
 
 #include "core/grid/StructuredGrid.h"
 #include "core/mesh/ScatteredData.h"
+#include "core/image/Image.h"
 #include "core/render/RenderSettings.h"
 
 class vtkImageData;
+class vtkRenderWindow;
 class vtkRenderer;
 class vtkUnstructuredGrid;
 class vtkVolumeProperty;
@@ -44,6 +46,10 @@ void applyTransferFunction(const RenderSettings& settings, vtkVolumeProperty* pr
 // ambient colour is black by default; our ambient term is added once, so one extra light carries
 // it (ambient colour white, diffuse and specular black) and the others have black ambient.
 void applyLighting(const Lighting& lighting, vtkRenderer* renderer);
+
+// The window's colour buffer as 8-bit RGB, row 0 at the top (VTK's is at the bottom). Throws
+// mfadvr::Error when the read-back is not 8-bit RGB.
+Image8 readWindowRgb(vtkRenderWindow* window);
 
 // Background colour of the renderer.
 void applyBackground(const Vec3f& background, vtkRenderer* renderer);

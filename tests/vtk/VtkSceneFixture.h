@@ -13,10 +13,8 @@
 #include <vtkRenderWindow.h>
 #include <vtkRenderer.h>
 #include <vtkSmartPointer.h>
-#include <vtkUnsignedCharArray.h>
 #include <vtkVolume.h>
 #include <vtkVolumeProperty.h>
-#include <vtkWindowToImageFilter.h>
 
 #include <memory>
 
@@ -27,6 +25,7 @@
 #include "core/render/RenderSettings.h"
 #include "vtkMFAModelData.h"
 #include "vtkMFAVolumeMapper.h"
+#include "vtkrender/VtkSceneSetup.h"
 
 namespace mfadvr::test {
 
@@ -89,26 +88,9 @@ struct VtkVolumeScene {
   Image8 render() {
     renderer->ResetCameraClippingRange();
     window->Render();
-    vtkNew<vtkWindowToImageFilter> grab;
-    grab->SetInput(window);
-    grab->SetInputBufferTypeToRGB();
-    grab->ReadFrontBufferOff();
-    grab->Update();
-    vtkImageData* out = grab->GetOutput();
-    int dims[3];
-    out->GetDimensions(dims);
-    auto* rgb = vtkUnsignedCharArray::SafeDownCast(out->GetPointData()->GetScalars());
-    Image8 img;
-    img.width = dims[0];
-    img.height = dims[1];
-    img.channels = 3;
-    img.data.resize(static_cast<size_t>(3) * dims[0] * dims[1]);
-    const size_t row = static_cast<size_t>(3) * dims[0];
-    for (int y = 0; y < dims[1]; ++y)  // VTK's row 0 is the bottom
-      std::copy_n(rgb->GetPointer(0) + static_cast<size_t>(dims[1] - 1 - y) * row, row,
-                  img.data.data() + static_cast<size_t>(y) * row);
-    return img;
+    return readWindowRgb(window);
   }
+
 
   // The same scene for the core renderer, written out by hand (not converted from VTK): the
   // renderer's automatic light is a white headlight of intensity 1.
