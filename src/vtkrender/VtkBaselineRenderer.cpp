@@ -196,6 +196,7 @@ VtkBaselineRenderer::~VtkBaselineRenderer() {
   d.window->RemoveRenderer(d.renderer);
   d.renderer->RemoveAllViewProps();
   retireRenderer(d.renderer);
+  impl_.reset();  // the window closes here, inside the pause
 }
 
 VtkMethod VtkBaselineRenderer::method() const {
