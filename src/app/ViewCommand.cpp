@@ -38,6 +38,7 @@
 #include "vtkMFAModelData.h"
 #include "vtkMFAVolumeMapper.h"
 #include "vtkrender/DisplayCheck.h"
+#include "vtkrender/LeakCheckPause.h"
 #include "vtkrender/VtkSceneSetup.h"
 
 namespace mfadvr::app {
@@ -225,8 +226,16 @@ Command addViewCommand(CLI::App& app) {
 
     if (!o->screenshot.empty()) {
       viewer->window->SetOffScreenRendering(1);
-      viewer->window->Render();
-      writePng(o->screenshot, readWindowRgb(viewer->window));
+      {
+        const LeakCheckPause pause;  // Mesa's process-lifetime allocations (LeakCheckPause.h)
+        viewer->window->Render();
+      }
+      const Image8 shot = readWindowRgb(viewer->window);
+      {
+        const LeakCheckPause pause;
+        viewer->window->Finalize();
+      }
+      writePng(o->screenshot, shot);
       std::printf("%s: %s, %dx%d, frame %.3f s\n", o->screenshot.c_str(),
                   methodName(viewer->methods[viewer->method]).c_str(), settings.width,
                   settings.height, viewer->mapper->GetTimeToDraw());

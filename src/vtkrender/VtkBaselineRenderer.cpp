@@ -27,6 +27,7 @@
 
 #include "core/util/Error.h"
 #include "vtkrender/DisplayCheck.h"
+#include "vtkrender/LeakCheckPause.h"
 #include "vtkrender/VtkSceneSetup.h"
 
 namespace mfadvr {
@@ -179,18 +180,23 @@ VtkBaselineRenderer::VtkBaselineRenderer(VtkMethod method, const VtkBaselineInpu
   // Open the window and its OpenGL context now, with nothing to draw, so that the first timed
   // frame measures the mapper (its tables, gradients, cell structures) and not the window.
   d.volume->VisibilityOff();
-  d.window->Render();
-  d.window->WaitForCompletion();
+  {
+    const LeakCheckPause pause;  // Mesa keeps process-lifetime allocations from here on
+    d.window->Render();
+    d.window->WaitForCompletion();
+  }
   d.volume->VisibilityOn();
   // An OpenGL context without what projected tetrahedra need makes the mapper report an error
   // on the first frame, which renderFrame turns into an mfadvr::Error.
 }
 
 VtkBaselineRenderer::~VtkBaselineRenderer() {
+  const LeakCheckPause pause;  // closing the window and its context
   Impl& d = *impl_;
   d.window->RemoveRenderer(d.renderer);
   d.renderer->RemoveAllViewProps();
   retireRenderer(d.renderer);
+  impl_.reset();  // the window closes here, inside the pause
 }
 
 VtkMethod VtkBaselineRenderer::method() const {
@@ -206,6 +212,7 @@ double VtkBaselineRenderer::renderFrame() {
   d.renderer->GetActiveCamera()->Modified();
   d.renderer->ResetCameraClippingRange();
   d.errors->messages.clear();
+  const LeakCheckPause pause;
   const auto start = Clock::now();
   d.window->Render();
   d.window->WaitForCompletion();  // the frame is drawn, not just queued

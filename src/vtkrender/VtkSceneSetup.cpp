@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "core/util/Error.h"
+#include "vtkrender/LeakCheckPause.h"
 
 namespace mfadvr {
 
@@ -190,6 +191,7 @@ void applyBackground(const Vec3f& background, vtkRenderer* renderer) {
 }
 
 Image8 readWindowRgb(vtkRenderWindow* window) {
+  const LeakCheckPause pause;
   vtkNew<vtkWindowToImageFilter> grab;
   grab->SetInput(window);
   grab->SetInputBufferTypeToRGB();

@@ -25,6 +25,7 @@
 #include "core/render/RenderSettings.h"
 #include "vtkMFAModelData.h"
 #include "vtkMFAVolumeMapper.h"
+#include "vtkrender/LeakCheckPause.h"
 #include "vtkrender/VtkSceneSetup.h"
 
 namespace mfadvr::test {
@@ -85,10 +86,19 @@ struct VtkVolumeScene {
     renderer->ResetCameraClippingRange();
   }
 
+  // Mesa keeps process-lifetime allocations inside VTK's window calls (LeakCheckPause.h).
   Image8 render() {
     renderer->ResetCameraClippingRange();
-    window->Render();
+    {
+      const LeakCheckPause pause;
+      window->Render();
+    }
     return readWindowRgb(window);
+  }
+
+  ~VtkVolumeScene() {
+    const LeakCheckPause pause;
+    window->Finalize();
   }
 
 
