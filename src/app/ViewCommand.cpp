@@ -142,7 +142,6 @@ class ViewerStyle : public vtkInteractorStyleTrackballCamera {
 };
 vtkStandardNewMacro(ViewerStyle);
 
-
 }  // namespace
 
 Command addViewCommand(CLI::App& app) {
@@ -203,7 +202,8 @@ Command addViewCommand(CLI::App& app) {
       throw Error("--method " + o->method + " needs data that " + o->input +
                   " does not provide; available: " + [&] {
                     std::string list;
-                    for (auto m : viewer->methods) list += (list.empty() ? "" : ", ") + methodName(m);
+                    for (auto m : viewer->methods)
+                      list += (list.empty() ? "" : ", ") + methodName(m);
                     return list;
                   }());
 

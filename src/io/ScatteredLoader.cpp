@@ -238,7 +238,8 @@ void appendTets(vtkDataSet* data, std::vector<Tetrahedron>& tets) {
 }
 
 ScatteredData meshDataOf(vtkDataSet* input, const std::string& path, const std::string& field) {
-  if (!input || input->GetNumberOfPoints() == 0) throw Error(path + ": the data set holds no points");
+  if (!input || input->GetNumberOfPoints() == 0)
+    throw Error(path + ": the data set holds no points");
 
   ScatteredData out;
   const SelectedArray selected = selectArray(path, input, field);
@@ -348,7 +349,7 @@ ScatteredData loadScatteredData(const std::string& path, const ScatteredLoadOpti
 }
 
 ScatteredData scatteredFromVtkDataSet(vtkDataSet* data, const std::string& field,
-                                     const std::string& source) {
+                                      const std::string& source) {
   ScatteredData out = meshDataOf(data, source, field);
   out.source = source;
   out.validate();

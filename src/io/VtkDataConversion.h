@@ -22,6 +22,6 @@ StructuredGrid gridFromVtkImage(vtkImageData* image, const std::string& field,
 // become tetrahedra, a cell-data field is averaged to the points, a data set without 3-D cells
 // is a point cloud. Returns validated data; throws mfadvr::Error naming `source`.
 ScatteredData scatteredFromVtkDataSet(vtkDataSet* data, const std::string& field,
-                                     const std::string& source);
+                                      const std::string& source);
 
 }  // namespace mfadvr

@@ -14,9 +14,9 @@
 #include <vtkRenderWindow.h>
 #include <vtkRenderer.h>
 #include <vtkUnsignedCharArray.h>
-#include <vtkWindowToImageFilter.h>
 #include <vtkUnstructuredGrid.h>
 #include <vtkVolumeProperty.h>
+#include <vtkWindowToImageFilter.h>
 
 #include <Eigen/Geometry>
 #include <algorithm>

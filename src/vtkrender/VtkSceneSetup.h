@@ -5,8 +5,8 @@
 #include <vtkSmartPointer.h>
 
 #include "core/grid/StructuredGrid.h"
-#include "core/mesh/ScatteredData.h"
 #include "core/image/Image.h"
+#include "core/mesh/ScatteredData.h"
 #include "core/render/RenderSettings.h"
 
 class vtkImageData;

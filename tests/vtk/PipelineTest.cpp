@@ -89,10 +89,10 @@ TEST(MFAReader, ReportsBadFilesWithoutOutput) {
   const auto truncated = dir / "truncated.mfa";
   const std::string bytes = serializeModel(*marschnerLobbModel());
   std::ofstream(truncated, std::ios::binary).write(bytes.data(), bytes.size() / 2);
-  for (const auto& [path, expected] :
-       std::vector<std::pair<std::string, std::string>>{{garbage.string(), "magic"},
-                                                        {truncated.string(), "truncated"},
-                                                        {(dir / "missing.mfa").string(), "missing"}}) {
+  for (const auto& [path, expected] : std::vector<std::pair<std::string, std::string>>{
+           {garbage.string(), "magic"},
+           {truncated.string(), "truncated"},
+           {(dir / "missing.mfa").string(), "missing"}}) {
     vtkNew<vtkMFAReader> reader;
     ErrorLog log(reader);
     reader->SetFileName(path.c_str());

@@ -116,7 +116,7 @@ TEST(VolumeMapper, BlendsWithOpaqueGeometryByDepth) {
         for (int c = 0; c < 3; ++c) {
           uint8_t& o = out.data[3 * (static_cast<size_t>(y) * s.width + x) + c];
           o = static_cast<uint8_t>(
-            std::lround(255.0f * std::clamp(v[c] + (1 - v[3]) * o / 255.0f, 0.0f, 1.0f)));
+              std::lround(255.0f * std::clamp(v[c] + (1 - v[3]) * o / 255.0f, 0.0f, 1.0f)));
         }
       }
     return out;

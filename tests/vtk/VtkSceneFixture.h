@@ -35,7 +35,7 @@ inline std::shared_ptr<const Model> marschnerLobbModel() {
   static const auto model = [] {
     const auto ml = makeBuiltin("marschner-lobb");
     return std::make_shared<const Model>(
-      encodeStructured(sampleBuiltin(*ml, {41, 41, 41}), StructuredFitOptions{}));
+        encodeStructured(sampleBuiltin(*ml, {41, 41, 41}), StructuredFitOptions{}));
   }();
   return model;
 }
@@ -100,7 +100,6 @@ struct VtkVolumeScene {
     const LeakCheckPause pause;
     window->Finalize();
   }
-
 
   // The same scene for the core renderer, written out by hand (not converted from VTK): the
   // renderer's automatic light is a white headlight of intensity 1.

@@ -48,8 +48,8 @@ std::vector<ColorPoint> colorPoints(vtkColorTransferFunction* f, std::vector<std
     f->GetTable(range[0], range[1], kSamples, table.data());
     for (int i = 0; i < kSamples; ++i) {
       const double x = range[0] + (range[1] - range[0]) * i / (kSamples - 1);
-      out.push_back({x, Vec3f(float(table[3 * i]), float(table[3 * i + 1]),
-                              float(table[3 * i + 2]))});
+      out.push_back(
+          {x, Vec3f(float(table[3 * i]), float(table[3 * i + 1]), float(table[3 * i + 2]))});
     }
   }
   if (!f->GetClamping()) notes.push_back("colour transfer function clamping off is ignored");
@@ -183,8 +183,7 @@ Lighting lightingFromVtk(vtkRenderer* renderer, vtkVolumeProperty* property,
     if (!(direction.norm() > 0.0)) continue;
     positional = positional || light->GetPositional();
     if (static_cast<int>(l.lights.size()) == Shader::kMaxLights) {
-      notes.push_back("only the first " + std::to_string(Shader::kMaxLights) +
-                      " lights are used");
+      notes.push_back("only the first " + std::to_string(Shader::kMaxLights) + " lights are used");
       break;
     }
     DirectionalLight d;

@@ -20,9 +20,8 @@
 #include "vtkMFAModelAlgorithm.h"
 #include "vtkMFAModule.h"  // for export macro
 
-class VTKMFA_EXPORT vtkMFAEncoder : public vtkMFAModelAlgorithm
-{
-public:
+class VTKMFA_EXPORT vtkMFAEncoder : public vtkMFAModelAlgorithm {
+ public:
   static vtkMFAEncoder* New();
   vtkTypeMacro(vtkMFAEncoder, vtkMFAModelAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
@@ -99,7 +98,7 @@ public:
   vtkGetMacro(LastFitSeconds, double);
   //@}
 
-protected:
+ protected:
   vtkMFAEncoder();
   ~vtkMFAEncoder() override;
 
@@ -107,9 +106,9 @@ protected:
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
   int Degree = 3;
-  int NumberOfControlPoints[3] = { 0, 0, 0 };
+  int NumberOfControlPoints[3] = {0, 0, 0};
   double MaxError = 0.0;
-  int MaxNumberOfControlPoints[3] = { 0, 0, 0 };
+  int MaxNumberOfControlPoints[3] = {0, 0, 0};
   int MaxRounds = 30;
   double Smoothing = 1e-2;
   bool DomainMask = true;
@@ -119,7 +118,7 @@ protected:
   double LastRMSRelativeError = 0.0;
   double LastFitSeconds = 0.0;
 
-private:
+ private:
   vtkMFAEncoder(const vtkMFAEncoder&) = delete;
   void operator=(const vtkMFAEncoder&) = delete;
 };

@@ -14,9 +14,8 @@
 
 class vtkMFAModelData;
 
-class VTKMFA_EXPORT vtkMFAModelAlgorithm : public vtkAlgorithm
-{
-public:
+class VTKMFA_EXPORT vtkMFAModelAlgorithm : public vtkAlgorithm {
+ public:
   vtkTypeMacro(vtkMFAModelAlgorithm, vtkAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
@@ -25,10 +24,10 @@ public:
    */
   vtkMFAModelData* GetOutput();
 
-  vtkTypeBool ProcessRequest(
-    vtkInformation* request, vtkInformationVector** inInfo, vtkInformationVector* outInfo) override;
+  vtkTypeBool ProcessRequest(vtkInformation* request, vtkInformationVector** inInfo,
+                             vtkInformationVector* outInfo) override;
 
-protected:
+ protected:
   vtkMFAModelAlgorithm();
   ~vtkMFAModelAlgorithm() override;
 
@@ -37,7 +36,7 @@ protected:
 
   int FillOutputPortInformation(int port, vtkInformation* info) override;
 
-private:
+ private:
   vtkMFAModelAlgorithm(const vtkMFAModelAlgorithm&) = delete;
   void operator=(const vtkMFAModelAlgorithm&) = delete;
 };

@@ -23,9 +23,8 @@ class Model;
 class vtkInformation;
 class vtkInformationVector;
 
-class VTKMFA_EXPORT vtkMFAModelData : public vtkDataObject
-{
-public:
+class VTKMFA_EXPORT vtkMFAModelData : public vtkDataObject {
+ public:
   static vtkMFAModelData* New();
   vtkTypeMacro(vtkMFAModelData, vtkDataObject);
   void PrintSelf(ostream& os, vtkIndent indent) override;
@@ -98,17 +97,19 @@ public:
    * The model (C++ only).
    */
   void SetModel(std::shared_ptr<const mfadvr::Model> model);
-  const std::shared_ptr<const mfadvr::Model>& GetModel() const { return this->Model; }
+  const std::shared_ptr<const mfadvr::Model>& GetModel() const {
+    return this->Model;
+  }
 #endif
 
-protected:
+ protected:
   vtkMFAModelData();
   ~vtkMFAModelData() override;
 
-  double Bounds[6] = { 0, 0, 0, 0, 0, 0 };
-  double ScalarRange[2] = { 0, 0 };
+  double Bounds[6] = {0, 0, 0, 0, 0, 0};
+  double ScalarRange[2] = {0, 0};
 
-private:
+ private:
   vtkMFAModelData(const vtkMFAModelData&) = delete;
   void operator=(const vtkMFAModelData&) = delete;
 

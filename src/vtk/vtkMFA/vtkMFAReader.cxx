@@ -17,21 +17,17 @@ vtkStandardNewMacro(vtkMFAReader);
 
 vtkMFAReader::vtkMFAReader() = default;
 
-vtkMFAReader::~vtkMFAReader()
-{
+vtkMFAReader::~vtkMFAReader() {
   this->SetFileName(nullptr);
 }
 
-void vtkMFAReader::PrintSelf(ostream& os, vtkIndent indent)
-{
+void vtkMFAReader::PrintSelf(ostream& os, vtkIndent indent) {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "FileName: " << (this->FileName ? this->FileName : "(none)") << "\n";
 }
 
-bool vtkMFAReader::CanReadFile(const char* fileName)
-{
-  if (!fileName)
-  {
+bool vtkMFAReader::CanReadFile(const char* fileName) {
+  if (!fileName) {
     return false;
   }
   std::ifstream in(fileName, std::ios::binary);
@@ -40,21 +36,17 @@ bool vtkMFAReader::CanReadFile(const char* fileName)
   return in && std::memcmp(magic, "MFADVR", sizeof(magic)) == 0;
 }
 
-int vtkMFAReader::RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector* outInfo)
-{
+int vtkMFAReader::RequestData(vtkInformation*, vtkInformationVector**,
+                              vtkInformationVector* outInfo) {
   vtkMFAModelData* output = vtkMFAModelData::GetData(outInfo);
   output->Initialize();
-  if (!this->FileName || !*this->FileName)
-  {
+  if (!this->FileName || !*this->FileName) {
     vtkErrorMacro("no FileName set");
     return 0;
   }
-  try
-  {
+  try {
     output->SetModel(std::make_shared<const mfadvr::Model>(mfadvr::loadModel(this->FileName)));
-  }
-  catch (const std::exception& e)
-  {
+  } catch (const std::exception& e) {
     vtkErrorMacro(<< e.what());
     return 0;
   }

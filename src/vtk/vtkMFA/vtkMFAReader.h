@@ -11,9 +11,8 @@
 #include "vtkMFAModelAlgorithm.h"
 #include "vtkMFAModule.h"  // for export macro
 
-class VTKMFA_EXPORT vtkMFAReader : public vtkMFAModelAlgorithm
-{
-public:
+class VTKMFA_EXPORT vtkMFAReader : public vtkMFAModelAlgorithm {
+ public:
   static vtkMFAReader* New();
   vtkTypeMacro(vtkMFAReader, vtkMFAModelAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
@@ -31,7 +30,7 @@ public:
    */
   static bool CanReadFile(const char* fileName);
 
-protected:
+ protected:
   vtkMFAReader();
   ~vtkMFAReader() override;
 
@@ -39,7 +38,7 @@ protected:
 
   char* FileName = nullptr;
 
-private:
+ private:
   vtkMFAReader(const vtkMFAReader&) = delete;
   void operator=(const vtkMFAReader&) = delete;
 };

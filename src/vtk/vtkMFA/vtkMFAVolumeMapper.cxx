@@ -24,8 +24,8 @@
 #include <algorithm>
 #include <cmath>
 #include <exception>
-#include <stdexcept>
 #include <set>
+#include <stdexcept>
 #include <vector>
 
 #include "VtkSceneConversion.h"
@@ -35,8 +35,7 @@
 
 vtkStandardNewMacro(vtkMFAVolumeMapper);
 
-struct vtkMFAVolumeMapper::Internals
-{
+struct vtkMFAVolumeMapper::Internals {
   vtkNew<vtkMFAEncoder> Encoder;
   vtkSmartPointer<vtkMFAModelData> Model;
   std::set<std::string> Warned;
@@ -46,16 +45,13 @@ struct vtkMFAVolumeMapper::Internals
   double LastSeconds = 0.0;
 };
 
-vtkMFAVolumeMapper::vtkMFAVolumeMapper()
-  : Internal(new Internals)
-{
+vtkMFAVolumeMapper::vtkMFAVolumeMapper() : Internal(new Internals) {
   this->SetNumberOfInputPorts(2);
 }
 
 vtkMFAVolumeMapper::~vtkMFAVolumeMapper() = default;
 
-void vtkMFAVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
-{
+void vtkMFAVolumeMapper::PrintSelf(ostream& os, vtkIndent indent) {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "SampleDistance: " << this->SampleDistance << "\n";
   os << indent << "ImageSampleDistance: " << this->ImageSampleDistance << "\n";
@@ -66,71 +62,55 @@ void vtkMFAVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
 }
 
-int vtkMFAVolumeMapper::FillInputPortInformation(int port, vtkInformation* info)
-{
-  if (port == 0)
-  {
+int vtkMFAVolumeMapper::FillInputPortInformation(int port, vtkInformation* info) {
+  if (port == 0) {
     info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
-  }
-  else
-  {
+  } else {
     info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkMFAModelData");
   }
   info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);
   return 1;
 }
 
-void vtkMFAVolumeMapper::SetMFAInputConnection(vtkAlgorithmOutput* output)
-{
+void vtkMFAVolumeMapper::SetMFAInputConnection(vtkAlgorithmOutput* output) {
   this->SetInputConnection(1, output);
 }
 
-void vtkMFAVolumeMapper::SetMFAInputData(vtkMFAModelData* model)
-{
+void vtkMFAVolumeMapper::SetMFAInputData(vtkMFAModelData* model) {
   this->SetInputDataInternal(1, model);
 }
 
-vtkMFAEncoder* vtkMFAVolumeMapper::GetEncoder()
-{
+vtkMFAEncoder* vtkMFAVolumeMapper::GetEncoder() {
   return this->Internal->Encoder;
 }
 
 void vtkMFAVolumeMapper::SetFieldRenderer(
-  std::function<mfadvr::Image(const mfadvr::RenderSettings&)> render)
-{
+    std::function<mfadvr::Image(const mfadvr::RenderSettings&)> render) {
   this->Internal->FieldRenderer = std::move(render);
   this->Modified();
 }
 
-vtkDataObject* vtkMFAVolumeMapper::GetDataObjectInput()
-{
-  if (this->GetNumberOfInputConnections(1) > 0)
-  {
+vtkDataObject* vtkMFAVolumeMapper::GetDataObjectInput() {
+  if (this->GetNumberOfInputConnections(1) > 0) {
     return this->GetInputDataObject(1, 0);
   }
   return this->Superclass::GetDataObjectInput();
 }
 
-vtkMFAModelData* vtkMFAVolumeMapper::GetMFAInput()
-{
+vtkMFAModelData* vtkMFAVolumeMapper::GetMFAInput() {
   return this->Internal->Model;
 }
 
-vtkMFAModelData* vtkMFAVolumeMapper::UpdateModel()
-{
+vtkMFAModelData* vtkMFAVolumeMapper::UpdateModel() {
   vtkSmartPointer<vtkMFAModelData> model;
-  if (this->GetNumberOfInputConnections(1) > 0)
-  {
+  if (this->GetNumberOfInputConnections(1) > 0) {
     vtkAlgorithmOutput* connection = this->GetInputConnection(1, 0);
     connection->GetProducer()->Update(connection->GetIndex());
     model = vtkMFAModelData::SafeDownCast(this->GetInputDataObject(1, 0));
-  }
-  else if (this->GetNumberOfInputConnections(0) > 0)
-  {
+  } else if (this->GetNumberOfInputConnections(0) > 0) {
     vtkAlgorithmOutput* connection = this->GetInputConnection(0, 0);
     connection->GetProducer()->Update(connection->GetIndex());
-    if (auto* image = vtkImageData::SafeDownCast(this->GetInputDataObject(0, 0)))
-    {
+    if (auto* image = vtkImageData::SafeDownCast(this->GetInputDataObject(0, 0))) {
       // The encoder's pipeline re-fits only when the image or the options change.
       this->Internal->Encoder->SetInputData(image);
       this->Internal->Encoder->Update();
@@ -141,79 +121,64 @@ vtkMFAModelData* vtkMFAVolumeMapper::UpdateModel()
   return this->Internal->Model;
 }
 
-double* vtkMFAVolumeMapper::GetBounds()
-{
+double* vtkMFAVolumeMapper::GetBounds() {
   vtkMFAModelData* model = this->UpdateModel();
-  if (model)
-  {
+  if (model) {
     model->GetBounds(this->Bounds);
-  }
-  else
-  {
+  } else {
     vtkMath::UninitializeBounds(this->Bounds);
   }
   return this->Bounds;
 }
 
-void vtkMFAVolumeMapper::GetBounds(double bounds[6])
-{
+void vtkMFAVolumeMapper::GetBounds(double bounds[6]) {
   const double* b = this->GetBounds();
   std::copy(b, b + 6, bounds);
 }
 
-void vtkMFAVolumeMapper::WarnOnce(const std::string& note)
-{
-  if (this->Internal->Warned.insert(note).second)
-  {
+void vtkMFAVolumeMapper::WarnOnce(const std::string& note) {
+  if (this->Internal->Warned.insert(note).second) {
     vtkWarningMacro(<< note);
   }
 }
 
-double vtkMFAVolumeMapper::ChooseImageSampleDistance(vtkVolume* vol)
-{
+double vtkMFAVolumeMapper::ChooseImageSampleDistance(vtkVolume* vol) {
   const double lo = std::min(this->MinimumImageSampleDistance, this->MaximumImageSampleDistance);
   const double hi = std::max(this->MinimumImageSampleDistance, this->MaximumImageSampleDistance);
   const double allocated = vol->GetAllocatedRenderTime();
   // Still frames get allocated very long times (1 / the still update rate).
   if (!this->AutoAdjustSampleDistances || !(allocated > 0.0) || allocated >= 1.0 ||
-    this->Internal->LastSeconds <= 0.0)
-  {
+      this->Internal->LastSeconds <= 0.0) {
     return this->ImageSampleDistance;
   }
   // Frame time scales with the number of rays, i.e. with 1 / distance^2.
   const double wanted =
-    this->LastImageSampleDistance * std::sqrt(this->Internal->LastSeconds / allocated);
+      this->LastImageSampleDistance * std::sqrt(this->Internal->LastSeconds / allocated);
   return std::clamp(wanted, lo, hi);
 }
 
-void vtkMFAVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
-{
+void vtkMFAVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol) {
   vtkNew<vtkTimerLog> timer;
   timer->StartTimer();
   vtkMFAModelData* data = this->UpdateModel();
-  if (!data)
-  {
+  if (!data) {
     return;
   }
   const std::shared_ptr<const mfadvr::Model> model = data->GetModel();
 
-  if (this->BlendMode != vtkVolumeMapper::COMPOSITE_BLEND)
-  {
+  if (this->BlendMode != vtkVolumeMapper::COMPOSITE_BLEND) {
     this->WarnOnce("only composite blending is supported; rendering with it");
   }
-  if (this->Cropping)
-  {
+  if (this->Cropping) {
     this->WarnOnce("cropping is not supported and is ignored");
   }
-  if (this->ClippingPlanes && this->ClippingPlanes->GetNumberOfItems() > 0)
-  {
+  if (this->ClippingPlanes && this->ClippingPlanes->GetNumberOfItems() > 0) {
     this->WarnOnce("clipping planes are not supported and are ignored");
   }
 
   int width = 0, height = 0, originX = 0, originY = 0;
   ren->GetTiledSizeAndOrigin(&width, &height, &originX, &originY);
-  if (width <= 0 || height <= 0)
-  {
+  if (width <= 0 || height <= 0) {
     return;
   }
   const double isd = this->ChooseImageSampleDistance(vol);
@@ -221,17 +186,16 @@ void vtkMFAVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   const int rh = std::max(1, static_cast<int>(std::lround(height / isd)));
 
   const mfadvr::vtkglue::WorldToModel toModel = mfadvr::vtkglue::worldToModelOf(vol->GetMatrix());
-  if (!toModel.similarity)
-  {
-    this->WarnOnce("the volume's matrix scales its axes unequally or shears them; the image is "
-                   "approximate (rotations, translations and uniform scales are exact)");
+  if (!toModel.similarity) {
+    this->WarnOnce(
+        "the volume's matrix scales its axes unequally or shears them; the image is "
+        "approximate (rotations, translations and uniform scales are exact)");
   }
   vtkVolumeProperty* property = vol->GetProperty();
   std::vector<std::string> notes;
 
   mfadvr::RenderSettings s;
-  try
-  {
+  try {
     s.width = rw;
     s.height = rh;
     s.camera = mfadvr::vtkglue::cameraFromVtk(ren->GetActiveCamera(), toModel);
@@ -242,17 +206,16 @@ void vtkMFAVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     const auto& prov = model->provenance();
     const auto counts = model->spline().counts();
     double spacing = INFINITY;
-    for (int a = 0; a < 3; ++a)
-    {
+    for (int a = 0; a < 3; ++a) {
       const auto n = prov.sampleDims[a] > 1 ? prov.sampleDims[a] : counts[a];
-      spacing = std::min(spacing, extent[a] / static_cast<double>(std::max<std::int64_t>(n - 1, 1)));
+      spacing =
+          std::min(spacing, extent[a] / static_cast<double>(std::max<std::int64_t>(n - 1, 1)));
     }
     s.sampleDistance =
-      this->SampleDistance > 0.0 ? this->SampleDistance * toModel.scale : 0.5 * spacing;
+        this->SampleDistance > 0.0 ? this->SampleDistance * toModel.scale : 0.5 * spacing;
     s.earlyTerminationOpacity = this->EarlyRayTerminationOpacity;
     s.shade = property->GetShade(0) != 0;
-    if (s.shade)
-    {
+    if (s.shade) {
       s.lighting = mfadvr::vtkglue::lightingFromVtk(ren, property, toModel, notes);
     }
     s.background = mfadvr::Vec3f::Zero();  // premultiplied colour over nothing
@@ -261,76 +224,66 @@ void vtkMFAVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     // Ray ends from the depth buffer: the opaque geometry drawn so far.
     auto& depth = this->Internal->Depth;
     depth.resize(static_cast<size_t>(width) * height);
-    ren->GetRenderWindow()->GetZbufferData(
-      originX, originY, originX + width - 1, originY + height - 1, depth.data());
+    ren->GetRenderWindow()->GetZbufferData(originX, originY, originX + width - 1,
+                                           originY + height - 1, depth.data());
     vtkMatrix4x4* worldToClip = ren->GetActiveCamera()->GetCompositeProjectionTransformMatrix(
-      static_cast<double>(width) / height, -1, 1);
+        static_cast<double>(width) / height, -1, 1);
     vtkNew<vtkMatrix4x4> clipToWorld;
     vtkMatrix4x4::Invert(worldToClip, clipToWorld);
     const mfadvr::RayGenerator rays(s.camera, rw, rh);
     s.rayEnd.assign(static_cast<size_t>(rw) * rh, INFINITY);
     bool anyGeometry = false;
-    for (int y = 0; y < rh; ++y)
-    {
+    for (int y = 0; y < rh; ++y) {
       // Our row 0 is the top; the depth buffer's is the bottom.
       const int py = std::min(height - 1, static_cast<int>((rh - 1 - y + 0.5) * height / rh));
-      for (int x = 0; x < rw; ++x)
-      {
+      for (int x = 0; x < rw; ++x) {
         const int px = std::min(width - 1, static_cast<int>((x + 0.5) * width / rw));
         const float z = depth[static_cast<size_t>(py) * width + px];
-        if (!(z < 1.0f))
-        {
+        if (!(z < 1.0f)) {
           continue;
         }
         anyGeometry = true;
-        const double clip[4] = { 2.0 * (px + 0.5) / width - 1.0, 2.0 * (py + 0.5) / height - 1.0,
-          2.0 * z - 1.0, 1.0 };
+        const double clip[4] = {2.0 * (px + 0.5) / width - 1.0, 2.0 * (py + 0.5) / height - 1.0,
+                                2.0 * z - 1.0, 1.0};
         double world[4];
         clipToWorld->MultiplyPoint(clip, world);
         const mfadvr::Vec3d p =
-          toModel.point(mfadvr::Vec3d(world[0], world[1], world[2]) / world[3]);
+            toModel.point(mfadvr::Vec3d(world[0], world[1], world[2]) / world[3]);
         mfadvr::Vec3d o, d;
         rays.ray(x, y, o, d);
-        s.rayEnd[static_cast<size_t>(y) * rw + x] = static_cast<float>(std::max(0.0, (p - o).dot(d)));
+        s.rayEnd[static_cast<size_t>(y) * rw + x] =
+            static_cast<float>(std::max(0.0, (p - o).dot(d)));
       }
     }
-    if (!anyGeometry)
-    {
+    if (!anyGeometry) {
       s.rayEnd.clear();
     }
 
     const mfadvr::Image image = this->Internal->FieldRenderer
-      ? this->Internal->FieldRenderer(s)
-      : mfadvr::renderVolume(mfadvr::ModelField(*model), s);
-    if (image.width != rw || image.height != rh)
-    {
+                                    ? this->Internal->FieldRenderer(s)
+                                    : mfadvr::renderVolume(mfadvr::ModelField(*model), s);
+    if (image.width != rw || image.height != rh) {
       throw std::runtime_error("the field renderer returned an image of the wrong size");
     }
 
     // 8-bit premultiplied RGBA, row 0 at the bottom as OpenGL wants it.
     auto& pixels = this->Internal->Pixels;
     pixels.resize(static_cast<size_t>(4) * rw * rh);
-    for (int y = 0; y < rh; ++y)
-    {
+    for (int y = 0; y < rh; ++y) {
       unsigned char* row = pixels.data() + static_cast<size_t>(4) * rw * (rh - 1 - y);
-      for (int x = 0; x < rw; ++x)
-      {
+      for (int x = 0; x < rw; ++x) {
         const float* p = image.pixel(x, y);
-        for (int c = 0; c < 4; ++c)
-        {
+        for (int c = 0; c < 4; ++c) {
           row[4 * x + c] =
-            static_cast<unsigned char>(std::lround(std::clamp(p[c], 0.0f, 1.0f) * 255.0f));
+              static_cast<unsigned char>(std::lround(std::clamp(p[c], 0.0f, 1.0f) * 255.0f));
         }
       }
     }
-  }
-  catch (const std::exception& e)
-  {
+  } catch (const std::exception& e) {
     vtkErrorMacro(<< "cannot render the model: " << e.what());
     return;
   }
-  for (const std::string& note : notes)
-  {
+  for (const std::string& note : notes) {
     this->WarnOnce(note);
   }
 
@@ -338,8 +291,7 @@ void vtkMFAVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   // 1), blended as premultiplied colour: out = image + (1 - alpha) * frame. The image already
   // accounts for the geometry in front, so the depth test is off; the GL state is restored.
   auto* glWindow = vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow());
-  if (!glWindow)
-  {
+  if (!glWindow) {
     this->WarnOnce("the render window is not an OpenGL window; nothing is drawn");
     return;
   }
@@ -353,7 +305,7 @@ void vtkMFAVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
   state->vtkglDepthMask(GL_FALSE);
   glWindow->DrawPixels(originX, originY, originX + width - 1, originY + height - 1, 0, 0, rw - 1,
-    rh - 1, rw, rh, 4, VTK_UNSIGNED_CHAR, this->Internal->Pixels.data());
+                       rh - 1, rw, rh, 4, VTK_UNSIGNED_CHAR, this->Internal->Pixels.data());
 
   timer->StopTimer();
   this->TimeToDraw = timer->GetElapsedTime();
@@ -361,8 +313,7 @@ void vtkMFAVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   this->LastImageSampleDistance = isd;
 }
 
-void vtkMFAVolumeMapper::ReleaseGraphicsResources(vtkWindow* window)
-{
+void vtkMFAVolumeMapper::ReleaseGraphicsResources(vtkWindow* window) {
   // The pixels are drawn with the window's own texture, which the window releases.
   this->Superclass::ReleaseGraphicsResources(window);
 }

@@ -28,7 +28,7 @@
 namespace mfadvr {
 struct Image;
 struct RenderSettings;
-}
+}  // namespace mfadvr
 #endif
 #include <memory>  // for std::unique_ptr
 #include <string>  // for std::string
@@ -37,9 +37,8 @@ class vtkAlgorithmOutput;
 class vtkMFAEncoder;
 class vtkMFAModelData;
 
-class VTKMFA_EXPORT vtkMFAVolumeMapper : public vtkVolumeMapper
-{
-public:
+class VTKMFA_EXPORT vtkMFAVolumeMapper : public vtkVolumeMapper {
+ public:
   static vtkMFAVolumeMapper* New();
   vtkTypeMacro(vtkMFAVolumeMapper, vtkVolumeMapper);
   void PrintSelf(ostream& os, vtkIndent indent) override;
@@ -137,7 +136,7 @@ public:
   void Render(vtkRenderer* ren, vtkVolume* vol) override;
   void ReleaseGraphicsResources(vtkWindow* window) override;
 
-protected:
+ protected:
   vtkMFAVolumeMapper();
   ~vtkMFAVolumeMapper() override;
 
@@ -152,7 +151,7 @@ protected:
   int NumberOfThreads = 0;
   double LastImageSampleDistance = 1.0;
 
-private:
+ private:
   vtkMFAVolumeMapper(const vtkMFAVolumeMapper&) = delete;
   void operator=(const vtkMFAVolumeMapper&) = delete;
 
