@@ -36,6 +36,17 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+// The CPU mappers' image-space settings, which share names but no base class: one ray per pixel
+// in every frame (no interactive coarsening), so that frames are comparable with ours.
+template <class Mapper>
+void castEveryPixel(Mapper* m, vtkDataObject* data) {
+  m->SetInputDataObject(data);
+  m->AutoAdjustSampleDistancesOff();
+  m->SetImageSampleDistance(1.0f);
+  m->SetMinimumImageSampleDistance(1.0f);
+  m->SetMaximumImageSampleDistance(1.0f);
+}
+
 double secondsSince(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
@@ -119,36 +130,24 @@ VtkBaselineRenderer::VtkBaselineRenderer(VtkMethod method, const VtkBaselineInpu
   switch (method) {
     case VtkMethod::FixedPoint: {
       vtkNew<vtkFixedPointVolumeRayCastMapper> m;
-      m->SetInputData(d.data);
-      m->AutoAdjustSampleDistancesOff();
+      castEveryPixel(m.Get(), d.data);
       m->LockSampleDistanceToInputSpacingOff();
       m->SetSampleDistance(static_cast<float>(settings.sampleDistance));
       m->SetInteractiveSampleDistance(static_cast<float>(settings.sampleDistance));
-      m->SetImageSampleDistance(1.0f);
-      m->SetMinimumImageSampleDistance(1.0f);
-      m->SetMaximumImageSampleDistance(1.0f);
       if (settings.threads > 0) m->SetNumberOfThreads(settings.threads);
       d.mapper = m;
       break;
     }
     case VtkMethod::Bunyk: {
       vtkNew<vtkUnstructuredGridVolumeRayCastMapper> m;
-      m->SetInputData(d.data);
-      m->AutoAdjustSampleDistancesOff();
-      m->SetImageSampleDistance(1.0f);
-      m->SetMinimumImageSampleDistance(1.0f);
-      m->SetMaximumImageSampleDistance(1.0f);
+      castEveryPixel(m.Get(), d.data);
       if (settings.threads > 0) m->SetNumberOfThreads(settings.threads);
       d.mapper = m;
       break;
     }
     case VtkMethod::ZSweep: {
       vtkNew<vtkUnstructuredGridVolumeZSweepMapper> m;
-      m->SetInputData(d.data);
-      m->AutoAdjustSampleDistancesOff();
-      m->SetImageSampleDistance(1.0f);
-      m->SetMinimumImageSampleDistance(1.0f);
-      m->SetMaximumImageSampleDistance(1.0f);
+      castEveryPixel(m.Get(), d.data);
       d.mapper = m;
       break;
     }
