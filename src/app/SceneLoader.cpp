@@ -35,15 +35,7 @@ void takeModelFacts(LoadedScene& s) {
   s.boxMax = m.domain().max;
   s.valueMin = m.valueMin();
   s.valueMax = m.valueMax();
-  const Provenance& p = m.provenance();
-  const Index3 counts = m.spline().counts();
-  for (int a = 0; a < 3; ++a) {
-    // The data spacing when the model records its grid, else the finer of the control-point
-    // and mask-node spacings (so that the default step resolves the mask's boundary).
-    const std::int64_t n =
-        p.sampleDims[a] > 1 ? p.sampleDims[a] : std::max(counts[a], m.mask().dims()[a]);
-    s.spacing[a] = (s.boxMax[a] - s.boxMin[a]) / double(std::max<std::int64_t>(n - 1, 1));
-  }
+  s.spacing = m.dataSpacing();
 }
 
 // Box, value range and spacing of scattered data that is not encoded: the spacing that

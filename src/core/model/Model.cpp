@@ -1,6 +1,7 @@
 #include "core/model/Model.h"
 
 #include <tbb/parallel_for.h>
+#include <algorithm>
 
 #include "core/util/Error.h"
 
@@ -57,6 +58,17 @@ void Model::evaluate(std::span<const Vec3d> points, std::span<float> values,
       }
     }
   });
+}
+
+Vec3d Model::dataSpacing() const {
+  const Index3 counts = spline_.counts();
+  Vec3d spacing;
+  for (int a = 0; a < 3; ++a) {
+    const std::int64_t n = provenance_.sampleDims[a] > 1 ? provenance_.sampleDims[a]
+                                                         : std::max(counts[a], mask_.dims()[a]);
+    spacing[a] = domain_.extent()[a] / double(std::max<std::int64_t>(n - 1, 1));
+  }
+  return spacing;
 }
 
 }  // namespace mfadvr

@@ -63,6 +63,11 @@ class Model {
     return mask_.insideParameter(domain_.toParameter(x));  // clamps onto the box
   }
 
+  // Spacing of the data the model stands for, per axis: the recorded sample grid's, else the
+  // finer of the control-point and mask-node spacings (so that a step of half of it resolves
+  // the mask's boundary). Renderers take their default step from it.
+  Vec3d dataSpacing() const;
+
   float value(const Vec3d& x) const { return spline_.value(domain_.toParameter(x)); }
   // Value and physical gradient.
   ValueGradient valueGradient(const Vec3d& x) const;

@@ -201,18 +201,8 @@ void vtkMFAVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol) {
     s.camera = mfadvr::vtkglue::cameraFromVtk(ren->GetActiveCamera(), toModel);
     s.transferFunction = mfadvr::vtkglue::transferFunctionFromVtk(property, notes);
     s.opacityUnitDistance = property->GetScalarOpacityUnitDistance(0) * toModel.scale;
-    // Half the smallest data spacing: the model's sample grid, or its control points.
-    const mfadvr::Vec3d extent = model->domain().extent();
-    const auto& prov = model->provenance();
-    const auto counts = model->spline().counts();
-    double spacing = INFINITY;
-    for (int a = 0; a < 3; ++a) {
-      const auto n = prov.sampleDims[a] > 1 ? prov.sampleDims[a] : counts[a];
-      spacing =
-          std::min(spacing, extent[a] / static_cast<double>(std::max<std::int64_t>(n - 1, 1)));
-    }
-    s.sampleDistance =
-        this->SampleDistance > 0.0 ? this->SampleDistance * toModel.scale : 0.5 * spacing;
+    s.sampleDistance = this->SampleDistance > 0.0 ? this->SampleDistance * toModel.scale
+                                                  : 0.5 * model->dataSpacing().minCoeff();
     s.earlyTerminationOpacity = this->EarlyRayTerminationOpacity;
     s.shade = property->GetShade(0) != 0;
     if (s.shade) {
@@ -311,9 +301,4 @@ void vtkMFAVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol) {
   this->TimeToDraw = timer->GetElapsedTime();
   this->Internal->LastSeconds = this->TimeToDraw;
   this->LastImageSampleDistance = isd;
-}
-
-void vtkMFAVolumeMapper::ReleaseGraphicsResources(vtkWindow* window) {
-  // The pixels are drawn with the window's own texture, which the window releases.
-  this->Superclass::ReleaseGraphicsResources(window);
 }

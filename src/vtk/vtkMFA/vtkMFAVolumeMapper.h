@@ -66,7 +66,8 @@ class VTKMFA_EXPORT vtkMFAVolumeMapper : public vtkVolumeMapper {
   //@{
   /**
    * Distance between samples along a ray, in world units. 0 (the default): half the smallest
-   * spacing of the data the model was fitted to (its control points for scattered data).
+   * spacing of the data the model was fitted to (for scattered data, of its control points or
+   * mask nodes, whichever is finer), as `mfadvr render` does.
    */
   vtkSetClampMacro(SampleDistance, double, 0.0, VTK_DOUBLE_MAX);
   vtkGetMacro(SampleDistance, double);
@@ -134,7 +135,6 @@ class VTKMFA_EXPORT vtkMFAVolumeMapper : public vtkVolumeMapper {
 #endif
 
   void Render(vtkRenderer* ren, vtkVolume* vol) override;
-  void ReleaseGraphicsResources(vtkWindow* window) override;
 
  protected:
   vtkMFAVolumeMapper();
