@@ -18,5 +18,6 @@ Command addRenderCommand(CLI::App& app);
 Command addDemoCommand(CLI::App& app);
 Command addCompareCommand(CLI::App& app);
 Command addViewCommand(CLI::App& app);
+Command addEvalCommand(CLI::App& app);
 
 }  // namespace mfadvr::app

@@ -77,12 +77,9 @@ class GaussianBeam final : public BuiltinFunction {
 class GaussianBeams final : public BuiltinFunction {
  public:
   GaussianBeams() {
-    double start = -1.0;
-    for (int k = 0; k < 4; ++k) {
-      const double side = std::ldexp(1.0, -k);
-      const double c = start + side / 2.0;
-      beams_[k] = Beam{Vec3d(c, c, 0.0), std::sqrt(3.0) * side / 2.0};
-      start += side;
+    for (int k = 0; k < kGaussianBeamCount; ++k) {
+      const BeamBox box = gaussianBeamsBox(k);
+      beams_[k] = Beam{box.centre, std::sqrt(3.0) * box.side / 2.0};
     }
   }
   std::string name() const override { return "gaussian-beams"; }
@@ -104,10 +101,21 @@ class GaussianBeams final : public BuiltinFunction {
   }
 
  private:
-  Beam beams_[4];
+  Beam beams_[kGaussianBeamCount];
 };
 
 }  // namespace
+
+BeamBox gaussianBeamsBox(int k) {
+  if (k < 0 || k >= kGaussianBeamCount)
+    throw Error("gaussian-beams has beams 0.." + std::to_string(kGaussianBeamCount - 1) +
+                ", not " + std::to_string(k));
+  double start = -1.0;
+  for (int i = 0; i < k; ++i) start += std::ldexp(1.0, -i);
+  const double side = std::ldexp(1.0, -k);
+  const double c = start + side / 2.0;
+  return BeamBox{Vec3d(c, c, 0.0), side};
+}
 
 std::vector<std::string> builtinNames() {
   return {"marschner-lobb", "gaussian-beam", "gaussian-beams"};

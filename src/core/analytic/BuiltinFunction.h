@@ -47,6 +47,17 @@ inline bool isBuiltinSpec(const std::string& input) {
 // Parses builtin:NAME[:N | :NXxNYxNZ]; throws mfadvr::Error with the accepted forms.
 BuiltinSpec parseBuiltinSpec(const std::string& spec);
 
+// The row of beams of `gaussian-beams`: beam k (0..3) is the single beam shrunk into the
+// axis-aligned cube of side 2^-k centred at `centre` (on the diagonal x = y of the plane z = 0).
+// The evaluation frames these cubes for its zoom levels 1..4.
+constexpr int kGaussianBeamCount = 4;
+struct BeamBox {
+  Vec3d centre;
+  double side = 0.0;
+};
+// Throws mfadvr::Error for k outside 0..3.
+BeamBox gaussianBeamsBox(int k);
+
 // Samples the function on dims points per axis spanning [-1,1]^3 (endpoints included).
 StructuredGrid sampleBuiltin(const BuiltinFunction& f, const Index3& dims);
 

@@ -29,4 +29,28 @@ Image8 montageHorizontal(const std::vector<Image8>& images, int gap, std::uint8_
   return out;
 }
 
+Image8 montageGrid(const std::vector<std::vector<Image8>>& rows, int gap, std::uint8_t background) {
+  if (rows.empty()) throw Error("a montage needs at least one row");
+  std::vector<Image8> lines;
+  for (const auto& row : rows) lines.push_back(montageHorizontal(row, gap, background));
+  int width = 0, height = gap * static_cast<int>(lines.size() - 1);
+  for (const auto& l : lines) {
+    width = std::max(width, l.width);
+    height += l.height;
+  }
+  Image8 out;
+  out.width = width;
+  out.height = height;
+  out.channels = 3;
+  out.data.assign(std::size_t(width) * height * 3, background);
+  int y0 = 0;
+  for (const auto& l : lines) {
+    for (int y = 0; y < l.height; ++y)
+      std::copy_n(&l.data[std::size_t(y) * l.width * 3], std::size_t(l.width) * 3,
+                  &out.data[(std::size_t(y0 + y) * width) * 3]);
+    y0 += l.height + gap;
+  }
+  return out;
+}
+
 }  // namespace mfadvr

@@ -11,4 +11,9 @@ namespace mfadvr {
 Image8 montageHorizontal(const std::vector<Image8>& images, int gap = 8,
                          std::uint8_t background = 255);
 
+// Rows of montageHorizontal stacked top to bottom, `gap` pixels apart, left-aligned (rows may
+// differ in length and height). Output is RGB.
+Image8 montageGrid(const std::vector<std::vector<Image8>>& rows, int gap = 8,
+                   std::uint8_t background = 255);
+
 }  // namespace mfadvr

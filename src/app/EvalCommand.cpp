@@ -1,0 +1,99 @@
+// mfadvr eval paper --out DIR [--quick] [--only NAME,...]: the paper's evaluation, reproduced
+// (src/eval, docs/evaluation.md).
+#include <cstdio>
+#include <cstdlib>
+#include <iostream>
+
+#include "app/Commands.h"
+#include "app/OptionParsing.h"
+#include "eval/PaperEvaluation.h"
+
+namespace mfadvr::app {
+
+namespace {
+
+// Where the standard data sets are looked for: $MFADVR_DATA_DIR, else the folder the build was
+// configured with (MFADVR_DATA_DIR, by default ../shared/data beside the source).
+std::string defaultDataDir() {
+  if (const char* d = std::getenv("MFADVR_DATA_DIR"); d && *d) return d;
+  return MFADVR_DEFAULT_DATA_DIR;
+}
+
+}  // namespace
+
+Command addEvalCommand(CLI::App& app) {
+  struct Options {
+    eval::EvalOptions eval;
+    std::string out, dataDir = defaultDataDir();
+    bool noPlots = false, noVtk = false, quiet = false;
+  };
+  auto o = std::make_shared<Options>();
+  CLI::App* sub = app.add_subcommand("eval", "Run an evaluation and write its tables, plots and report");
+  sub->require_subcommand(1);
+  CLI::App* paper = sub->add_subcommand(
+      "paper",
+      "Reproduce the paper's results section: value accuracy (Gaussian beams), Tables 1-2 "
+      "(Marschner-Lobb), real structured and unstructured data, parameter studies, render time "
+      "vs data size; CSVs, plots, images and report.md in --out");
+  paper->add_option("--out", o->out, "Output folder (created; files in it are replaced)")
+      ->required();
+  paper->add_flag("--quick", o->eval.quick,
+                  "Small grids, images and size ranges: a few minutes on 2 cores (the smoke test)");
+  paper->add_option("--only", o->eval.only,
+                    "Run only these experiments, comma-separated: " +
+                        [] {
+                          std::string s;
+                          for (const auto& n : eval::experimentNames()) s += (s.empty() ? "" : ", ") + n;
+                          return s;
+                        }())
+      ->delimiter(',');
+  paper->add_option("--volume", o->eval.volumes,
+                    "Add a structured volume to the real-data gallery (repeatable; any format "
+                    "`render` reads)");
+  paper->add_option("--mesh", o->eval.meshes,
+                    "Add a tetrahedral mesh to the unstructured gallery (repeatable; .vtu, .vtk)");
+  paper->add_option("--data", o->dataDir,
+                    "Folder with the standard data sets (fuel, nucleon, bonsai, bluntfin, spx); "
+                    "missing ones are skipped")
+      ->capture_default_str();
+  paper->add_option("--threads", o->eval.threads, "Ray-casting threads (0: all cores)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  paper->add_flag("--no-plots", o->noPlots, "Do not run the plot script (python3-matplotlib)");
+  paper->add_flag("--no-vtk", o->noVtk,
+                  "Leave out VTK's renderers (they need an X display: use xvfb-run -a)");
+  paper->add_flag("-q,--quiet", o->quiet, "No progress on stderr");
+
+  auto run = [o, paper]() -> int {
+    if (!paper->parsed()) return 2;
+    o->eval.out = o->out;
+    o->eval.dataDir = o->dataDir;
+    o->eval.plots = !o->noPlots;
+    o->eval.vtk = !o->noVtk;
+    o->eval.progress = wantProgress(o->quiet);
+    std::string commandLine = "mfadvr eval paper --out " + o->out;
+    if (o->eval.quick) commandLine += " --quick";
+    for (std::size_t i = 0; i < o->eval.only.size(); ++i)
+      commandLine += (i ? "," : " --only ") + o->eval.only[i];
+    for (const auto& v : o->eval.volumes) commandLine += " --volume " + v;
+    for (const auto& m : o->eval.meshes) commandLine += " --mesh " + m;
+    if (o->noVtk) commandLine += " --no-vtk";
+    if (o->noPlots) commandLine += " --no-plots";
+    const eval::EvaluationSummary s = eval::runPaperEvaluation(o->eval, commandLine);
+    std::printf("report: %s (%d matches, %d differences with the paper), %.0f s\n",
+                s.report.c_str(), s.matches, s.differences, s.seconds);
+    int status = 0;
+    for (const auto& f : s.failed) {
+      std::fprintf(stderr, "mfadvr: error: experiment '%s' failed (see the report)\n", f.c_str());
+      status = 1;
+    }
+    if (!s.plotError.empty()) {
+      std::fprintf(stderr, "mfadvr: error: plots not made: %s\n", s.plotError.c_str());
+      status = 1;
+    }
+    return status;
+  };
+  return {sub, run};
+}
+
+}  // namespace mfadvr::app
