@@ -8,7 +8,7 @@ packages=(
   libeigen3-dev libtbb-dev libcli11-dev nlohmann-json3-dev
   libpng-dev zlib1g-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  libvtk9-dev python3-vtk9 python3-dev
+  libvtk9-dev python3-vtk9 python3-dev python3-matplotlib
   clang libclang-rt-14-dev
   xvfb xauth
 )

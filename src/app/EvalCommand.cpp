@@ -5,7 +5,6 @@
 #include <iostream>
 
 #include "app/Commands.h"
-#include "app/OptionParsing.h"
 #include "eval/PaperEvaluation.h"
 
 namespace mfadvr::app {
@@ -70,7 +69,8 @@ Command addEvalCommand(CLI::App& app) {
     o->eval.dataDir = o->dataDir;
     o->eval.plots = !o->noPlots;
     o->eval.vtk = !o->noVtk;
-    o->eval.progress = wantProgress(o->quiet);
+    // One line per step (no progress bars), so a log file of a long run is useful too.
+    o->eval.progress = !o->quiet;
     std::string commandLine = "mfadvr eval paper --out " + o->out;
     if (o->eval.quick) commandLine += " --quick";
     for (std::size_t i = 0; i < o->eval.only.size(); ++i)

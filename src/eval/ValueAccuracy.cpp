@@ -28,7 +28,7 @@ struct ValueConfig {
 
 ValueConfig valueConfig(bool quick) {
   if (quick) return {64, 128, 64 * 64 * 64, 48, 1, 2};
-  return {128, 384, 128 * 128 * 128, 96, 2, 2};
+  return {128, 256, 128 * 128 * 128, 96, 2, 2};
 }
 
 // The sub-grid of the columns that a parallel view of [xlo,xhi] x [ylo,yhi] sees, `margin`

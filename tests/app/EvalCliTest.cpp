@@ -1,0 +1,50 @@
+// `mfadvr eval paper`: usage errors, an unknown experiment, and a small run without VTK or
+// plots (the whole quick evaluation is the EvalPaper.QuickSmoke test).
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "CliRunner.h"
+
+using mfadvr::test::runMfadvr;
+using mfadvr::test::slurp;
+
+namespace {
+
+std::filesystem::path tmp(const std::string& name) {
+  const auto p = std::filesystem::path(MFADVR_TEST_TMP_DIR) / name;
+  std::filesystem::remove_all(p);
+  return p;
+}
+
+}  // namespace
+
+TEST(CliEval, NeedsTheEvaluationAndAnOutputFolder) {
+  EXPECT_EQ(runMfadvr("eval").status, 2);
+  const auto r = runMfadvr("eval paper --quick");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("--out"), std::string::npos) << r.err;
+}
+
+TEST(CliEval, UnknownExperimentListsTheKnownOnesAndWritesNothing) {
+  const auto out = tmp("eval_cli_unknown");
+  const auto r = runMfadvr("eval paper --quick --no-vtk --out " + out.string() + " --only tables,speed");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("unknown experiment 'speed'"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("performance"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(out));
+}
+
+TEST(CliEval, QuickTablesWithoutVtkOrPlots) {
+  const auto out = tmp("eval_cli_tables");
+  const auto r =
+      runMfadvr("eval paper --quick --no-vtk --no-plots -q --only tables --out " + out.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("report: "), std::string::npos);
+  const std::string report = slurp(out / "report.md");
+  EXPECT_NE(report.find("Table 2 (value and gradient), 64x64x64"), std::string::npos);
+  EXPECT_NE(report.find("Machine and software"), std::string::npos);
+  EXPECT_TRUE(std::filesystem::is_regular_file(out / "table1_gradient.csv"));
+  EXPECT_FALSE(std::filesystem::exists(out / "plots"));
+  EXPECT_TRUE(r.err.empty()) << r.err;  // -q
+}
