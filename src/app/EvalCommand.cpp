@@ -27,7 +27,8 @@ Command addEvalCommand(CLI::App& app) {
     bool noPlots = false, noVtk = false, quiet = false;
   };
   auto o = std::make_shared<Options>();
-  CLI::App* sub = app.add_subcommand("eval", "Run an evaluation and write its tables, plots and report");
+  CLI::App* sub =
+      app.add_subcommand("eval", "Run an evaluation and write its tables, plots and report");
   sub->require_subcommand(1);
   CLI::App* paper = sub->add_subcommand(
       "paper",
@@ -38,22 +39,25 @@ Command addEvalCommand(CLI::App& app) {
       ->required();
   paper->add_flag("--quick", o->eval.quick,
                   "Small grids, images and size ranges: a few minutes on 2 cores (the smoke test)");
-  paper->add_option("--only", o->eval.only,
-                    "Run only these experiments, comma-separated: " +
-                        [] {
-                          std::string s;
-                          for (const auto& n : eval::experimentNames()) s += (s.empty() ? "" : ", ") + n;
-                          return s;
-                        }())
+  paper
+      ->add_option(
+          "--only", o->eval.only,
+          "Run only these experiments, comma-separated: " +
+              [] {
+                std::string s;
+                for (const auto& n : eval::experimentNames()) s += (s.empty() ? "" : ", ") + n;
+                return s;
+              }())
       ->delimiter(',');
   paper->add_option("--volume", o->eval.volumes,
                     "Add a structured volume to the real-data gallery (repeatable; any format "
                     "`render` reads)");
   paper->add_option("--mesh", o->eval.meshes,
                     "Add a tetrahedral mesh to the unstructured gallery (repeatable; .vtu, .vtk)");
-  paper->add_option("--data", o->dataDir,
-                    "Folder with the standard data sets (fuel, nucleon, bonsai, bluntfin, spx); "
-                    "missing ones are skipped")
+  paper
+      ->add_option("--data", o->dataDir,
+                   "Folder with the standard data sets (fuel, nucleon, bonsai, bluntfin, spx); "
+                   "missing ones are skipped")
       ->capture_default_str();
   paper->add_option("--threads", o->eval.threads, "Ray-casting threads (0: all cores)")
       ->capture_default_str()

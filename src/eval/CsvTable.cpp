@@ -52,7 +52,9 @@ std::string CsvTable::toCsv() const {
   return out;
 }
 
-void CsvTable::write(const std::string& path) const { writeFileAtomically(path, toCsv()); }
+void CsvTable::write(const std::string& path) const {
+  writeFileAtomically(path, toCsv());
+}
 
 std::string CsvTable::toMarkdown(const std::vector<std::string>& columns,
                                  const std::vector<std::string>& headers) const {

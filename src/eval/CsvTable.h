@@ -31,6 +31,22 @@ class CsvTable {
   std::vector<std::vector<std::string>> rows_;
 };
 
+// The parameter studies' Markdown table: a row per degree, a column per control count, each
+// cell cell(degree, controlCount).
+template <class Cell>
+std::string degreeByControlsTable(const std::vector<int>& degrees, const std::vector<int>& ctrls,
+                                  Cell cell) {
+  std::vector<std::string> columns = {"degree"};
+  for (int c : ctrls) columns.push_back(std::to_string(c));
+  CsvTable t(columns);
+  for (int p : degrees) {
+    std::vector<std::string> row = {std::to_string(p)};
+    for (int c : ctrls) row.push_back(cell(p, c));
+    t.addRow(row);
+  }
+  return t.toMarkdown();
+}
+
 // Shortest round-trip-ish text of a number: %.*g with `digits` significant digits, "inf",
 // "-inf" or "nan".
 std::string csvNumber(double value, int digits = 6);

@@ -41,12 +41,4 @@ RenderSettings sceneSettings(int width, int height, const Vec3d& boxMin, const V
 // Per-channel |image - truth| x gain, the error images of Fig. 6.
 constexpr double kErrorImageGain = 4.0;
 
-// One method's result against the truth image.
-struct Scored {
-  std::string method, family;
-  TimedImage rendered;
-  ImageComparison metrics;
-  std::string image, errorImage;  // relative paths, once written
-};
-
 }  // namespace mfadvr::eval

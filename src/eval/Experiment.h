@@ -25,7 +25,7 @@ struct Experiment {
 // The experiments of `mfadvr eval paper`, in the order they run.
 const std::vector<Experiment>& paperExperiments();
 
-ExperimentReport runValueAccuracy(const EvalContext&);       // Fig. 4-6 (and 13's data)
+ExperimentReport runValueAccuracy(const EvalContext&);        // Fig. 4-6 (and 13's data)
 ExperimentReport runMarschnerLobbTables(const EvalContext&);  // Tables 1 and 2, Fig. 7
 ExperimentReport runStructuredGallery(const EvalContext&);    // Fig. 8
 ExperimentReport runUnstructuredGallery(const EvalContext&);  // Fig. 9

@@ -38,15 +38,15 @@ std::string paperComparison(const std::string& table, const Results& r,
   };
   const double mfa = r.at("mfa").psnr, tri = r.at("trilinear").psnr;
   const double cubic = r.at("tricubic").psnr, cr = r.at("catmull-rom").psnr;
-  md += paperBullet(mfa > tri && mfa > cubic && mfa > cr,
-                    table + ", " + grid + ": the MFA model (" + fixed(mfa, 2) +
-                        " dB) against trilinear " + fixed(tri, 2) + ", tricubic " +
-                        fixed(cubic, 2) + ", Catmull-Rom " + fixed(cr, 2) + " dB" +
-                        (mfa > tri && mfa > cubic && mfa > cr
-                             ? ": best of the four, as in the paper (" + fixed(p("mfa").psnr, 2) +
-                                   " dB there)."
-                             : ": not the best of the four, unlike the paper; the images show "
-                               "where it loses."));
+  md += paperBullet(
+      mfa > tri && mfa > cubic && mfa > cr,
+      table + ", " + grid + ": the MFA model (" + fixed(mfa, 2) + " dB) against trilinear " +
+          fixed(tri, 2) + ", tricubic " + fixed(cubic, 2) + ", Catmull-Rom " + fixed(cr, 2) +
+          " dB" +
+          (mfa > tri && mfa > cubic && mfa > cr
+               ? ": best of the four, as in the paper (" + fixed(p("mfa").psnr, 2) + " dB there)."
+               : ": not the best of the four, unlike the paper; the images show "
+                 "where it loses."));
   md += paperBullet(std::abs(cubic - cr) < 0.05,
                     table + ", " + grid + ": tricubic and Catmull-Rom differ by " +
                         fixed(std::abs(cubic - cr), 3) + " dB" +
@@ -58,17 +58,17 @@ std::string paperComparison(const std::string& table, const Results& r,
                                "the difference comes from the boundary (one-sided differences "
                                "in the outermost cells)."));
   const bool paperOrder = tri > cubic;  // the paper has trilinear above the cubic filters
-  md += paperBullet(paperOrder,
-                    table + ", " + grid + ": trilinear " + (paperOrder ? "above" : "below") +
-                        " tricubic (" + fixed(tri, 2) + " vs " + fixed(cubic, 2) + " dB)" +
-                        (paperOrder
-                             ? ", as in the paper, where the cubic filters' ringing on the "
-                               "ripples costs them more than trilinear's blur."
-                             : "; the paper has trilinear above (" + fixed(p("trilinear").psnr, 2) +
-                                   " vs " + fixed(p("tricubic").psnr, 2) +
-                                   " dB): with the same filters, the order depends on the grid "
-                                   "and view, which the paper does not publish; at ours the cubic "
-                                   "filters' smaller value error outweighs their ringing."));
+  md += paperBullet(
+      paperOrder,
+      table + ", " + grid + ": trilinear " + (paperOrder ? "above" : "below") + " tricubic (" +
+          fixed(tri, 2) + " vs " + fixed(cubic, 2) + " dB)" +
+          (paperOrder ? ", as in the paper, where the cubic filters' ringing on the "
+                        "ripples costs them more than trilinear's blur."
+                      : "; the paper has trilinear above (" + fixed(p("trilinear").psnr, 2) +
+                            " vs " + fixed(p("tricubic").psnr, 2) +
+                            " dB): with the same filters, the order depends on the grid "
+                            "and view, which the paper does not publish; at ours the cubic "
+                            "filters' smaller value error outweighs their ringing."));
   return md;
 }
 
@@ -97,7 +97,8 @@ ExperimentReport runMarschnerLobbTables(const EvalContext& ctx) {
         "many per axis. Metrics on 8-bit RGB against the truth (value and gradient analytic).\n\n";
 
   for (int n : {64, 41}) {
-    const std::string gridName = std::to_string(n) + "x" + std::to_string(n) + "x" + std::to_string(n);
+    const std::string gridName =
+        std::to_string(n) + "x" + std::to_string(n) + "x" + std::to_string(n);
     ctx.log("Marschner-Lobb tables: " + gridName + ": sampling and encoding");
     const StructuredGrid grid = sampleBuiltin(*ml, {n, n, n});
     EncodeOptions fit;
@@ -115,9 +116,9 @@ ExperimentReport runMarschnerLobbTables(const EvalContext& ctx) {
         {"mfa", ReconstructionMethod::Mfa, &full},
         {"mfa-half", ReconstructionMethod::Mfa, &halfModel}};
 
-    RenderSettings s = sceneSettings(image, image, grid.boxMin(), grid.boxMax(), 30.0, 25.0,
-                                     "step:0.5", "white", 0.0, 1.0, grid.spacing, 0.5,
-                                     ctx.threads());
+    RenderSettings s =
+        sceneSettings(image, image, grid.boxMin(), grid.boxMax(), 30.0, 25.0, "step:0.5", "white",
+                      0.0, 1.0, grid.spacing, 0.5, ctx.threads());
     s.sampleDistance = step;
     s.shade = true;
 
@@ -179,12 +180,15 @@ ExperimentReport runMarschnerLobbTables(const EvalContext& ctx) {
         for (const auto& e : paper) out += " " + fixed(theirs(e), decimals) + " |";
         out += "\n";
       };
-      line("MSE", [](const ImageComparison& c) { return c.mse; },
-           [](const PaperMetrics& e) { return e.mse; }, 2);
-      line("PSNR (dB)", [](const ImageComparison& c) { return c.psnr; },
-           [](const PaperMetrics& e) { return e.psnr; }, 2);
-      line("SSIM", [](const ImageComparison& c) { return c.ssim; },
-           [](const PaperMetrics& e) { return e.ssim; }, 3);
+      line(
+          "MSE", [](const ImageComparison& c) { return c.mse; },
+          [](const PaperMetrics& e) { return e.mse; }, 2);
+      line(
+          "PSNR (dB)", [](const ImageComparison& c) { return c.psnr; },
+          [](const PaperMetrics& e) { return e.psnr; }, 2);
+      line(
+          "SSIM", [](const ImageComparison& c) { return c.ssim; },
+          [](const PaperMetrics& e) { return e.ssim; }, 3);
       return out + "\n";
     };
     md += section("Table 1 (gradient only)", r1, kPaperTable1);
@@ -203,9 +207,10 @@ ExperimentReport runMarschnerLobbTables(const EvalContext& ctx) {
                     "publish its grid, camera, image size, step or lighting, and MSE and PSNR "
                     "depend on how much of the image the surface covers, so only the order of "
                     "the methods carries over.");
-  md += "\nImages: `tables/N_tableT_METHOD.png`; `tables/montage.png` rows: 64^3 Table 1, 64^3 "
-        "Table 2, 41^3 Table 1, 41^3 Table 2; columns: truth, trilinear, tricubic, catmull-rom, "
-        "bspline, mfa, mfa-half.\n";
+  md +=
+      "\nImages: `tables/N_tableT_METHOD.png`; `tables/montage.png` rows: 64^3 Table 1, 64^3 "
+      "Table 2, 41^3 Table 1, 41^3 Table 2; columns: truth, trilinear, tricubic, catmull-rom, "
+      "bspline, mfa, mfa-half.\n";
   return report;
 }
 

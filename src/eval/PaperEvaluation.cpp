@@ -1,9 +1,9 @@
 #include "eval/PaperEvaluation.h"
 
+#include <sys/wait.h>
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
-#include <sys/wait.h>
 
 #include "core/util/AtomicFile.h"
 #include "core/util/Error.h"
@@ -119,7 +119,8 @@ EvaluationSummary runPaperEvaluation(const EvalOptions& options, const std::stri
   }
   std::error_code ec;
   std::filesystem::create_directories(options.out, ec);
-  if (ec) throw Error("cannot create the output folder " + options.out.string() + ": " + ec.message());
+  if (ec)
+    throw Error("cannot create the output folder " + options.out.string() + ": " + ec.message());
 
   const EvalContext ctx(options);
   const std::string started = utcNow();
@@ -164,7 +165,9 @@ EvaluationSummary runPaperEvaluation(const EvalOptions& options, const std::stri
   md += "| threads (ray caster) | " +
         (options.threads ? std::to_string(options.threads) : std::string("all")) + " |\n";
   md += "| data folder | " + options.dataDir.string() + " |\n\n";
-  md += "## Summary\n\n| experiment | paper | wall time | matches | differs |\n|---|---|---|---|---|\n";
+  md +=
+      "## Summary\n\n| experiment | paper | wall time | matches | differs "
+      "|\n|---|---|---|---|---|\n";
   for (const auto& s : sections) {
     const int m = countOf(s.report.markdown, "**Matches.**");
     const int d = countOf(s.report.markdown, "**Differs.**");
@@ -194,11 +197,15 @@ EvaluationSummary runPaperEvaluation(const EvalOptions& options, const std::stri
       if (std::filesystem::exists(options.out / rel, ec)) md += "![" + f + "](" + rel + ")\n\n";
     }
     if (!s.report.files.empty())
-      md += "Files: " + joined([&] {
-        std::vector<std::string> q;
-        for (const auto& f : s.report.files) q.push_back("`" + f + "`");
-        return q;
-      }(), ", ") + ".\n\n";
+      md += "Files: " +
+            joined(
+                [&] {
+                  std::vector<std::string> q;
+                  for (const auto& f : s.report.files) q.push_back("`" + f + "`");
+                  return q;
+                }(),
+                ", ") +
+            ".\n\n";
   }
   summary.report = (options.out / "report.md").string();
   writeFileAtomically(summary.report, md);

@@ -12,10 +12,10 @@ namespace mfadvr::eval {
 std::vector<std::string> experimentNames();
 
 struct EvaluationSummary {
-  std::string report;          // path of report.md
-  double seconds = 0.0;        // wall time
+  std::string report;               // path of report.md
+  double seconds = 0.0;             // wall time
   std::vector<std::string> failed;  // experiments that stopped with an error
-  std::string plotError;       // why the plots were not made (empty when they were or not asked)
+  std::string plotError;  // why the plots were not made (empty when they were or not asked)
   int matches = 0, differences = 0;  // the report's comparison bullets
 };
 

@@ -34,14 +34,14 @@ ExperimentReport runParameterQuality(const EvalContext& ctx) {
   const Image8 truth = renderOurs(base, truthSpec, s).image;
   ctx.writeImage("params/truth.png", truth);
 
-  CsvTable table({"grid", "degree", "ctrl", "mse", "psnr", "ssim", "encode_seconds",
-                  "render_seconds"});
+  CsvTable table(
+      {"grid", "degree", "ctrl", "mse", "psnr", "ssim", "encode_seconds", "render_seconds"});
   std::map<std::pair<int, int>, double> psnr;  // (degree, ctrl)
   for (int p : degrees)
     for (int c : ctrls) {
       if (c < p + 1) continue;
-      ctx.log("parameter study (quality): degree " + std::to_string(p) + ", " +
-              std::to_string(c) + "^3 control points");
+      ctx.log("parameter study (quality): degree " + std::to_string(p) + ", " + std::to_string(c) +
+              "^3 control points");
       EncodeOptions fit;
       fit.degree = {p, p, p};
       fit.controlCounts = {c, c, c};
@@ -65,23 +65,19 @@ ExperimentReport runParameterQuality(const EvalContext& ctx) {
   report.files = {"fig10_param_quality.csv"};
   std::string& md = report.markdown;
   md += "Settings: `marschner-lobb` sampled on " + gridName +
-        ", encoded at degree p = 1..4 with N/8 ... N control points per axis (N = " + std::to_string(n) +
+        ", encoded at degree p = 1..4 with N/8 ... N control points per axis (N = " +
+        std::to_string(n) +
         "); each model in "
         "Table 2's scene (" +
-        std::to_string(image) + "x" + std::to_string(image) +
-        ", step " + csvNumber(s.sampleDistance, 4) + ") against the truth.\n\n";
+        std::to_string(image) + "x" + std::to_string(image) + ", step " +
+        csvNumber(s.sampleDistance, 4) + ") against the truth.\n\n";
   md += "PSNR (dB), rows degree, columns control points per axis:\n\n";
-  {
-    std::vector<std::string> cols = {"degree"};
-    for (int c : ctrls) cols.push_back(std::to_string(c));
-    CsvTable t(cols);
-    for (int p : degrees) {
-      std::vector<std::string> r = {std::to_string(p)};
-      for (int c : ctrls) r.push_back(psnr.count({p, c}) ? fixed(psnr[{p, c}], 2) : "-");
-      t.addRow(r);
-    }
-    md += t.toMarkdown() + "\n";
-  }
+  md +=
+      degreeByControlsTable(degrees, ctrls,
+                            [&](int p, int c) {
+                              return psnr.count({p, c}) ? fixed(psnr[{p, c}], 2) : std::string("-");
+                            }) +
+      "\n";
   auto at = [&](int p, int c) { return psnr.count({p, c}) ? psnr[{p, c}] : -1e300; };
   md += "Compared with the paper:\n\n";
   {
@@ -106,15 +102,14 @@ ExperimentReport runParameterQuality(const EvalContext& ctx) {
     double best = -1e300;
     for (const auto& [key, v] : psnr) best = std::max(best, v);
     const double halfBest = std::max(at(2, n / 2), at(3, n / 2));
-    md += paperBullet(halfBest >= best - 1.0,
-                      "Half the samples per axis with degree 2 or 3 (the paper's recommendation) "
-                      "gives " +
-                          fixed(halfBest, 2) + " dB, against the study's best " + fixed(best, 2) +
-                          " dB" +
-                          (halfBest >= best - 1.0
-                               ? ": within 1 dB, so it works well here too."
-                               : ": more than 1 dB short; at this grid the function's ripples "
-                                 "need more control points than half the samples."));
+    md += paperBullet(
+        halfBest >= best - 1.0,
+        "Half the samples per axis with degree 2 or 3 (the paper's recommendation) "
+        "gives " +
+            fixed(halfBest, 2) + " dB, against the study's best " + fixed(best, 2) + " dB" +
+            (halfBest >= best - 1.0 ? ": within 1 dB, so it works well here too."
+                                    : ": more than 1 dB short; at this grid the function's ripples "
+                                      "need more control points than half the samples."));
   }
   {
     const bool runge = at(4, n) < at(3, n);

@@ -38,8 +38,8 @@ ExperimentReport runQueryTiming(const EvalContext& ctx) {
   const int n = ctx.quick() ? 64 : 256;
   const int queries = ctx.quick() ? 100000 : 1000000;
   const int repeats = ctx.quick() ? 3 : 5;
-  const std::vector<int> ctrls = ctx.quick() ? std::vector<int>{16, 32, 64}
-                                             : std::vector<int>{32, 64, 128, 256};
+  const std::vector<int> ctrls =
+      ctx.quick() ? std::vector<int>{16, 32, 64} : std::vector<int>{32, 64, 128, 256};
   const std::vector<int> degrees = {1, 2, 3, 4};
   const auto beam = makeBuiltin("gaussian-beam");
   ctx.log("parameter study (query time): sampling gaussian-beam on " + std::to_string(n) + "^3");
@@ -60,8 +60,8 @@ ExperimentReport runQueryTiming(const EvalContext& ctx) {
       fit.degree = {p, p, p};
       fit.controlCounts = {c, c, c};
       const Model model = encodeGrid(grid, fit);
-      const double value =
-          nsPerQuery(points, repeats, [&](const Vec3d& x) { return model.value(x); }, sink);
+      const double value = nsPerQuery(
+          points, repeats, [&](const Vec3d& x) { return model.value(x); }, sink);
       const double both = nsPerQuery(
           points, repeats,
           [&](const Vec3d& x) {
@@ -80,25 +80,21 @@ ExperimentReport runQueryTiming(const EvalContext& ctx) {
   ExperimentReport report;
   report.files = {"fig12_query_time.csv"};
   std::string& md = report.markdown;
-  md += "Settings: `gaussian-beam` sampled on " + std::to_string(n) + "^3, encoded at degree "
+  md += "Settings: `gaussian-beam` sampled on " + std::to_string(n) +
+        "^3, encoded at degree "
         "1..4 with the listed control points per axis; " +
-        std::to_string(queries) +
-        " uniformly random query points, one thread, median of " + std::to_string(repeats) +
+        std::to_string(queries) + " uniformly random query points, one thread, median of " +
+        std::to_string(repeats) +
         " passes. `value` is `Model::value`, `both` is `Model::valueGradient` (value and "
         "gradient in one pass); our evaluator has no separate gradient-only query, so the "
         "paper's gradient column corresponds to `both`.\n\n";
   md += "Nanoseconds per query (value / value+gradient), rows degree, columns control points:\n\n";
-  {
-    std::vector<std::string> cols = {"degree"};
-    for (int c : ctrls) cols.push_back(std::to_string(c));
-    CsvTable t(cols);
-    for (int p : degrees) {
-      std::vector<std::string> r = {std::to_string(p)};
-      for (int c : ctrls) r.push_back(fixed(ns[{p, c}].first, 0) + " / " + fixed(ns[{p, c}].second, 0));
-      t.addRow(r);
-    }
-    md += t.toMarkdown() + "\n";
-  }
+  md += degreeByControlsTable(
+            degrees, ctrls,
+            [&](int p, int c) {
+              return fixed(ns[{p, c}].first, 0) + " / " + fixed(ns[{p, c}].second, 0);
+            }) +
+        "\n";
   // The paper: time grows with the control count, but less than with the degree.
   const double growCtrl = ns[{3, ctrls.back()}].first / ns[{3, ctrls.front()}].first;
   const double growDegree = ns[{4, ctrls.front()}].first / ns[{1, ctrls.front()}].first;

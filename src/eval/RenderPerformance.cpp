@@ -17,16 +17,16 @@ namespace mfadvr::eval {
 ExperimentReport runRenderPerformance(const EvalContext& ctx) {
   const bool quick = ctx.quick();
   const int image = quick ? 200 : 1000;
-  const std::vector<int> structuredSizes = quick ? std::vector<int>{16, 32}
-                                                 : std::vector<int>{32, 64, 128, 256};
-  const std::vector<int> unstructuredSizes = quick ? std::vector<int>{8, 16}
-                                                   : std::vector<int>{16, 24, 32, 40};
+  const std::vector<int> structuredSizes =
+      quick ? std::vector<int>{16, 32} : std::vector<int>{32, 64, 128, 256};
+  const std::vector<int> unstructuredSizes =
+      quick ? std::vector<int>{8, 16} : std::vector<int>{16, 24, 32, 40};
   // VTK's ZSweep takes minutes per 1000x1000 frame of a million tetrahedra: the unstructured
   // sizes stop at 40^3 (300,000 tetrahedra), and VTK renders 2 frames (the first, then one).
   const int repeats = quick ? 1 : 3, frames = 2;
   const auto beam = makeBuiltin("gaussian-beam");
-  CsvTable table({"family", "method", "size", "points", "cells", "render_seconds",
-                  "first_seconds", "width", "height"});
+  CsvTable table({"family", "method", "size", "points", "cells", "render_seconds", "first_seconds",
+                  "width", "height"});
   const std::vector<std::pair<std::string, ReconstructionMethod>> gridMethods = {
       {"trilinear", ReconstructionMethod::Trilinear},
       {"tricubic", ReconstructionMethod::Tricubic},
@@ -40,9 +40,8 @@ ExperimentReport runRenderPerformance(const EvalContext& ctx) {
     fit.degree = {2, 2, 2};
     fit.controlCounts = {n, n, n};
     const Model model = encodeGrid(grid, fit);
-    RenderSettings s = sceneSettings(image, image, grid.boxMin(), grid.boxMax(), 30.0, 20.0,
-                                     "ramp", "cool-to-warm", 0.0, 255.0, grid.spacing, 0.5,
-                                     ctx.threads());
+    RenderSettings s = sceneSettings(image, image, grid.boxMin(), grid.boxMax(), 30.0, 20.0, "ramp",
+                                     "cool-to-warm", 0.0, 255.0, grid.spacing, 0.5, ctx.threads());
     // One physical step and unit distance for every size: the work per ray is the same, so
     // the times show what the data size costs.
     s.sampleDistance = 0.5 * 2.0 / 255.0;
@@ -68,10 +67,9 @@ ExperimentReport runRenderPerformance(const EvalContext& ctx) {
     }
     if (!ctx.vtk()) return;
     const std::vector<VtkMethod> vtkMethods =
-        family == "structured"
-            ? std::vector<VtkMethod>{VtkMethod::FixedPoint}
-            : std::vector<VtkMethod>{VtkMethod::Bunyk, VtkMethod::ZSweep,
-                                     VtkMethod::ProjectedTetrahedra};
+        family == "structured" ? std::vector<VtkMethod>{VtkMethod::FixedPoint}
+                               : std::vector<VtkMethod>{VtkMethod::Bunyk, VtkMethod::ZSweep,
+                                                        VtkMethod::ProjectedTetrahedra};
     for (VtkMethod m : vtkMethods) {
       ctx.log("performance: " + family + " " + std::to_string(n) + "^3: " + vtkMethodName(m));
       add(vtkMethodName(m), family == "structured" ? voxels : tets,
@@ -91,7 +89,8 @@ ExperimentReport runRenderPerformance(const EvalContext& ctx) {
         "[0, 255], cool-to-warm; step 1/255 and unit distance 2/63 for every N (so every size "
         "casts the same samples); structured family shaded, unstructured unshaded. MFA: degree "
         "2, N^3 control points. Our times: the median over " +
-        std::to_string(repeats) + " render(s) (ray casting only; the filters' set-up is in "
+        std::to_string(repeats) +
+        " render(s) (ray casting only; the filters' set-up is in "
         "first_seconds). VTK: median of the frames after the first of " +
         std::to_string(frames) + " (the first builds VTK's structures; it is in first_seconds). " +
         (ctx.threads() ? std::to_string(ctx.threads()) : std::string("all")) +
@@ -112,10 +111,11 @@ ExperimentReport runRenderPerformance(const EvalContext& ctx) {
     std::string fastest = "trilinear";
     for (const auto& [name, m] : gridMethods)
       if (seconds("structured", name, big) < seconds("structured", fastest, big)) fastest = name;
-    const double ratio = seconds("structured", "mfa", big) / seconds("structured", "trilinear", big);
+    const double ratio =
+        seconds("structured", "mfa", big) / seconds("structured", "trilinear", big);
     md += paperBullet(fastest == "trilinear",
-                      "The fastest structured method of ours at " + std::to_string(big) +
-                          "^3 is " + fastest + "; the MFA model takes " + fixed(ratio, 1) +
+                      "The fastest structured method of ours at " + std::to_string(big) + "^3 is " +
+                          fastest + "; the MFA model takes " + fixed(ratio, 1) +
                           "x trilinear's time (the paper: about 8x): a degree-2 sample reads 27 "
                           "control points and evaluates 9 basis functions, a trilinear one reads "
                           "8 samples.");
@@ -125,15 +125,14 @@ ExperimentReport runRenderPerformance(const EvalContext& ctx) {
     const double cubic = seconds("structured", "tricubic", big);
     const double cr = seconds("structured", "catmull-rom", big);
     const bool faster = mfa < cubic && mfa < cr;
-    md += paperBullet(faster,
-                      std::string("The MFA model is ") + (faster ? "faster" : "not faster") +
-                          " than tricubic and Catmull-Rom at " + std::to_string(big) + "^3 (" +
-                          fixed(mfa, 2) + " s vs " + fixed(cubic, 2) + " s and " + fixed(cr, 2) +
-                          " s)" +
-                          (faster ? ", as in the paper: its coefficients were fitted before "
-                                    "rendering."
-                                  : "; our cubic filters precompute nothing per cell either, so "
-                                    "their cost per sample is close to a degree-2 spline's."));
+    md += paperBullet(
+        faster, std::string("The MFA model is ") + (faster ? "faster" : "not faster") +
+                    " than tricubic and Catmull-Rom at " + std::to_string(big) + "^3 (" +
+                    fixed(mfa, 2) + " s vs " + fixed(cubic, 2) + " s and " + fixed(cr, 2) + " s)" +
+                    (faster ? ", as in the paper: its coefficients were fitted before "
+                              "rendering."
+                            : "; our cubic filters precompute nothing per cell either, so "
+                              "their cost per sample is close to a degree-2 spline's."));
   }
   {
     const double growth = seconds("structured", "mfa", big) / seconds("structured", "mfa", small);
@@ -158,11 +157,11 @@ ExperimentReport runRenderPerformance(const EvalContext& ctx) {
                           (faster ? ", as in the paper: it needs no cell search or sorting."
                                   : "; at this small size VTK's per-cell work is still cheap."));
     const double pt = seconds("unstructured", "vtk-pt", ubig);
-    md += paperBullet(false,
-                      "Projected tetrahedra ran on Mesa's software OpenGL here (" + fixed(pt, 2) +
-                          " s at " + std::to_string(ubig) +
-                          "^3), not on a GPU as in the paper's right panel of Fig. 11, so its "
-                          "times are not the paper's GPU comparison.");
+    md +=
+        paperBullet(false, "Projected tetrahedra ran on Mesa's software OpenGL here (" +
+                               fixed(pt, 2) + " s at " + std::to_string(ubig) +
+                               "^3), not on a GPU as in the paper's right panel of Fig. 11, so its "
+                               "times are not the paper's GPU comparison.");
   }
   return report;
 }

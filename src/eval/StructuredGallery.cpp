@@ -37,10 +37,11 @@ ExperimentReport runStructuredGallery(const EvalContext& ctx) {
         "each volume's range, cool-to-warm colours, shading on (headlight; ambient 0.3, diffuse "
         "0.7, specular 0.2, power 10), step 0.5 x spacing, unit distance 1 spacing. MFA: degree "
         "3, as many control points as samples up to " +
-        std::to_string(maxCtrl) + " per axis. Real data have no ground truth: compare the images.\n\n";
+        std::to_string(maxCtrl) +
+        " per axis. Real data have no ground truth: compare the images.\n\n";
   if (!missing.empty())
-    md += "Not found in the data folder (`" + ctx.options().dataDir.string() + "`), skipped: " +
-          missing + ".\n\n";
+    md += "Not found in the data folder (`" + ctx.options().dataDir.string() +
+          "`), skipped: " + missing + ".\n\n";
   if (inputs.empty()) {
     md += "No volumes to render.\n";
     return report;
@@ -66,8 +67,8 @@ ExperimentReport runStructuredGallery(const EvalContext& ctx) {
     const Model model = encodeGrid(grid, fit);
     const double vmin = *std::min_element(grid.values.begin(), grid.values.end());
     const double vmax = *std::max_element(grid.values.begin(), grid.values.end());
-    RenderSettings s = sceneSettings(image, image, grid.boxMin(), grid.boxMax(), 30.0, 20.0,
-                                     "ramp", "cool-to-warm", vmin, std::max(vmax, vmin + 1e-12),
+    RenderSettings s = sceneSettings(image, image, grid.boxMin(), grid.boxMax(), 30.0, 20.0, "ramp",
+                                     "cool-to-warm", vmin, std::max(vmax, vmin + 1e-12),
                                      grid.spacing, 0.5, ctx.threads());
     s.shade = true;
     SceneData scene;
@@ -76,7 +77,8 @@ ExperimentReport runStructuredGallery(const EvalContext& ctx) {
     scene.differenceStep = grid.spacing;
     std::vector<Image8> row;
     auto add = [&](const std::string& method, const TimedImage& r) {
-      const std::string path = ctx.writeImage("structured/" + name + "_" + method + ".png", r.image);
+      const std::string path =
+          ctx.writeImage("structured/" + name + "_" + method + ".png", r.image);
       table.addRow({name, dims, method, csvNumber(r.seconds), path});
       row.push_back(r.image);
     };
@@ -121,9 +123,10 @@ ExperimentReport runStructuredGallery(const EvalContext& ctx) {
   md += paperBullet(false,
                     "The paper's fourth data set, Aneurysm (512^3), is not in the data folder; "
                     "any volume can be added with --volume.");
-  md += "\nImages: `structured/NAME_METHOD.png`; `structured/montage.png` rows: the data sets "
-        "in the table's order; columns: trilinear, tricubic, catmull-rom, bspline, mfa" +
-        std::string(ctx.vtk() ? ", vtk-fixedpoint" : "") + ".\n";
+  md +=
+      "\nImages: `structured/NAME_METHOD.png`; `structured/montage.png` rows: the data sets "
+      "in the table's order; columns: trilinear, tricubic, catmull-rom, bspline, mfa" +
+      std::string(ctx.vtk() ? ", vtk-fixedpoint" : "") + ".\n";
   return report;
 }
 

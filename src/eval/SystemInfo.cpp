@@ -1,9 +1,9 @@
 #include "eval/SystemInfo.h"
 
+#include <vtkVersion.h>
 #include <Eigen/Core>
 #include <fstream>
 #include <thread>
-#include <vtkVersion.h>
 
 #include <oneapi/tbb/version.h>
 
@@ -42,7 +42,8 @@ std::vector<std::pair<std::string, std::string>> systemDescription() {
 #elif defined(__GNUC__)
                        "gcc "
 #endif
-                       ) + __VERSION__},
+                       ) +
+                       __VERSION__},
       {"mfadvr", MFADVR_VERSION},
       {"VTK", vtkVersion::GetVTKVersion()},
       {"Eigen", std::to_string(EIGEN_WORLD_VERSION) + "." + std::to_string(EIGEN_MAJOR_VERSION) +

@@ -40,8 +40,8 @@ ExperimentReport runUnstructuredGallery(const EvalContext& ctx) {
         "per cell). MFA: degree 3, the encoder's default control counts, smoothing 1e-2, domain "
         "mask from the mesh's cells.\n\n";
   if (!missing.empty())
-    md += "Not found in the data folder (`" + ctx.options().dataDir.string() + "`), skipped: " +
-          missing + ".\n\n";
+    md += "Not found in the data folder (`" + ctx.options().dataDir.string() +
+          "`), skipped: " + missing + ".\n\n";
   if (inputs.empty()) {
     md += "No meshes to render.\n";
     return report;
@@ -55,7 +55,8 @@ ExperimentReport runUnstructuredGallery(const EvalContext& ctx) {
     load.field = input.field;
     const ScatteredData mesh = loadScatteredData(input.path, load);
     if (mesh.tets.empty()) {
-      md += "`" + input.path + "` has no cells (a point cloud): VTK's renderers need cells, skipped.\n\n";
+      md += "`" + input.path +
+            "` has no cells (a point cloud): VTK's renderers need cells, skipped.\n\n";
       continue;
     }
     const Model model = encodePoints(mesh, EncodeOptions{});
@@ -101,9 +102,10 @@ ExperimentReport runUnstructuredGallery(const EvalContext& ctx) {
   md += paperBullet(false,
                     "The paper's unstructured data set (NASA Fun3D retropropulsion, 27,736 "
                     "samples) is not public in a form we have; blunt-fin and spx stand in for it.");
-  md += "\nImages: `unstructured/NAME_METHOD.png`; `unstructured/montage.png` rows: the data "
-        "sets in the table's order; columns: " +
-        std::string(ctx.vtk() ? "vtk-bunyk, vtk-zsweep, vtk-pt, " : "") + "mfa.\n";
+  md +=
+      "\nImages: `unstructured/NAME_METHOD.png`; `unstructured/montage.png` rows: the data "
+      "sets in the table's order; columns: " +
+      std::string(ctx.vtk() ? "vtk-bunyk, vtk-zsweep, vtk-pt, " : "") + "mfa.\n";
   return report;
 }
 

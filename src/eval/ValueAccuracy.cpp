@@ -33,8 +33,8 @@ ValueConfig valueConfig(bool quick) {
 
 // The sub-grid of the columns that a parallel view of [xlo,xhi] x [ylo,yhi] sees, `margin`
 // samples wider, all of z.
-StructuredGrid cropColumns(const StructuredGrid& g, double xlo, double xhi, double ylo,
-                           double yhi, int margin) {
+StructuredGrid cropColumns(const StructuredGrid& g, double xlo, double xhi, double ylo, double yhi,
+                           int margin) {
   auto range = [&](int axis, double lo, double hi, std::int64_t& i0, std::int64_t& i1) {
     i0 = std::max<std::int64_t>(
         0, static_cast<std::int64_t>(std::floor((lo - g.origin[axis]) / g.spacing[axis])) - margin);
@@ -100,7 +100,8 @@ ExperimentReport runValueAccuracy(const EvalContext& ctx) {
   gridFit.degree = {3, 3, 3};
   gridFit.controlCounts = {n, n, n};
   FitReport gridReport;
-  ctx.log("value accuracy: encoding the grid (degree 3, " + std::to_string(n) + "^3 control points)");
+  ctx.log("value accuracy: encoding the grid (degree 3, " + std::to_string(n) +
+          "^3 control points)");
   const Model gridModel = encodeGrid(grid, gridFit, &gridReport);
 
   ctx.log("value accuracy: encoding " + std::to_string(cfg.scatteredPoints) +
@@ -153,9 +154,8 @@ ExperimentReport runValueAccuracy(const EvalContext& ctx) {
     s.validate();
     // The columns the tilted rays cross on their way through the depth of the box (2 units).
     const double h = box.side / 2.0 + 2.0 * std::tan(2.0 * kTiltDegrees * M_PI / 180.0);
-    const StructuredGrid cropped =
-        cropColumns(grid, box.centre[0] - h, box.centre[0] + h, box.centre[1] - h,
-                    box.centre[1] + h, 2);
+    const StructuredGrid cropped = cropColumns(grid, box.centre[0] - h, box.centre[0] + h,
+                                               box.centre[1] - h, box.centre[1] + h, 2);
 
     std::vector<Image8> images, errors;
     Image8 truth;
@@ -211,23 +211,26 @@ ExperimentReport runValueAccuracy(const EvalContext& ctx) {
   report.files.push_back("fig13_quality_vs_time.csv");
 
   std::string& md = report.markdown;
-  md += "Settings: `gaussian-beams` sampled on " + std::to_string(n) + "^3 (spacing " +
-        csvNumber(grid.spacing[0], 4) + "); " + std::to_string(cfg.image) + "x" +
-        std::to_string(cfg.image) +
-        " images, parallel projection framing beam k's box at zoom level k, looking down -z "
-        "turned by azimuth and elevation " + csvNumber(kTiltDegrees) + " degrees; opacity ramp "
-        "over the data range with unit distance = the box's side, constant red, no shading, step "
-        "0.5 x spacing. MFA from the grid: degree 3, " +
-        std::to_string(n) + "^3 control points (max error " +
-        csvNumber(gridReport.maxError / (vmax - vmin), 3) +
-        " of the range). MFA from scattered points: " + std::to_string(cfg.scatteredPoints) +
-        " uniformly random points with exact values, degree 3, " +
-        std::to_string(cfg.scatteredCtrl) + "^3 control points, no mask (max error " +
-        csvNumber(pointReport.maxError / (vmax - vmin), 3) +
-        " of the range). VTK's renderers get the columns of the grid their view sees, "
-        "tetrahedralized (5 tetrahedra per voxel); their render time is " +
-        std::string(cfg.vtkFrames > 1 ? "the second frame's" : "the first frame's, set-up included") +
-        ". Metrics on 8-bit RGB against the truth.\n\n";
+  md +=
+      "Settings: `gaussian-beams` sampled on " + std::to_string(n) + "^3 (spacing " +
+      csvNumber(grid.spacing[0], 4) + "); " + std::to_string(cfg.image) + "x" +
+      std::to_string(cfg.image) +
+      " images, parallel projection framing beam k's box at zoom level k, looking down -z "
+      "turned by azimuth and elevation " +
+      csvNumber(kTiltDegrees) +
+      " degrees; opacity ramp "
+      "over the data range with unit distance = the box's side, constant red, no shading, step "
+      "0.5 x spacing. MFA from the grid: degree 3, " +
+      std::to_string(n) + "^3 control points (max error " +
+      csvNumber(gridReport.maxError / (vmax - vmin), 3) +
+      " of the range). MFA from scattered points: " + std::to_string(cfg.scatteredPoints) +
+      " uniformly random points with exact values, degree 3, " + std::to_string(cfg.scatteredCtrl) +
+      "^3 control points, no mask (max error " +
+      csvNumber(pointReport.maxError / (vmax - vmin), 3) +
+      " of the range). VTK's renderers get the columns of the grid their view sees, "
+      "tetrahedralized (5 tetrahedra per voxel); their render time is " +
+      std::string(cfg.vtkFrames > 1 ? "the second frame's" : "the first frame's, set-up included") +
+      ". Metrics on 8-bit RGB against the truth.\n\n";
   md += "PSNR (dB) per zoom level (MSE and SSIM in `fig05_value_accuracy.csv`):\n\n";
   {
     std::vector<std::string> cols = {"method"};
@@ -251,20 +254,21 @@ ExperimentReport runValueAccuracy(const EvalContext& ctx) {
       ++total;
       if (psnr[m.name].front() > psnr[m.name].back()) ++degrading;
     }
-    md += paperBullet(degrading == total,
-                      "Accuracy falls as the zoom level rises (fewer samples per beam) for " +
-                          std::to_string(degrading) + " of " + std::to_string(total) +
-                          " methods (PSNR at zoom 1 above zoom 4)" +
-                          (degrading == total
-                               ? "."
-                               : "; the others hold their accuracy because they reconstruct the "
-                                 "smooth beam well even from 8 samples across it."));
+    md += paperBullet(
+        degrading == total,
+        "Accuracy falls as the zoom level rises (fewer samples per beam) for " +
+            std::to_string(degrading) + " of " + std::to_string(total) +
+            " methods (PSNR at zoom 1 above zoom 4)" +
+            (degrading == total ? "."
+                                : "; the others hold their accuracy because they reconstruct the "
+                                  "smooth beam well even from 8 samples across it."));
   }
   if (ctx.vtk()) {
     int better = 0;
     for (int z = 0; z < kGaussianBeamCount; ++z) {
       const double highOrder = std::min(psnr["tricubic"][z], psnr["catmull-rom"][z]);
-      const double linear = std::max({psnr["vtk-bunyk"][z], psnr["vtk-zsweep"][z], psnr["vtk-pt"][z]});
+      const double linear =
+          std::max({psnr["vtk-bunyk"][z], psnr["vtk-zsweep"][z], psnr["vtk-pt"][z]});
       if (highOrder > linear) ++better;
     }
     md += paperBullet(better == kGaussianBeamCount,
@@ -312,11 +316,11 @@ ExperimentReport runValueAccuracy(const EvalContext& ctx) {
       }
       onlyBspline = onlyBspline && winner == "bspline";
       lost += (lost.empty() ? "" : ", ") + std::string("zoom ") + std::to_string(z + 1) + ": " +
-              winner + " " + fixed(psnr[winner][z], 2) + " dB vs " +
-              fixed(psnr["mfa-grid"][z], 2) + " dB";
+              winner + " " + fixed(psnr[winner][z], 2) + " dB vs " + fixed(psnr["mfa-grid"][z], 2) +
+              " dB";
     }
-    std::string sentence =
-        "The MFA model of the grid has the best PSNR at " + std::to_string(best) + " of 4 zoom levels";
+    std::string sentence = "The MFA model of the grid has the best PSNR at " +
+                           std::to_string(best) + " of 4 zoom levels";
     if (best == kGaussianBeamCount)
       sentence += ".";
     else if (onlyBspline)
@@ -336,7 +340,8 @@ ExperimentReport runValueAccuracy(const EvalContext& ctx) {
                         " dB for trilinear filtering of the full grid; the paper shows the MFA "
                         "rendering both kinds of input but does not separate them.");
   md += "\nImages: `value/zoomK_METHOD.png`, error images (|method - truth| x " +
-        csvNumber(kErrorImageGain) + ") `value/zoomK_METHOD_error.png`, montages "
+        csvNumber(kErrorImageGain) +
+        ") `value/zoomK_METHOD_error.png`, montages "
         "`value/montage.png` (rows: zoom 1-4; columns: truth, trilinear, tricubic, catmull-rom, "
         "bspline, mfa-grid, mfa-scattered" +
         std::string(ctx.vtk() ? ", vtk-bunyk, vtk-zsweep, vtk-pt" : "") +

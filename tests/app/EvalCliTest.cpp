@@ -28,7 +28,8 @@ TEST(CliEval, NeedsTheEvaluationAndAnOutputFolder) {
 
 TEST(CliEval, UnknownExperimentListsTheKnownOnesAndWritesNothing) {
   const auto out = tmp("eval_cli_unknown");
-  const auto r = runMfadvr("eval paper --quick --no-vtk --out " + out.string() + " --only tables,speed");
+  const auto r =
+      runMfadvr("eval paper --quick --no-vtk --out " + out.string() + " --only tables,speed");
   EXPECT_EQ(r.status, 1);
   EXPECT_NE(r.err.find("unknown experiment 'speed'"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("performance"), std::string::npos) << r.err;

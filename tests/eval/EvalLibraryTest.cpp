@@ -37,9 +37,9 @@ TEST(CsvTable, NumbersPrintAlike) {
 }
 
 TEST(PaperEvaluation, ListsItsExperimentsInOrder) {
-  EXPECT_EQ(experimentNames(), (std::vector<std::string>{"value", "tables", "structured",
-                                                          "unstructured", "params", "query",
-                                                          "performance"}));
+  EXPECT_EQ(experimentNames(),
+            (std::vector<std::string>{"value", "tables", "structured", "unstructured", "params",
+                                      "query", "performance"}));
 }
 
 TEST(PaperEvaluation, UnknownExperimentFailsBeforeWritingAnything) {
