@@ -91,6 +91,10 @@ Command addEvalCommand(CLI::App& app) {
       std::fprintf(stderr, "mfadvr: error: experiment '%s' failed (see the report)\n", f.c_str());
       status = 1;
     }
+    for (const auto& p : s.problems) {
+      std::fprintf(stderr, "mfadvr: error: input skipped: %s\n", p.c_str());
+      status = 1;
+    }
     if (!s.plotError.empty()) {
       std::fprintf(stderr, "mfadvr: error: plots not made: %s\n", s.plotError.c_str());
       status = 1;

@@ -13,6 +13,9 @@ struct ExperimentReport {
   // sentence per difference.
   std::string markdown;
   std::vector<std::string> files;  // written, relative to the output folder
+  // Inputs that could not be used (a volume that does not load, say): the section says why
+  // and goes on without them; the run reports them and exits non-zero.
+  std::vector<std::string> problems;
 };
 
 struct Experiment {

@@ -110,6 +110,12 @@ EvaluationSummary runPaperEvaluation(const EvalOptions& options, const std::stri
     if (std::find(names.begin(), names.end(), n) == names.end())
       throw Error("unknown experiment '" + n + "' (known: " + joined(names, ", ") + ")");
   if (options.out.empty()) throw Error("no output folder");
+  for (const auto& list : {options.volumes, options.meshes})
+    for (const auto& f : list) {
+      std::error_code fileError;
+      if (!std::filesystem::is_regular_file(f, fileError))
+        throw Error("input file not found (or not a file): " + f);
+    }
   if (options.vtk) {
     try {
       requireRenderDisplay();
@@ -141,6 +147,10 @@ EvaluationSummary runPaperEvaluation(const EvalOptions& options, const std::stri
     Section s{&e, {}, 0.0, {}};
     try {
       s.report = e.run(ctx);
+      for (const auto& p : s.report.problems) {
+        summary.problems.push_back(e.name + ": " + p);
+        ctx.log("problem in " + e.name + ": " + p);
+      }
     } catch (const std::exception& ex) {
       s.error = ex.what();
       summary.failed.push_back(e.name);
@@ -178,6 +188,11 @@ EvaluationSummary runPaperEvaluation(const EvalOptions& options, const std::stri
           (s.error.empty() ? std::to_string(d) : "-") + " |\n";
   }
   md += "\n";
+  if (!summary.problems.empty()) {
+    md += "Inputs skipped because they could not be used (each section says more):\n\n";
+    for (const auto& p : summary.problems) md += "- " + p + "\n";
+    md += "\n";
+  }
   if (!summary.plotError.empty())
     md += "Plots were not made: " + summary.plotError +
           ". The CSVs hold every number; `python3 plots.py .` in this folder makes them once "

@@ -55,10 +55,19 @@ ExperimentReport runStructuredGallery(const EvalContext& ctx) {
       {"mfa", ReconstructionMethod::Mfa}};
   CsvTable table({"dataset", "dims", "method", "render_seconds", "image"});
   std::vector<std::vector<Image8>> rows;
+  std::string skipped;
   for (const auto& input : inputs) {
     const std::string name = std::filesystem::path(input).stem().string();
     ctx.log("structured gallery: " + name + ": loading and encoding");
-    const StructuredGrid grid = loadStructuredVolume(input);
+    StructuredGrid grid;
+    try {
+      grid = loadStructuredVolume(input);
+    } catch (const std::exception& e) {
+      // One unreadable volume should not cost the rest of the gallery.
+      report.problems.push_back(input + ": " + e.what());
+      skipped += "- `" + input + "` could not be loaded, skipped: " + e.what() + "\n";
+      continue;
+    }
     const std::string dims = std::to_string(grid.dims[0]) + "x" + std::to_string(grid.dims[1]) +
                              "x" + std::to_string(grid.dims[2]);
     EncodeOptions fit;
@@ -94,6 +103,8 @@ ExperimentReport runStructuredGallery(const EvalContext& ctx) {
     }
     rows.push_back(std::move(row));
   }
+  if (!skipped.empty()) md += skipped + "\n";
+  if (rows.empty()) return report;
   table.write(ctx.path("fig08_structured.csv").string());
   report.files = {"fig08_structured.csv",
                   ctx.writeImage("structured/montage.png", montageGrid(rows))};

@@ -53,7 +53,15 @@ ExperimentReport runUnstructuredGallery(const EvalContext& ctx) {
     ctx.log("unstructured gallery: " + name + ": loading and encoding");
     ScatteredLoadOptions load;
     load.field = input.field;
-    const ScatteredData mesh = loadScatteredData(input.path, load);
+    ScatteredData mesh;
+    try {
+      mesh = loadScatteredData(input.path, load);
+    } catch (const std::exception& e) {
+      // One unreadable mesh should not cost the rest of the gallery.
+      report.problems.push_back(input.path + ": " + e.what());
+      md += "`" + input.path + "` could not be loaded, skipped: " + e.what() + "\n\n";
+      continue;
+    }
     if (mesh.tets.empty()) {
       md += "`" + input.path +
             "` has no cells (a point cloud): VTK's renderers need cells, skipped.\n\n";

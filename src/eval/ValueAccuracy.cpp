@@ -291,11 +291,16 @@ ExperimentReport runValueAccuracy(const EvalContext& ctx) {
     const bool flat = hi - lo < 5.0;
     md += paperBullet(false, "VTK's tetrahedral renderers stay between " + fixed(lo, 2) + " and " +
                                  fixed(hi, 2) + " dB at every zoom level" +
-                                 (flat ? "; an error that hardly depends on the sampling comes "
-                                         "mostly from how they integrate opacity along a ray "
-                                         "(per tetrahedron, not in fixed steps with the ray "
-                                         "casters' opacity correction), so their numbers mix "
-                                         "that model difference with the reconstruction error "
+                                 (flat ? "; an error that hardly depends on the sampling "
+                                         "points to how they integrate a ray rather than to "
+                                         "their linear reconstruction: Bunyk and ZSweep look "
+                                         "each tetrahedron's segment up in VTK's pre-integration "
+                                         "table (quantized in front value, back value and "
+                                         "length; vtkUnstructuredGridPreIntegration, their "
+                                         "default), PT blends one colour and opacity per "
+                                         "projected face, while the ray casters and the truth "
+                                         "composite fixed steps; so their numbers mix that "
+                                         "integration difference with the reconstruction error "
                                          "the paper attributes to them."
                                        : "; they lose accuracy with the zoom level like the "
                                          "others, since they interpolate linearly in each "

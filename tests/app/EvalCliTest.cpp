@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 
 #include "CliRunner.h"
 
@@ -48,4 +49,48 @@ TEST(CliEval, QuickTablesWithoutVtkOrPlots) {
   EXPECT_TRUE(std::filesystem::is_regular_file(out / "table1_gradient.csv"));
   EXPECT_FALSE(std::filesystem::exists(out / "plots"));
   EXPECT_TRUE(r.err.empty()) << r.err;  // -q
+}
+
+TEST(CliEval, MissingInputFileStopsBeforeWritingAnything) {
+  const auto out = tmp("eval_cli_missing_volume");
+  const auto r = runMfadvr("eval paper --quick --no-vtk --no-plots -q --only structured --out " +
+                           out.string() + " --volume " + (out / "nowhere.nrrd").string());
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("nowhere.nrrd"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(out));
+}
+
+TEST(CliEval, UnreadableVolumeIsSkippedAndReported) {
+  const auto dir = tmp("eval_cli_bad_volume_input");
+  std::filesystem::create_directories(dir);
+  const auto bad = dir / "broken.nrrd";
+  {
+    std::ofstream f(bad);
+    f << "NRRD0004\ntype: float\ndimension: 3\nsizes: 4 4\nencoding: raw\n\n";
+  }
+  const auto out = tmp("eval_cli_bad_volume");
+  const auto r = runMfadvr("eval paper --quick --no-vtk --no-plots -q --only structured --data " +
+                           dir.string() + " --out " + out.string() + " --volume " + bad.string());
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("input skipped: structured: " + bad.string()), std::string::npos) << r.err;
+  const std::string report = slurp(out / "report.md");
+  EXPECT_NE(report.find("could not be loaded, skipped"), std::string::npos) << report;
+  EXPECT_NE(report.find("Inputs skipped"), std::string::npos) << report;
+}
+
+TEST(CliEval, UnreadableMeshIsSkippedAndReported) {
+  const auto dir = tmp("eval_cli_bad_mesh_input");
+  std::filesystem::create_directories(dir);
+  const auto bad = dir / "broken.vtu";
+  {
+    std::ofstream f(bad);
+    f << "<VTKFile type=\"UnstructuredGrid\"><UnstructuredGrid><Piece NumberOfPoints=\"4\"";
+  }
+  const auto out = tmp("eval_cli_bad_mesh");
+  const auto r = runMfadvr("eval paper --quick --no-vtk --no-plots -q --only unstructured --data " +
+                           dir.string() + " --out " + out.string() + " --mesh " + bad.string());
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("input skipped: unstructured: " + bad.string()), std::string::npos) << r.err;
+  const std::string report = slurp(out / "report.md");
+  EXPECT_NE(report.find("could not be loaded, skipped"), std::string::npos) << report;
 }
