@@ -60,37 +60,37 @@ TEST(CliEval, MissingInputFileStopsBeforeWritingAnything) {
   EXPECT_FALSE(std::filesystem::exists(out));
 }
 
-TEST(CliEval, UnreadableVolumeIsSkippedAndReported) {
-  const auto dir = tmp("eval_cli_bad_volume_input");
+namespace {
+
+// Runs one gallery with a corrupt input file as its only input: the gallery skips it, says why
+// in the report, and the run exits 1.
+void expectCorruptInputSkipped(const std::string& experiment, const std::string& option,
+                               const std::string& fileName, const std::string& contents) {
+  const auto dir = tmp("eval_cli_corrupt_" + experiment + "_input");
   std::filesystem::create_directories(dir);
-  const auto bad = dir / "broken.nrrd";
-  {
-    std::ofstream f(bad);
-    f << "NRRD0004\ntype: float\ndimension: 3\nsizes: 4 4\nencoding: raw\n\n";
-  }
-  const auto out = tmp("eval_cli_bad_volume");
-  const auto r = runMfadvr("eval paper --quick --no-vtk --no-plots -q --only structured --data " +
-                           dir.string() + " --out " + out.string() + " --volume " + bad.string());
+  const auto bad = dir / fileName;
+  std::ofstream(bad) << contents;
+  const auto out = tmp("eval_cli_corrupt_" + experiment);
+  const auto r =
+      runMfadvr("eval paper --quick --no-vtk --no-plots -q --only " + experiment + " --data " +
+                dir.string() + " --out " + out.string() + " " + option + " " + bad.string());
   EXPECT_EQ(r.status, 1);
-  EXPECT_NE(r.err.find("input skipped: structured: " + bad.string()), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("input skipped: " + experiment + ": " + bad.string()), std::string::npos)
+      << r.err;
   const std::string report = slurp(out / "report.md");
   EXPECT_NE(report.find("could not be loaded, skipped"), std::string::npos) << report;
   EXPECT_NE(report.find("Inputs skipped"), std::string::npos) << report;
 }
 
+}  // namespace
+
+TEST(CliEval, UnreadableVolumeIsSkippedAndReported) {
+  expectCorruptInputSkipped("structured", "--volume", "broken.nrrd",
+                            "NRRD0004\ntype: float\ndimension: 3\nsizes: 4 4\nencoding: raw\n\n");
+}
+
 TEST(CliEval, UnreadableMeshIsSkippedAndReported) {
-  const auto dir = tmp("eval_cli_bad_mesh_input");
-  std::filesystem::create_directories(dir);
-  const auto bad = dir / "broken.vtu";
-  {
-    std::ofstream f(bad);
-    f << "<VTKFile type=\"UnstructuredGrid\"><UnstructuredGrid><Piece NumberOfPoints=\"4\"";
-  }
-  const auto out = tmp("eval_cli_bad_mesh");
-  const auto r = runMfadvr("eval paper --quick --no-vtk --no-plots -q --only unstructured --data " +
-                           dir.string() + " --out " + out.string() + " --mesh " + bad.string());
-  EXPECT_EQ(r.status, 1);
-  EXPECT_NE(r.err.find("input skipped: unstructured: " + bad.string()), std::string::npos) << r.err;
-  const std::string report = slurp(out / "report.md");
-  EXPECT_NE(report.find("could not be loaded, skipped"), std::string::npos) << report;
+  expectCorruptInputSkipped(
+      "unstructured", "--mesh", "broken.vtu",
+      "<VTKFile type=\"UnstructuredGrid\"><UnstructuredGrid><Piece NumberOfPoints=\"4\"");
 }
