@@ -163,7 +163,11 @@ VtkBaselineRenderer::VtkBaselineRenderer(VtkMethod method, const VtkBaselineInpu
   }
   d.mapper->AddObserver(vtkCommand::ErrorEvent, d.errors);
 
-  applyTransferFunction(settings, d.property);
+  // The tetrahedral renderers read the TF's opacity as attenuation; give them the coefficient of
+  // the optical model every other renderer here uses (VtkSceneSetup.h).
+  applyTransferFunction(settings, d.property,
+                        method == VtkMethod::FixedPoint ? VtkOpacityReading::PerUnitDistance
+                                                        : VtkOpacityReading::Attenuation);
   d.volume->SetMapper(d.mapper);
   d.volume->SetProperty(d.property);
   d.renderer->AddVolume(d.volume);

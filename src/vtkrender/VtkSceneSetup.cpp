@@ -20,6 +20,7 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <cmath>
 #include <utility>
 #include <vector>
 
@@ -119,7 +120,8 @@ void applyCamera(const Camera& camera, vtkRenderer* renderer) {
   renderer->ResetCameraClippingRange();  // not ResetCamera: keep our framing exactly
 }
 
-void applyTransferFunction(const RenderSettings& s, vtkVolumeProperty* property) {
+void applyTransferFunction(const RenderSettings& s, vtkVolumeProperty* property,
+                           VtkOpacityReading reading) {
   const TransferFunction& tf = s.transferFunction;
   double lo = tf.opacity.front().x, hi = tf.opacity.back().x;
   lo = std::min(lo, tf.color.front().x);
@@ -135,7 +137,36 @@ void applyTransferFunction(const RenderSettings& s, vtkVolumeProperty* property)
   }
   vtkNew<vtkPiecewiseFunction> opacity;
   const std::vector<double> ox = separatedX(tf.opacity, eps);
-  for (size_t i = 0; i < ox.size(); ++i) opacity->AddPoint(ox[i], tf.opacity[i].alpha);
+  if (reading == VtkOpacityReading::PerUnitDistance) {
+    for (size_t i = 0; i < ox.size(); ++i) opacity->AddPoint(ox[i], tf.opacity[i].alpha);
+  } else {
+    // -ln(1 - a) is not linear in a: the TF's points keep its jumps and kinks, the points
+    // between follow the curve.
+    auto attenuation = [](double a) { return -std::log1p(-std::min(a, 1.0 - 1e-6)); };
+    auto near = [&](const std::vector<double>& xs, double x) {
+      return std::any_of(xs.begin(), xs.end(), [&](double p) { return std::abs(p - x) < 2 * eps; });
+    };
+    std::vector<double> used = ox;
+    for (size_t i = 0; i < ox.size(); ++i)
+      opacity->AddPoint(ox[i], attenuation(tf.opacity[i].alpha));
+    const int between = 256;
+    const double olo = ox.front(), ohi = ox.back();
+    for (int k = 1; k < between; ++k) {
+      const double x = olo + (ohi - olo) * k / between;
+      if (near(ox, x)) continue;
+      opacity->AddPoint(x, attenuation(tf.opacityAt(x)));
+      used.push_back(x);
+    }
+    // VTK's partial pre-integration (Bunyk's and ZSweep's integrator) splits a ray segment only
+    // at the colour function's points and the scalar range's ends: of the opacity function it
+    // keeps just the first point, and is linear in between. So every opacity point is also a
+    // colour point, with the colour the function has there (which leaves it unchanged).
+    for (const double x : used)
+      if (!near(cx, x)) {
+        const Vec3f rgb = tf.colorAt(x);
+        color->AddRGBPoint(x, rgb[0], rgb[1], rgb[2]);
+      }
+  }
 
   property->SetColor(color);
   property->SetScalarOpacity(opacity);

@@ -34,11 +34,23 @@ vtkSmartPointer<vtkUnstructuredGrid> tetrahedralize(vtkImageData* image);
 // change the framing).
 void applyCamera(const Camera& camera, vtkRenderer* renderer);
 
+// How a VTK mapper reads the scalar opacity function. VTK's ray casters over grids (fixed point,
+// GPU) composite samples with opacity correction, 1 - (1 - a)^(step / unit distance), as ours
+// does: the TF's opacity a is what one unit distance accumulates. VTK's tetrahedral renderers read
+// it as an attenuation coefficient instead, a / unit distance per unit length (Bunyk and ZSweep
+// through vtkUnstructuredGridPreIntegration, projected tetrahedra in its shader), which agrees
+// only for small a: at a = 1 ours is opaque at once, theirs is not.
+enum class VtkOpacityReading { PerUnitDistance, Attenuation };
+
 // The resolved transfer function point by point (vtkColorTransferFunction in RGB space,
 // vtkPiecewiseFunction), linear interpolation, ScalarOpacityUnitDistance, shading on/off and the
 // Blinn-Phong coefficients. Our TFs may repeat an x to make a jump; VTK replaces a point with a
-// repeated x, so the earlier point moves left by 1e-6 of the TF's span instead.
-void applyTransferFunction(const RenderSettings& settings, vtkVolumeProperty* property);
+// repeated x, so the earlier point moves left by 1e-6 of the TF's span instead. For a mapper that
+// reads opacity as attenuation, the opacity function holds the equivalent coefficient
+// -ln(1 - a) (a capped at 1 - 1e-6), at the TF's points and 256 points between, so that it
+// renders the same optical model as our ray caster and VTK's grid casters.
+void applyTransferFunction(const RenderSettings& settings, vtkVolumeProperty* property,
+                           VtkOpacityReading reading = VtkOpacityReading::PerUnitDistance);
 
 // Our lights as vtkLights, replacing the renderer's automatic one: the headlight as a vtkLight
 // headlight, each directional light as a scene light shining along its direction. VTK's shading
