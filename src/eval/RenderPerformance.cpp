@@ -129,7 +129,7 @@ ExperimentReport runRenderPerformance(const EvalContext& ctx) {
       const bool faster = mfa < other;
       md += paperBullet(
           faster, "At " + std::to_string(big) + "^3 the MFA model (" + fixed(mfa, 2) + " s) is " +
-                      (faster ? fixed(other / mfa, 1) + "x faster than " + label + " (" +
+                      (faster ? fixed(other / mfa, 2) + "x faster than " + label + " (" +
                                     fixed(other, 2) + " s), as in the paper"
                               : "not faster than " + label + " (" + fixed(other, 2) +
                                     " s), unlike the paper") +
@@ -172,7 +172,7 @@ ExperimentReport runRenderPerformance(const EvalContext& ctx) {
       md += paperBullet(
           faster && scales,
           "On the tetrahedralized " + at + " the MFA model (" + fixed(mfa, 2) + " s) is " +
-              (faster ? fixed(other / mfa, 1) + "x faster than " : "slower than ") + label + " (" +
+              (faster ? fixed(other / mfa, 2) + "x faster than " : "slower than ") + label + " (" +
               fixed(other, 2) + " s); from " + std::to_string(usmall) + "^3 to " +
               std::to_string(ubig) + "^3 its time grows " + fixed(mfaGrowth, 2) + "x, " + label +
               "'s " + fixed(otherGrowth, 2) + "x" +
