@@ -304,9 +304,10 @@ ExperimentReport runValueAccuracy(const EvalContext& ctx) {
                        " dB at every zoom level: an error that hardly depends on the sampling "
                        "points to how it integrates a ray rather than to its linear "
                        "reconstruction (" +
-                       (m == "vtk-pt" ? std::string("it draws each tetrahedron as triangles with "
-                                                    "one attenuation per face, too little where "
-                                                    "the opacity nears 1 in the beam's core")
+                       (m == "vtk-pt" ? std::string("it composites each tetrahedron as projected "
+                                                    "triangles with an opacity from their "
+                                                    "thickness and an interpolated attenuation, "
+                                                    "not the integral along the ray")
                                       : std::string("it looks each tetrahedron's ray segment up in "
                                                     "VTK's pre-integration table, quantized in "
                                                     "front value, back value and length")) +

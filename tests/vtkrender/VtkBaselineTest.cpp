@@ -384,9 +384,9 @@ TEST(VtkBaseline, TetrahedralRenderersCompositeLikeOurRayCaster) {
     const ImageComparison cmp = compareImages(ours, theirs);
     std::printf("%-15s unshaded blob vs ours: PSNR %.2f dB, SSIM %.4f\n", vtkMethodName(m).c_str(),
                 cmp.psnr, cmp.ssim);
-    // Measured: fixed point 56 dB, Bunyk 50, ZSweep 52, PT 34 (PT draws each tetrahedron with
-    // one attenuation, too little in the blob's core); with the TF's opacity copied as it is,
-    // Bunyk and ZSweep were near 29 dB.
+    // Measured: fixed point 56 dB, Bunyk 50, ZSweep 52, PT 34 (PT's projected triangles get
+    // their opacity from thickness, not a ray integral: a darker core). With the opacity
+    // converted but not also made colour points, Bunyk and ZSweep were at 24 dB.
     EXPECT_GT(cmp.psnr, m == VtkMethod::ProjectedTetrahedra ? 31.0 : 45.0);
   }
 }
