@@ -274,9 +274,8 @@ TEST(VtkBaseline, ShiftedCameraFailsTheSilhouetteCheck) {
   }
 }
 
-// Shading with a second, coloured directional light: the fixed-point ray caster's image stays
-// close to ours (the lights, their colours and the single ambient term are converted right).
-TEST(VtkBaseline, FixedPointShadingMatchesOurLights) {
+// exp(-sharpness r^2) on 24^3 samples of [-1,1]^3: a smooth blob, highest at the centre.
+StructuredGrid blobGrid(double sharpness) {
   StructuredGrid g;
   g.dims = {24, 24, 24};
   g.origin = Vec3d(-1, -1, -1);
@@ -285,7 +284,14 @@ TEST(VtkBaseline, FixedPointShadingMatchesOurLights) {
   for (std::int64_t k = 0; k < 24; ++k)
     for (std::int64_t j = 0; j < 24; ++j)
       for (std::int64_t i = 0; i < 24; ++i)
-        g.at(i, j, k) = std::exp(-2.0 * g.position(i, j, k).squaredNorm());
+        g.at(i, j, k) = std::exp(-sharpness * g.position(i, j, k).squaredNorm());
+  return g;
+}
+
+// Shading with a second, coloured directional light: the fixed-point ray caster's image stays
+// close to ours (the lights, their colours and the single ambient term are converted right).
+TEST(VtkBaseline, FixedPointShadingMatchesOurLights) {
+  const StructuredGrid g = blobGrid(2.0);
   RenderSettings s;
   s.width = s.height = 96;
   s.camera.resetToBounds(g.boxMin(), g.boxMax());
@@ -310,22 +316,6 @@ TEST(VtkBaseline, FixedPointShadingMatchesOurLights) {
   oneLight.lighting.lights.clear();
   const Image8 single = renderVtk(VtkMethod::FixedPoint, {&g, nullptr}, oneLight);
   EXPECT_LT(compareImages(ours, single).psnr, cmp.psnr - 5.0);
-}
-
-// A smooth blob whose ramp opacity reaches 1 at its centre, unshaded: where the opacity nears 1,
-// VTK's tetrahedral renderers (which read the TF's opacity as an attenuation coefficient) differ
-// from our compositing unless they get the equivalent coefficient.
-StructuredGrid blobGrid() {
-  StructuredGrid g;
-  g.dims = {24, 24, 24};
-  g.origin = Vec3d(-1, -1, -1);
-  g.spacing = Vec3d::Constant(2.0 / 23);
-  g.values.resize(size_t(g.sampleCount()));
-  for (std::int64_t k = 0; k < 24; ++k)
-    for (std::int64_t j = 0; j < 24; ++j)
-      for (std::int64_t i = 0; i < 24; ++i)
-        g.at(i, j, k) = std::exp(-4.0 * g.position(i, j, k).squaredNorm());
-  return g;
 }
 
 TEST(VtkSceneSetup, AttenuationReadingHoldsTheEquivalentCoefficient) {
@@ -364,8 +354,11 @@ TEST(VtkSceneSetup, AttenuationReadingHoldsTheEquivalentCoefficient) {
   EXPECT_NEAR(attenuation->GetScalarOpacity()->GetValue(1.1), -std::log(1e-6), 1e-6);
 }
 
+// An unshaded blob whose ramp opacity reaches 1 at its centre: where the opacity nears 1, VTK's
+// tetrahedral renderers (which read the TF's opacity as an attenuation coefficient) differ from
+// our compositing unless they get the equivalent coefficient.
 TEST(VtkBaseline, TetrahedralRenderersCompositeLikeOurRayCaster) {
-  const StructuredGrid g = blobGrid();
+  const StructuredGrid g = blobGrid(4.0);
   RenderSettings s;
   s.width = s.height = 96;
   s.camera.resetToBounds(g.boxMin(), g.boxMax());
