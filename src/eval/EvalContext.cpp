@@ -41,4 +41,12 @@ std::filesystem::path EvalContext::dataFile(const std::string& name) const {
   return std::filesystem::is_regular_file(p, ec) ? p : std::filesystem::path{};
 }
 
+std::string EvalContext::missingDataNote(const std::vector<std::string>& names) const {
+  if (names.empty()) return {};
+  std::string list;
+  for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
+  return "Not found in the data folder (`" + options_.dataDir.string() + "`), skipped: " + list +
+         ".\n\n";
+}
+
 }  // namespace mfadvr::eval

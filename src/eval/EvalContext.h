@@ -43,6 +43,8 @@ class EvalContext {
   std::string writeImage(const std::string& relative, const Image8& image) const;
   // A standard data set in the data folder; empty when it is not there.
   std::filesystem::path dataFile(const std::string& name) const;
+  // The report's sentence naming the standard data sets that were not found (empty for none).
+  std::string missingDataNote(const std::vector<std::string>& names) const;
 
  private:
   EvalOptions options_;

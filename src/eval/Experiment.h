@@ -16,6 +16,12 @@ struct ExperimentReport {
   // Inputs that could not be used (a volume that does not load, say): the section says why
   // and goes on without them; the run reports them and exits non-zero.
   std::vector<std::string> problems;
+
+  // Records an input that could not be loaded and adds the section's sentence saying so.
+  void skipInput(const std::string& path, const std::string& why) {
+    problems.push_back(path + ": " + why);
+    markdown += "`" + path + "` could not be loaded, skipped: " + why + "\n\n";
+  }
 };
 
 struct Experiment {

@@ -18,13 +18,13 @@ ExperimentReport runStructuredGallery(const EvalContext& ctx) {
   const int image = ctx.quick() ? 192 : 512;
   const int maxCtrl = 128;
   std::vector<std::string> inputs;
-  std::string missing;
+  std::vector<std::string> missing;
   std::vector<std::string> standard = {"fuel_64x64x64_uint8.raw", "nucleon_41x41x41_uint8.raw"};
   if (!ctx.quick()) standard.push_back("bonsai.nrrd");
   for (const auto& name : standard) {
     const auto p = ctx.dataFile(name);
     if (p.empty())
-      missing += (missing.empty() ? "" : ", ") + name;
+      missing.push_back(name);
     else
       inputs.push_back(p.string());
   }
@@ -39,9 +39,7 @@ ExperimentReport runStructuredGallery(const EvalContext& ctx) {
         "3, as many control points as samples up to " +
         std::to_string(maxCtrl) +
         " per axis. Real data have no ground truth: compare the images.\n\n";
-  if (!missing.empty())
-    md += "Not found in the data folder (`" + ctx.options().dataDir.string() +
-          "`), skipped: " + missing + ".\n\n";
+  md += ctx.missingDataNote(missing);
   if (inputs.empty()) {
     md += "No volumes to render.\n";
     return report;
@@ -55,7 +53,6 @@ ExperimentReport runStructuredGallery(const EvalContext& ctx) {
       {"mfa", ReconstructionMethod::Mfa}};
   CsvTable table({"dataset", "dims", "method", "render_seconds", "image"});
   std::vector<std::vector<Image8>> rows;
-  std::string skipped;
   for (const auto& input : inputs) {
     const std::string name = std::filesystem::path(input).stem().string();
     ctx.log("structured gallery: " + name + ": loading and encoding");
@@ -63,9 +60,7 @@ ExperimentReport runStructuredGallery(const EvalContext& ctx) {
     try {
       grid = loadStructuredVolume(input);
     } catch (const std::exception& e) {
-      // One unreadable volume should not cost the rest of the gallery.
-      report.problems.push_back(input + ": " + e.what());
-      skipped += "- `" + input + "` could not be loaded, skipped: " + e.what() + "\n";
+      report.skipInput(input, e.what());  // the rest of the gallery still renders
       continue;
     }
     const std::string dims = std::to_string(grid.dims[0]) + "x" + std::to_string(grid.dims[1]) +
@@ -103,7 +98,6 @@ ExperimentReport runStructuredGallery(const EvalContext& ctx) {
     }
     rows.push_back(std::move(row));
   }
-  if (!skipped.empty()) md += skipped + "\n";
   if (rows.empty()) return report;
   table.write(ctx.path("fig08_structured.csv").string());
   report.files = {"fig08_structured.csv",

@@ -20,12 +20,12 @@ ExperimentReport runUnstructuredGallery(const EvalContext& ctx) {
     std::string path, field;
   };
   std::vector<Input> inputs;
-  std::string missing;
+  std::vector<std::string> missing;
   for (const auto& [name, field] : std::vector<std::pair<std::string, std::string>>{
            {"bluntfin_tets.vtu", "Density"}, {"spx.vtk", ""}}) {
     const auto p = ctx.dataFile(name);
     if (p.empty())
-      missing += (missing.empty() ? "" : ", ") + name;
+      missing.push_back(name);
     else
       inputs.push_back({p.string(), field});
   }
@@ -39,9 +39,7 @@ ExperimentReport runUnstructuredGallery(const EvalContext& ctx) {
         "0.5 x the model's data spacing for the MFA model (VTK's tetrahedral renderers integrate "
         "per cell). MFA: degree 3, the encoder's default control counts, smoothing 1e-2, domain "
         "mask from the mesh's cells.\n\n";
-  if (!missing.empty())
-    md += "Not found in the data folder (`" + ctx.options().dataDir.string() +
-          "`), skipped: " + missing + ".\n\n";
+  md += ctx.missingDataNote(missing);
   if (inputs.empty()) {
     md += "No meshes to render.\n";
     return report;
@@ -57,9 +55,7 @@ ExperimentReport runUnstructuredGallery(const EvalContext& ctx) {
     try {
       mesh = loadScatteredData(input.path, load);
     } catch (const std::exception& e) {
-      // One unreadable mesh should not cost the rest of the gallery.
-      report.problems.push_back(input.path + ": " + e.what());
-      md += "`" + input.path + "` could not be loaded, skipped: " + e.what() + "\n\n";
+      report.skipInput(input.path, e.what());  // the rest of the gallery still renders
       continue;
     }
     if (mesh.tets.empty()) {
