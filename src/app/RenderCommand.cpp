@@ -261,6 +261,7 @@ Command addRenderCommand(CLI::App& app) {
       j["rays_hit"] = stats.raysHit;
       j["samples"] = stats.samples;
       j["rays_terminated_early"] = stats.terminated;
+      j["samples_skipped"] = stats.skipped;
       j["samples_per_second"] = frameTime > 0 ? stats.samples / frameTime : 0.0;
       std::cout << j.dump(2) << "\n";
     } else {
@@ -269,6 +270,7 @@ Command addRenderCommand(CLI::App& app) {
                   settings.shade ? "shaded" : "unshaded");
       std::printf("  render %.3f s (%.1f M samples, %.1f M samples/s)", frameTime,
                   stats.samples / 1e6, frameTime > 0 ? stats.samples / frameTime / 1e6 : 0.0);
+      if (stats.skipped > 0) std::printf(", %.1f M empty samples skipped", stats.skipped / 1e6);
       if (frames > 1)
         std::printf(", median of %d frames after the first, first frame %.3f s", frames - 1,
                     firstFrame);

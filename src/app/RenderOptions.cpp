@@ -167,12 +167,17 @@ void RenderOptions::addTo(CLI::App* sub) {
   sub->add_option("--ert", ert, "Early ray termination opacity (>= 1 disables it)")
       ->capture_default_str()
       ->group(sampling);
+  sub->add_flag("--no-skip", noSkip,
+                "MFA models: sample every step instead of skipping knot-span cells the transfer "
+                "function makes invisible (the image is the same; for timing what skipping saves)")
+      ->group(sampling);
 }
 
 RenderSettings RenderOptions::settingsFor(const LoadedScene& scene) const {
   RenderSettings s;
   parseImageSize(size, s.width, s.height);
   s.threads = threads;
+  s.skipEmptySpace = !noSkip;
   s.background = parseVec("--background", background).cast<float>();
   if ((s.background.array() < 0.0f).any() || (s.background.array() > 1.0f).any())
     throw CLI::ValidationError("--background", "components must lie in [0, 1]");

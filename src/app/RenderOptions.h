@@ -24,6 +24,7 @@ struct RenderOptions {
   float ambient = 0.3f, diffuse = 0.7f, specular = 0.2f, specularPower = 10.0f;
   std::vector<std::string> lights;
   int threads = 0;
+  bool noSkip = false;
 
   // Adds the options to `sub`.
   void addTo(CLI::App* sub);

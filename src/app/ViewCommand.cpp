@@ -17,6 +17,8 @@
 #include <vtkVolume.h>
 #include <vtkVolumeProperty.h>
 
+#include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <iostream>
 #include <memory>
@@ -142,6 +144,44 @@ class ViewerStyle : public vtkInteractorStyleTrackballCamera {
 };
 vtkStandardNewMacro(ViewerStyle);
 
+// What an interactive session does, timed off screen: frames at the interactive update rate
+// while the camera turns (3 degrees a frame), then one frame at VTK's still rate.
+int runViewBenchmark(Viewer& viewer, int frames, double fps) {
+  using Clock = std::chrono::steady_clock;
+  viewer.window->SetOffScreenRendering(1);
+  vtkCamera* camera = viewer.renderer->GetActiveCamera();
+  std::vector<double> seconds, distances;
+  {
+    const LeakCheckPause pause;  // Mesa's process-lifetime allocations (LeakCheckPause.h)
+    viewer.window->SetDesiredUpdateRate(fps);
+    for (int i = 0; i < frames; ++i) {
+      camera->Azimuth(3.0);
+      viewer.renderer->ResetCameraClippingRange();
+      const auto start = Clock::now();
+      viewer.window->Render();
+      seconds.push_back(std::chrono::duration<double>(Clock::now() - start).count());
+      distances.push_back(viewer.mapper->GetLastImageSampleDistance());
+      std::printf("moving frame %3d: %.1f ms, image sample distance %.2f\n", i + 1,
+                  1000.0 * seconds.back(), distances.back());
+    }
+    viewer.window->SetDesiredUpdateRate(0.0001);  // vtkRenderWindowInteractor's still rate
+    const auto start = Clock::now();
+    viewer.window->Render();
+    const double still = std::chrono::duration<double>(Clock::now() - start).count();
+    // The first frames calibrate the sample distance; the rate is the median of the rest.
+    const size_t skip = seconds.size() > 4 ? 2 : 0;
+    std::vector<double> settled(seconds.begin() + static_cast<std::ptrdiff_t>(skip), seconds.end());
+    std::sort(settled.begin(), settled.end());
+    const double median = settled[settled.size() / 2];
+    std::printf("moving: %.1f frames/s (median frame %.1f ms over %zu frames, target %.1f/s)\n",
+                1.0 / median, 1000.0 * median, settled.size(), fps);
+    std::printf("still frame (full quality): %.1f ms, image sample distance %.2f\n", 1000.0 * still,
+                viewer.mapper->GetLastImageSampleDistance());
+    viewer.window->Finalize();
+  }
+  return 0;
+}
+
 }  // namespace
 
 Command addViewCommand(CLI::App& app) {
@@ -150,6 +190,8 @@ Command addViewCommand(CLI::App& app) {
     EncodeCliOptions encode;
     RenderOptions render;
     bool quiet = false;
+    double interactiveFps = 10.0;
+    int benchmarkFrames = 0;
   };
   auto o = std::make_shared<Options>();
   CLI::App* sub = app.add_subcommand(
@@ -163,6 +205,15 @@ Command addViewCommand(CLI::App& app) {
       ->capture_default_str();
   sub->add_option("--screenshot", o->screenshot,
                   "Render one frame off screen to this PNG and exit (no window)");
+  sub->add_option("--interactive-fps", o->interactiveFps,
+                  "Frames per second to keep while the camera moves: coarser frames (fewer rays, "
+                  "magnified smoothly) are drawn while dragging, the full frame when it stops")
+      ->check(CLI::Range(0.5, 240.0))
+      ->capture_default_str();
+  sub->add_option("--benchmark", o->benchmarkFrames,
+                  "Off screen, no window: render N frames while turning the camera (as a drag "
+                  "does), then the full-quality frame; print frames per second and times")
+      ->check(CLI::Range(1, 100000));
   o->render.addTo(sub);
   o->encode.addTo(sub, "Encoding (non-model inputs)");
   const char* in = "Input";
@@ -224,6 +275,9 @@ Command addViewCommand(CLI::App& app) {
     applyCamera(settings.camera, viewer->renderer);
     viewer->applyOptions();
 
+    if (o->benchmarkFrames > 0) {
+      return runViewBenchmark(*viewer, o->benchmarkFrames, o->interactiveFps);
+    }
     if (!o->screenshot.empty()) {
       viewer->window->SetOffScreenRendering(1);
       {
@@ -249,7 +303,7 @@ Command addViewCommand(CLI::App& app) {
     interactor->SetRenderWindow(viewer->window);
     // Still frames at full resolution; while dragging the mapper lowers the image sample
     // distance to keep about this many frames per second.
-    interactor->SetDesiredUpdateRate(10.0);
+    interactor->SetDesiredUpdateRate(o->interactiveFps);
     std::cout << ViewerStyle::kKeyHelp;
     viewer->window->Render();
     viewer->updateStatus();

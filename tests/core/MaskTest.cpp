@@ -335,7 +335,9 @@ TEST(MaskedRender, SamplesOutsideTheMaskAreEmpty) {
       Vec3d o, d;
       rays.ray(x, y, o, d);
       double t0, t1;
-      if (!intersectBox(o, d, masked.domain().min, masked.domain().max, t0, t1)) continue;
+      if (!intersectBox(o.data(), d.data(), masked.domain().min.data(), masked.domain().max.data(),
+                        t0, t1))
+        continue;
       if (t1 - t0 < 0.05) continue;       // grazes an edge of the box
       EXPECT_GT(a.pixel(x, y)[3], 0.0f);  // unmasked: every ray through the box is coloured
       const double xIn = (o + t0 * d)[0], xOut = (o + t1 * d)[0];

@@ -1,14 +1,24 @@
 #pragma once
 // The MFA model as a Field: exact spline value and analytic gradient at every sample, and the
 // model's domain mask (the ray caster skips samples outside it).
+//
+// renderVolume() renders a ModelField through the spline kernel directly (ModelRenderer.cpp);
+// the Sampler below serves fields built on top of a model (DerivedFields.h) and point queries.
+// A caller that renders many frames of one model (a viewer) passes an EmptySpaceCache, so that
+// the empty-space flags are rebuilt only when the transfer function changes.
 #include "core/field/Field.h"
 #include "core/model/Model.h"
 
 namespace mfadvr {
 
+class EmptySpaceCache;
+
 class ModelField {
  public:
-  explicit ModelField(const Model& model) : model_(&model) {}
+  explicit ModelField(const Model& model, EmptySpaceCache* cache = nullptr)
+      : model_(&model), cache_(cache) {}
+  const Model& model() const { return *model_; }
+  EmptySpaceCache* emptySpaceCache() const { return cache_; }
   Vec3d boxMin() const { return model_->domain().min; }
   Vec3d boxMax() const { return model_->domain().max; }
 
@@ -30,6 +40,7 @@ class ModelField {
 
  private:
   const Model* model_;
+  EmptySpaceCache* cache_;
 };
 
 }  // namespace mfadvr

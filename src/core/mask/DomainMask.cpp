@@ -42,31 +42,15 @@ double DomainMask::insideFraction() const {
   return static_cast<double>(inside) / static_cast<double>(nodes_.size());
 }
 
-bool DomainMask::insideParameter(const Vec3d& u) const {
-  if (nodes_.empty()) return true;
-  std::int64_t i[3];
-  double f[3];
+MaskView DomainMask::view() const {
+  MaskView v;
+  if (nodes_.empty()) return v;
+  v.nodes = nodes_.data();
   for (int a = 0; a < 3; ++a) {
-    const double t = std::clamp(u[a], 0.0, 1.0) * scale_[a];  // NaN becomes 0 below
-    std::int64_t c = t >= 0.0 ? static_cast<std::int64_t>(t) : 0;
-    c = std::min<std::int64_t>(c, dims_[a] - 2);
-    i[a] = c;
-    f[a] = t >= 0.0 ? t - static_cast<double>(c) : 0.0;
+    v.dims[a] = dims_[a];
+    v.scale[a] = scale_[a];
   }
-  const std::int64_t sx = 1, sy = dims_[0], sz = dims_[0] * dims_[1];
-  const std::uint8_t* n = nodes_.data() + i[0] * sx + i[1] * sy + i[2] * sz;
-  // Fast paths: all eight corners agree (the common case away from the boundary).
-  const int sum =
-      n[0] + n[sx] + n[sy] + n[sx + sy] + n[sz] + n[sx + sz] + n[sy + sz] + n[sx + sy + sz];
-  if (sum == 0) return false;
-  if (sum == 8) return true;
-  const double x0 = (1 - f[0]) * n[0] + f[0] * n[sx];
-  const double x1 = (1 - f[0]) * n[sy] + f[0] * n[sx + sy];
-  const double x2 = (1 - f[0]) * n[sz] + f[0] * n[sx + sz];
-  const double x3 = (1 - f[0]) * n[sy + sz] + f[0] * n[sx + sy + sz];
-  const double y0 = (1 - f[1]) * x0 + f[1] * x1;
-  const double y1 = (1 - f[1]) * x2 + f[1] * x3;
-  return (1 - f[2]) * y0 + f[2] * y1 >= 0.5;
+  return v;
 }
 
 }  // namespace mfadvr

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "core/mask/MaskView.h"
 #include "core/util/Vec.h"
 
 namespace mfadvr {
@@ -45,7 +46,12 @@ class DomainMask {
   double insideFraction() const;
 
   // u: parameter in [0,1]^3 (clamped). Always true for an empty mask.
-  bool insideParameter(const Vec3d& u) const;
+  bool insideParameter(const Vec3d& u) const {
+    const double x[3] = {u[0], u[1], u[2]};
+    return insideMask(view(), x);
+  }
+  // The plain view the renderer reads (MaskView.h); valid while this mask lives.
+  MaskView view() const;
 
  private:
   MaskKind kind_ = MaskKind::MeshOccupancy;

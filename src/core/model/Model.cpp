@@ -3,6 +3,7 @@
 #include <tbb/parallel_for.h>
 #include <algorithm>
 
+#include "core/spline/SplineKernel.h"
 #include "core/util/Error.h"
 
 namespace mfadvr {
@@ -42,21 +43,38 @@ void Model::evaluate(std::span<const Vec3d> points, std::span<float> values,
   if (values.size() != n || (!gradients.empty() && gradients.size() != n) ||
       (!hessians.empty() && hessians.size() != n))
     throw Error("batched query: output sizes do not match the number of points");
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 4096), [&](const auto& range) {
-    for (size_t i = range.begin(); i < range.end(); ++i) {
-      if (!hessians.empty()) {
+  if (!hessians.empty()) {
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 4096), [&](const auto& range) {
+      for (size_t i = range.begin(); i < range.end(); ++i) {
         const ValueGradientHessian r = valueGradientHessian(points[i]);
         values[i] = r.value;
         if (!gradients.empty()) gradients[i] = r.gradient;
         hessians[i] = r.hessian;
-      } else if (!gradients.empty()) {
-        const ValueGradient r = valueGradient(points[i]);
-        values[i] = r.value;
-        gradients[i] = r.gradient;
-      } else {
-        values[i] = value(points[i]);
       }
-    }
+    });
+    return;
+  }
+  // The value and gradient paths pick the degree once for the whole batch.
+  const SplineView v = spline_.view();
+  const Vec3d lo = domain_.min;
+  const Vec3d inv = domain_.extent().cwiseInverse();
+  splineDegreeSwitch(v, [&]<int P>() {
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 4096), [&](const auto& range) {
+      for (size_t i = range.begin(); i < range.end(); ++i) {
+        const Vec3d& x = points[i];
+        const double u[3] = {(x[0] - lo[0]) * inv[0], (x[1] - lo[1]) * inv[1],
+                             (x[2] - lo[2]) * inv[2]};
+        if (gradients.empty()) {
+          values[i] = splineValue<P>(v, u);
+        } else {
+          float out[4];
+          splineValueGradient<P>(v, u, out);
+          values[i] = out[0];
+          gradients[i] =
+              Vec3f(out[1] * invExtent_[0], out[2] * invExtent_[1], out[3] * invExtent_[2]);
+        }
+      }
+    });
   });
 }
 

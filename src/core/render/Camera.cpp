@@ -86,30 +86,25 @@ void Camera::validate() const {
     throw Error("camera parallel scale must be positive");
 }
 
-RayGenerator::RayGenerator(const Camera& camera, int width, int height)
-    : width_(width), height_(height) {
+RayGenerator::RayGenerator(const Camera& camera, int width, int height) {
   camera.validate();
   if (width <= 0 || height <= 0) throw Error("image size must be positive");
-  position_ = camera.position;
-  forward_ = camera.directionOfProjection();
-  right_ = forward_.cross(camera.viewUp).normalized();
-  up_ = right_.cross(forward_);
-  parallel_ = camera.parallelProjection;
-  const double aspect = static_cast<double>(width) / height;
-  halfHeight_ = parallel_ ? camera.parallelScale : std::tan(0.5 * radians(camera.viewAngle));
-  halfWidth_ = halfHeight_ * aspect;
-}
-
-void RayGenerator::ray(int x, int y, Vec3d& origin, Vec3d& direction) const {
-  const double sx = (2.0 * (x + 0.5) / width_ - 1.0) * halfWidth_;
-  const double sy = (1.0 - 2.0 * (y + 0.5) / height_) * halfHeight_;
-  if (parallel_) {
-    origin = position_ + sx * right_ + sy * up_;
-    direction = forward_;
-  } else {
-    origin = position_;
-    direction = (forward_ + sx * right_ + sy * up_).normalized();
+  const Vec3d forward = camera.directionOfProjection();
+  const Vec3d right = forward.cross(camera.viewUp).normalized();
+  const Vec3d up = right.cross(forward);
+  for (int a = 0; a < 3; ++a) {
+    rays_.position[a] = camera.position[a];
+    rays_.forward[a] = forward[a];
+    rays_.right[a] = right[a];
+    rays_.up[a] = up[a];
   }
+  rays_.parallel = camera.parallelProjection;
+  rays_.width = width;
+  rays_.height = height;
+  const double aspect = static_cast<double>(width) / height;
+  rays_.halfHeight =
+      rays_.parallel ? camera.parallelScale : std::tan(0.5 * radians(camera.viewAngle));
+  rays_.halfWidth = rays_.halfHeight * aspect;
 }
 
 }  // namespace mfadvr

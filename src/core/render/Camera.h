@@ -3,6 +3,7 @@
 // position, focal point, view-up, vertical view angle in degrees, parallel projection with a
 // parallel scale (half the viewport height in world units). resetToBounds() is
 // vtkRenderer::ResetCamera; azimuth/elevation/zoom are vtkCamera's.
+#include "core/render/kernel/CameraRays.h"
 #include "core/util/Vec.h"
 
 namespace mfadvr {
@@ -40,17 +41,21 @@ struct Camera {
 };
 
 // Primary rays for a width x height image, row 0 at the top, through pixel centres.
+// The formula is kernel/CameraRays.h, shared with the ray integration.
 class RayGenerator {
  public:
   RayGenerator(const Camera& camera, int width, int height);
   // Origin and unit direction of the ray through pixel (x, y).
-  void ray(int x, int y, Vec3d& origin, Vec3d& direction) const;
+  void ray(int x, int y, Vec3d& origin, Vec3d& direction) const {
+    double o[3], d[3];
+    primaryRay(rays_, x, y, o, d);
+    origin = Vec3d(o[0], o[1], o[2]);
+    direction = Vec3d(d[0], d[1], d[2]);
+  }
+  const CameraRays& rays() const { return rays_; }
 
  private:
-  Vec3d position_, forward_, right_, up_;
-  double halfWidth_ = 0, halfHeight_ = 0;  // of the image plane at distance 1, or parallel extent
-  bool parallel_ = false;
-  int width_ = 1, height_ = 1;
+  CameraRays rays_;
 };
 
 }  // namespace mfadvr

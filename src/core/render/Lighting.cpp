@@ -15,8 +15,8 @@ void Lighting::validate() const {
   check(diffuse, "diffuse");
   check(specular, "specular");
   check(specularPower, "specular power");
-  if (lights.size() + (headlight ? 1 : 0) > static_cast<size_t>(Shader::kMaxLights))
-    throw Error("at most " + std::to_string(Shader::kMaxLights) + " lights are supported");
+  if (lights.size() + (headlight ? 1 : 0) > static_cast<size_t>(kMaxLights))
+    throw Error("at most " + std::to_string(kMaxLights) + " lights are supported");
   for (const auto& l : lights) {
     if (!l.direction.allFinite() || !(l.direction.norm() > 0.0))
       throw Error("a light direction must be a finite non-zero vector");
@@ -25,34 +25,31 @@ void Lighting::validate() const {
   }
 }
 
-Shader::Shader(const Lighting& lighting, const Vec3d& cameraDirection)
-    : ambient_(lighting.ambient),
-      diffuseK_(lighting.diffuse),
-      specularK_(lighting.specular),
-      power_(lighting.specularPower) {
+ShadingParams makeShadingParams(const Lighting& lighting, const Vec3d& cameraDirection) {
   lighting.validate();
-  if (power_ == std::floor(power_) && power_ <= 1024.0f) integerPower_ = static_cast<int>(power_);
+  ShadingParams s;
+  s.ambient = lighting.ambient;
+  s.diffuse = lighting.diffuse;
+  s.specular = lighting.specular;
+  s.specularPower = lighting.specularPower;
+  if (s.specularPower == std::floor(s.specularPower) && s.specularPower <= 1024.0f)
+    s.integerPower = static_cast<int>(s.specularPower);
   auto add = [&](const Vec3d& travel, const Vec3f& color) {
-    toLight_[count_] = (-travel.normalized()).cast<float>();
-    lightColor_[count_] = color;
-    ++count_;
+    const Vec3f to = (-travel.normalized()).cast<float>();
+    for (int c = 0; c < 3; ++c) {
+      s.toLight[s.lightCount][c] = to[c];
+      s.lightColor[s.lightCount][c] = color[c];
+    }
+    ++s.lightCount;
   };
   if (lighting.headlight) add(cameraDirection, Vec3f::Ones());
   for (const auto& l : lighting.lights) add(l.direction, l.color * l.intensity);
   // Without a normal a sample is lit as if it faced every light head-on (no specular).
   float sum = 0.0f;
-  for (int i = 0; i < count_; ++i) sum += lightColor_[i].mean();
-  diffuseSum_ = diffuseK_ * sum;
-  setView(cameraDirection.cast<float>());
-}
-
-void Shader::setView(const Vec3f& rayDirection) {
-  toEye_ = -rayDirection.normalized();
-  for (int i = 0; i < count_; ++i) {
-    const Vec3f h = toLight_[i] + toEye_;
-    const float n = h.norm();
-    half_[i] = n > 1e-6f ? Vec3f(h / n) : Vec3f::Zero();  // light straight from behind
-  }
+  for (int i = 0; i < s.lightCount; ++i)
+    sum += (s.lightColor[i][0] + s.lightColor[i][1] + s.lightColor[i][2]) / 3.0f;
+  s.diffuseSum = s.diffuse * sum;
+  return s;
 }
 
 }  // namespace mfadvr

@@ -32,6 +32,9 @@ struct RenderSettings {
   std::vector<float> rayEnd;
   // Worker threads; 0 uses all cores. The image does not depend on it.
   int threads = 0;
+  // MFA models: pass over knot-span cells the transfer function makes invisible (exact: the
+  // image is the same either way; off only to measure what it saves).
+  bool skipEmptySpace = true;
   // Called now and then with the finished fraction (0..1], from one thread at a time.
   std::function<void(double)> progress;
 
@@ -45,6 +48,7 @@ struct RenderStats {
   std::int64_t raysHit = 0;     // rays that crossed the box
   std::int64_t samples = 0;     // field samples taken (not those outside a domain mask)
   std::int64_t terminated = 0;  // rays stopped early
+  std::int64_t skipped = 0;     // samples passed over by empty-space skipping (MFA models)
 };
 
 }  // namespace mfadvr

@@ -23,6 +23,19 @@ TransferFunctionTable::TransferFunctionTable(const TransferFunction& tf,
     const float alpha = tf.opacityAt(x);
     entries_[i] = {rgb[0], rgb[1], rgb[2], alpha, correction.full(alpha)};
   }
+  visibleBefore_.assign(kEntries + 1, 0);
+  for (int i = 0; i < kEntries; ++i)
+    visibleBefore_[i + 1] = visibleBefore_[i] + (entries_[i].alpha != 0.0f ? 1 : 0);
+}
+
+bool TransferFunctionTable::transparentOver(float lo, float hi) const {
+  const TransferFunctionView v = view();
+  int i0, i1;
+  float t;
+  // locate() is monotone in the value, so [lo, hi] touches entries i0 .. i1 + 1 only.
+  if (!v.locate(lo, i0, t) || !v.locate(hi, i1, t)) return false;
+  const int last = std::min(i1 + 1, kEntries - 1);
+  return visibleBefore_[last + 1] - visibleBefore_[i0] == 0;
 }
 
 }  // namespace mfadvr

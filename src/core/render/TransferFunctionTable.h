@@ -8,11 +8,11 @@
 // except within one entry of a point that does not fall on an entry (there the error is at most
 // the slope change times 1/4095 of the span); a jump (a step at an isovalue) becomes a ramp one
 // entry wide. Outside the span the end values hold, as in the TF itself. NaN maps to transparent.
-#include <cmath>
 #include <vector>
 
 #include "core/render/OpacityCorrection.h"
 #include "core/render/TransferFunction.h"
+#include "core/render/kernel/TransferFunctionView.h"
 
 namespace mfadvr {
 
@@ -29,26 +29,22 @@ class TransferFunctionTable {
   // tf must be resolved to data values.
   TransferFunctionTable(const TransferFunction& tf, const OpacityCorrection& correction);
 
-  [[gnu::always_inline]] inline Classification classify(float value) const {
-    float x = (value - lo_) * scale_;
-    if (!(x > 0.0f)) x = std::isnan(value) ? -1.0f : 0.0f;
-    if (x < 0.0f) return {Vec3f::Zero(), 0.0f, 0.0f};
-    if (x > float(kEntries - 1)) x = float(kEntries - 1);
-    int i = static_cast<int>(x);
-    if (i > kEntries - 2) i = kEntries - 2;
-    const float t = x - static_cast<float>(i);
-    const Entry& a = entries_[i];
-    const Entry& b = entries_[i + 1];
-    return {Vec3f(a.r + t * (b.r - a.r), a.g + t * (b.g - a.g), a.b + t * (b.b - a.b)),
-            a.alpha + t * (b.alpha - a.alpha), a.alphaStep + t * (b.alphaStep - a.alphaStep)};
+  // The plain view the ray integration reads; valid while this table lives.
+  TransferFunctionView view() const { return {entries_.data(), kEntries, lo_, scale_}; }
+
+  Classification classify(float value) const {
+    const TfEntry e = view().classify(value);
+    return {Vec3f(e.r, e.g, e.b), e.alpha, e.alphaStep};
   }
 
+  // True when every value in [lo, hi] classifies to opacity exactly 0 (empty-space skipping):
+  // the entries such values interpolate between are all transparent. O(1).
+  bool transparentOver(float lo, float hi) const;
+
  private:
-  struct Entry {
-    float r, g, b, alpha, alphaStep;
-  };
   float lo_ = 0.0f, scale_ = 0.0f;
-  std::vector<Entry> entries_;
+  std::vector<TfEntry> entries_;
+  std::vector<int> visibleBefore_;  // [i]: entries before i with non-zero opacity
 };
 
 }  // namespace mfadvr

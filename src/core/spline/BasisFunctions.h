@@ -5,12 +5,7 @@
 // compile-time constant (from the degree-specialized evaluators) the loops unroll completely,
 // called with a runtime degree they serve every other case. One implementation, both speeds.
 #include "core/spline/KnotVector.h"
-
-#if defined(__GNUC__)
-#define MFADVR_INLINE inline __attribute__((always_inline))
-#else
-#define MFADVR_INLINE inline
-#endif
+#include "core/util/HostDevice.h"
 
 namespace mfadvr {
 

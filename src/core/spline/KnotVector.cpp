@@ -4,9 +4,13 @@
 #include <cmath>
 #include <string>
 
+#include "core/spline/BasisFunctions.h"
+#include "core/spline/SplineKernel.h"
 #include "core/util/Error.h"
 
 namespace mfadvr {
+
+static_assert(kSplineMaxDegree == kMaxDegree, "the kernel's degree bound must match");
 
 KnotVector::KnotVector(int degree, std::vector<double> knots)
     : degree_(degree), knots_(std::move(knots)) {
@@ -39,6 +43,44 @@ KnotVector::KnotVector(int degree, std::vector<double> knots)
     inverseSpacing_ = 1.0 / h;
     for (int j = 1; j < interior && regular_; ++j)
       if (std::abs(knots_[degree_ + 1 + j] - (firstInterior_ + j * h)) > 1e-9 * h) regular_ = false;
+  }
+  if (degree_ >= 1 && n > degree_) buildBasisPolynomials();
+}
+
+KnotAxisView KnotVector::view() const {
+  KnotAxisView v;
+  v.knots = knots_.data();
+  v.poly = poly_.data();
+  v.inverseLength = inverseLength_.data();
+  v.degree = degree_;
+  v.count = controlCount();
+  v.regular = regular_;
+  v.firstInterior = firstInterior_;
+  v.inverseSpacing = inverseSpacing_;
+  return v;
+}
+
+// The Taylor expansion at the span's midpoint m is exact for a polynomial of degree p:
+// N_r(m + tau h) = sum_k N_r^(k)(m) h^k / k! tau^k, tau in [-1/2, 1/2], with A2.3's derivatives.
+// About the midpoint the powers of tau stay below 2^-k, which keeps float Horner sums accurate
+// for high degrees (at the left end, degree 7 lost a few more bits).
+void KnotVector::buildBasisPolynomials() {
+  const int p = degree_, w = p + 1, n = controlCount();
+  poly_.assign(static_cast<size_t>(n) * w * w, 0.0f);
+  inverseLength_.assign(static_cast<size_t>(n), 0.0);
+  double ders[(kMaxDegree + 1) * (kMaxDegree + 1)];
+  for (int s = p; s < n; ++s) {
+    const double h = knots_[s + 1] - knots_[s];
+    if (!(h > 0.0)) continue;  // an empty span is never found
+    inverseLength_[s] = 1.0 / h;
+    basisDerivatives(*this, p, s, knots_[s] + 0.5 * h, p, ders);
+    double scale = 1.0;  // h^k / k!
+    for (int k = 0; k <= p; ++k) {
+      for (int r = 0; r < w; ++r)
+        poly_[(static_cast<size_t>(s) * w + k) * w + r] =
+            static_cast<float>(ders[k * w + r] * scale);
+      scale *= h / (k + 1);
+    }
   }
 }
 
@@ -84,14 +126,6 @@ KnotVector KnotVector::fromKnots(int degree, std::vector<double> knots) {
       throw Error("interior knot multiplicity exceeds the degree");
   }
   return KnotVector(degree, std::move(knots));
-}
-
-int KnotVector::findSpanBinary(double u) const {
-  // Last index s in [p, n-1] with knots[s] <= u (u is inside (0,1) here).
-  const auto first = knots_.begin() + degree_;
-  const auto last = knots_.begin() + controlCount();  // one past index n-1
-  const auto it = std::upper_bound(first, last + 1, u);
-  return static_cast<int>(it - knots_.begin()) - 1;
 }
 
 KnotVector KnotVector::withInsertedKnot(double u) const {

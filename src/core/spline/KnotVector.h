@@ -8,6 +8,8 @@
 #include <cstddef>
 #include <vector>
 
+#include "core/spline/SplineView.h"
+
 namespace mfadvr {
 
 inline constexpr int kMaxDegree = 7;
@@ -38,23 +40,13 @@ class KnotVector {
 
   // The span s in [p, n-1] with u_s <= u < u_{s+1}; u is clamped to [0,1] first and u = 1
   // belongs to the last non-empty span.
-  int findSpan(double u) const {
-    if (!(u > 0.0)) return degree_;  // also NaN
-    const int last = controlCount() - 1;
-    if (u >= 1.0) return last;
-    if (regular_) {
-      // Compare in double before converting: a tiny spacing makes t too large for an int.
-      const double t = (u - firstInterior_) * inverseSpacing_;
-      int s = !(t >= 0.0)                                    ? degree_
-              : t >= static_cast<double>(last - degree_ - 1) ? last
-                                                             : degree_ + 1 + static_cast<int>(t);
-      // Rounding can put u one span off at a boundary.
-      while (s > degree_ && u < knots_[s]) --s;
-      while (s < last && u >= knots_[s + 1]) ++s;
-      return s;
-    }
-    return findSpanBinary(u);
-  }
+  int findSpan(double u) const { return mfadvr::findSpan(view(), u); }
+
+  // The view the evaluation kernel reads (SplineView.h); valid while this vector lives.
+  KnotAxisView view() const;
+  // Per span, the p+1 basis functions as polynomials in the span's local coordinate, in the
+  // layout KnotAxisView::poly describes.
+  const std::vector<float>& basisPolynomials() const { return poly_; }
 
   // A new vector with `u` (strictly inside (0,1)) inserted once.
   KnotVector withInsertedKnot(double u) const;
@@ -63,7 +55,7 @@ class KnotVector {
 
  private:
   KnotVector(int degree, std::vector<double> knots);
-  int findSpanBinary(double u) const;
+  void buildBasisPolynomials();
 
   int degree_ = 0;
   std::vector<double> knots_;
@@ -73,6 +65,8 @@ class KnotVector {
   double inverseSpacing_ = 0.0;  // 1 / (u_{p+2} - u_{p+1})
   int reciprocalsPerSpan_ = 0;
   std::vector<double> reciprocals_;
+  std::vector<float> poly_;
+  std::vector<double> inverseLength_;
 };
 
 }  // namespace mfadvr

@@ -1,132 +1,21 @@
 #include "core/spline/TensorBSpline.h"
 
 #include <algorithm>
+#include <mutex>
 #include <string>
 
-#include "core/spline/BasisFunctions.h"
+#include "core/spline/SplineKernel.h"
 #include "core/util/Error.h"
 
 namespace mfadvr {
-namespace {
 
-// NaN maps to 0 so that a bad coordinate yields a finite answer instead of undefined behaviour.
-inline double clamp01(double u) {
-  return !(u > 0.0) ? 0.0 : (u > 1.0 ? 1.0 : u);
-}
-
-// Value (and, with kGradient, the three parametric partials) by separable contraction: the
-// x sums of each (j,k) row are shared by the value and the y/z partials, so the gradient costs
-// about twice the value, not four times.
-template <bool kGradient>
-MFADVR_INLINE void evaluateKernel(const TensorBSpline& s, int p0, int p1, int p2, const Vec3d& u,
-                                  float* out) {
-  const KnotVector& k0 = s.knots(0);
-  const KnotVector& k1 = s.knots(1);
-  const KnotVector& k2 = s.knots(2);
-  const double u0 = clamp01(u[0]), u1 = clamp01(u[1]), u2 = clamp01(u[2]);
-  const int s0 = k0.findSpan(u0), s1 = k1.findSpan(u1), s2 = k2.findSpan(u2);
-
-  constexpr int W = kMaxDegree + 1;
-  double d0[2 * W], d1[2 * W], d2[2 * W];
-  if constexpr (kGradient) {
-    basisDerivatives(k0, p0, s0, u0, 1, d0);
-    basisDerivatives(k1, p1, s1, u1, 1, d1);
-    basisDerivatives(k2, p2, s2, u2, 1, d2);
-  } else {
-    basisFunctions(k0, p0, s0, u0, d0);
-    basisFunctions(k1, p1, s1, u1, d1);
-    basisFunctions(k2, p2, s2, u2, d2);
-  }
-  float N0[W], N1[W], N2[W], D0[W], D1[W], D2[W];
-  for (int i = 0; i <= p0; ++i) {
-    N0[i] = static_cast<float>(d0[i]);
-    if constexpr (kGradient) D0[i] = static_cast<float>(d0[p0 + 1 + i]);
-  }
-  for (int j = 0; j <= p1; ++j) {
-    N1[j] = static_cast<float>(d1[j]);
-    if constexpr (kGradient) D1[j] = static_cast<float>(d1[p1 + 1 + j]);
-  }
-  for (int k = 0; k <= p2; ++k) {
-    N2[k] = static_cast<float>(d2[k]);
-    if constexpr (kGradient) D2[k] = static_cast<float>(d2[p2 + 1 + k]);
-  }
-
-  const std::int64_t n0 = k0.controlCount(), n1 = k1.controlCount();
-  const float* base = s.controlPoints().data() + (s0 - p0) + n0 * ((s1 - p1) + n1 * (s2 - p2));
-  float v = 0.0f, gx = 0.0f, gy = 0.0f, gz = 0.0f;
-  for (int k = 0; k <= p2; ++k) {
-    float vk = 0.0f, xk = 0.0f, yk = 0.0f;
-    for (int j = 0; j <= p1; ++j) {
-      const float* row = base + n0 * (j + n1 * k);
-      float a = 0.0f, b = 0.0f;
-      for (int i = 0; i <= p0; ++i) {
-        a += N0[i] * row[i];
-        if constexpr (kGradient) b += D0[i] * row[i];
-      }
-      vk += N1[j] * a;
-      if constexpr (kGradient) {
-        xk += N1[j] * b;
-        yk += D1[j] * a;
-      }
-    }
-    v += N2[k] * vk;
-    if constexpr (kGradient) {
-      gx += N2[k] * xk;
-      gy += N2[k] * yk;
-      gz += D2[k] * vk;
-    }
-  }
-  out[0] = v;
-  if constexpr (kGradient) {
-    out[1] = gx;
-    out[2] = gy;
-    out[3] = gz;
-  }
-}
-
-template <int P>
-float valueFixed(const TensorBSpline& s, const Vec3d& u) {
-  float out[1];
-  evaluateKernel<false>(s, P, P, P, u, out);
-  return out[0];
-}
-
-template <int P>
-ValueGradient gradientFixed(const TensorBSpline& s, const Vec3d& u) {
-  float out[4];
-  evaluateKernel<true>(s, P, P, P, u, out);
-  return {out[0], Vec3f(out[1], out[2], out[3])};
-}
-
-float valueGeneric(const TensorBSpline& s, const Vec3d& u) {
-  const Degree3 p = s.degrees();
-  float out[1];
-  evaluateKernel<false>(s, p[0], p[1], p[2], u, out);
-  return out[0];
-}
-
-ValueGradient gradientGeneric(const TensorBSpline& s, const Vec3d& u) {
-  const Degree3 p = s.degrees();
-  float out[4];
-  evaluateKernel<true>(s, p[0], p[1], p[2], u, out);
-  return {out[0], Vec3f(out[1], out[2], out[3])};
-}
-
-template <int... P>
-constexpr std::array<TensorBSpline::ValueFn, sizeof...(P)> valueTable(
-    std::integer_sequence<int, P...>) {
-  return {&valueFixed<P + 1>...};
-}
-template <int... P>
-constexpr std::array<TensorBSpline::GradientFn, sizeof...(P)> gradientTable(
-    std::integer_sequence<int, P...>) {
-  return {&gradientFixed<P + 1>...};
-}
-
-}  // namespace
+struct TensorBSpline::Derived {
+  std::once_flag once;
+  std::shared_ptr<const SpanRanges> ranges;
+};
 
 TensorBSpline::TensorBSpline(std::array<KnotVector, 3> knots, std::vector<float> ctrl)
-    : knots_(std::move(knots)), ctrl_(std::move(ctrl)) {
+    : knots_(std::move(knots)), ctrl_(std::move(ctrl)), derived_(std::make_shared<Derived>()) {
   const Index3 n = counts();
   for (int a = 0; a < 3; ++a) {
     if (knots_[a].degree() < 1) throw Error("spline axis " + std::to_string(a) + " has no knots");
@@ -134,16 +23,6 @@ TensorBSpline::TensorBSpline(std::array<KnotVector, 3> knots, std::vector<float>
   if (static_cast<std::int64_t>(ctrl_.size()) != n[0] * n[1] * n[2])
     throw Error("control point array has " + std::to_string(ctrl_.size()) + " entries, expected " +
                 std::to_string(n[0] * n[1] * n[2]));
-  const Degree3 p = degrees();
-  if (p[0] == p[1] && p[1] == p[2]) {
-    static constexpr auto values = valueTable(std::make_integer_sequence<int, kMaxDegree>{});
-    static constexpr auto gradients = gradientTable(std::make_integer_sequence<int, kMaxDegree>{});
-    valueFn_ = values[p[0] - 1];
-    gradientFn_ = gradients[p[0] - 1];
-  } else {
-    valueFn_ = &valueGeneric;
-    gradientFn_ = &gradientGeneric;
-  }
 }
 
 Degree3 TensorBSpline::degrees() const {
@@ -154,39 +33,44 @@ Index3 TensorBSpline::counts() const {
   return {knots_[0].controlCount(), knots_[1].controlCount(), knots_[2].controlCount()};
 }
 
+SplineView TensorBSpline::view() const {
+  SplineView v;
+  v.ctrl = ctrl_.data();
+  for (int a = 0; a < 3; ++a) v.axis[a] = knots_[a].view();
+  return v;
+}
+
+std::shared_ptr<const SpanRanges> TensorBSpline::spanRanges() const {
+  if (!derived_) throw Error("internal: span ranges of an empty spline");
+  std::call_once(derived_->once, [&] {
+    derived_->ranges = std::make_shared<const SpanRanges>(SpanRanges::compute(view()));
+  });
+  return derived_->ranges;
+}
+
+float TensorBSpline::value(const Vec3d& u) const {
+  const SplineView v = view();
+  const double x[3] = {u[0], u[1], u[2]};
+  return splineDegreeSwitch(v, [&]<int P>() { return splineValue<P>(v, x); });
+}
+
+ValueGradient TensorBSpline::valueGradient(const Vec3d& u) const {
+  const SplineView v = view();
+  const double x[3] = {u[0], u[1], u[2]};
+  float out[4];
+  splineDegreeSwitch(v, [&]<int P>() { splineValueGradient<P>(v, x, out); });
+  return {out[0], Vec3f(out[1], out[2], out[3])};
+}
+
 ValueGradientHessian TensorBSpline::valueGradientHessian(const Vec3d& u) const {
-  const Degree3 p = degrees();
-  constexpr int W = kMaxDegree + 1;
-  double d[3][3 * W];
-  int span[3];
-  for (int a = 0; a < 3; ++a) {
-    const double ua = clamp01(u[a]);
-    span[a] = knots_[a].findSpan(ua);
-    basisDerivatives(knots_[a], p[a], span[a], ua, 2, d[a]);
-  }
-  const std::int64_t n0 = knots_[0].controlCount(), n1 = knots_[1].controlCount();
-  // acc[a][b][c]: sum of P * N0^(a) N1^(b) N2^(c) for the derivative orders we need.
-  double acc[3][3][3] = {};
-  for (int k = 0; k <= p[2]; ++k) {
-    for (int j = 0; j <= p[1]; ++j) {
-      const float* row =
-          ctrl_.data() + (span[0] - p[0]) + n0 * ((span[1] - p[1] + j) + n1 * (span[2] - p[2] + k));
-      double x[3] = {0, 0, 0};
-      for (int i = 0; i <= p[0]; ++i)
-        for (int o = 0; o < 3; ++o) x[o] += d[0][o * (p[0] + 1) + i] * row[i];
-      for (int a = 0; a < 3; ++a)
-        for (int b = 0; a + b < 3; ++b)
-          for (int c = 0; a + b + c < 3; ++c)
-            acc[a][b][c] += x[a] * d[1][b * (p[1] + 1) + j] * d[2][c * (p[2] + 1) + k];
-    }
-  }
+  const SplineView v = view();
+  const double x[3] = {u[0], u[1], u[2]};
+  float out[10];
+  splineDegreeSwitch(v, [&]<int P>() { splineValueGradientHessian<P>(v, x, out); });
   ValueGradientHessian r;
-  r.value = static_cast<float>(acc[0][0][0]);
-  r.gradient = Vec3f(static_cast<float>(acc[1][0][0]), static_cast<float>(acc[0][1][0]),
-                     static_cast<float>(acc[0][0][1]));
-  r.hessian = {static_cast<float>(acc[2][0][0]), static_cast<float>(acc[1][1][0]),
-               static_cast<float>(acc[1][0][1]), static_cast<float>(acc[0][2][0]),
-               static_cast<float>(acc[0][1][1]), static_cast<float>(acc[0][0][2])};
+  r.value = out[0];
+  r.gradient = Vec3f(out[1], out[2], out[3]);
+  for (int i = 0; i < 6; ++i) r.hessian[i] = out[4 + i];
   return r;
 }
 

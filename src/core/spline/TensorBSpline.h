@@ -5,10 +5,18 @@
 // P(i,j,k) = ctrl[i + n0 * (j + n1 * k)]. Queries take parametric coordinates (clamped to
 // [0,1]) and return parametric derivatives; Model maps physical coordinates onto these.
 // A const spline is safe to query from any number of threads.
+//
+// The spline owns its arrays and hands out a SplineView for the header-only evaluation kernel
+// (SplineKernel.h); value(), valueGradient() and valueGradientHessian() are that kernel with the
+// degree chosen at run time, for single queries. Loops over many points (Model::evaluate, the
+// ray caster) choose the degree once and call the kernel directly.
 #include <array>
+#include <memory>
 #include <vector>
 
 #include "core/spline/KnotVector.h"
+#include "core/spline/SpanRanges.h"
+#include "core/spline/SplineView.h"
 #include "core/util/Vec.h"
 
 namespace mfadvr {
@@ -36,23 +44,26 @@ class TensorBSpline {
   Index3 counts() const;
   const std::vector<float>& controlPoints() const { return ctrl_; }
 
-  float value(const Vec3d& u) const { return valueFn_(*this, u); }
-  ValueGradient valueGradient(const Vec3d& u) const { return gradientFn_(*this, u); }
+  // Parametric coordinates, clamped to [0,1]^3; derivatives are parametric.
+  float value(const Vec3d& u) const;
+  ValueGradient valueGradient(const Vec3d& u) const;
   ValueGradientHessian valueGradientHessian(const Vec3d& u) const;
+
+  // Raw view for the kernel; valid while this spline lives and is not assigned to.
+  SplineView view() const;
+
+  // The control-point range of every knot-span cell (empty-space skipping), computed on first
+  // use and kept; safe to call from several threads. Copies of a spline share it.
+  std::shared_ptr<const SpanRanges> spanRanges() const;
 
   // The same function with one more knot at `u` on `axis` (Boehm's algorithm, in double).
   TensorBSpline withInsertedKnot(int axis, double u) const;
 
-  // Hot-path entry points, selected once per spline: degree-specialized when all three degrees
-  // are equal, generic otherwise.
-  using ValueFn = float (*)(const TensorBSpline&, const Vec3d&);
-  using GradientFn = ValueGradient (*)(const TensorBSpline&, const Vec3d&);
-
  private:
+  struct Derived;
   std::array<KnotVector, 3> knots_;
   std::vector<float> ctrl_;
-  ValueFn valueFn_ = nullptr;
-  GradientFn gradientFn_ = nullptr;
+  std::shared_ptr<Derived> derived_;
 };
 
 }  // namespace mfadvr

@@ -182,8 +182,8 @@ Lighting lightingFromVtk(vtkRenderer* renderer, vtkVolumeProperty* property,
     const Vec3d direction = toModel.vector(to - from);
     if (!(direction.norm() > 0.0)) continue;
     positional = positional || light->GetPositional();
-    if (static_cast<int>(l.lights.size()) == Shader::kMaxLights) {
-      notes.push_back("only the first " + std::to_string(Shader::kMaxLights) + " lights are used");
+    if (static_cast<int>(l.lights.size()) == mfadvr::kMaxLights) {
+      notes.push_back("only the first " + std::to_string(mfadvr::kMaxLights) + " lights are used");
       break;
     }
     DirectionalLight d;

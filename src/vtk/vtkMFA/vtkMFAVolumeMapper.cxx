@@ -30,7 +30,9 @@
 
 #include "VtkSceneConversion.h"
 #include "core/field/ModelField.h"
+#include "core/image/ImageResize.h"
 #include "core/model/Model.h"
+#include "core/render/EmptySpaceGrid.h"
 #include "core/render/RayCaster.h"
 
 vtkStandardNewMacro(vtkMFAVolumeMapper);
@@ -43,6 +45,8 @@ struct vtkMFAVolumeMapper::Internals {
   std::vector<unsigned char> Pixels;
   std::function<mfadvr::Image(const mfadvr::RenderSettings&)> FieldRenderer;
   double LastSeconds = 0.0;
+  // Empty-space flags of the current model and transfer function, kept between frames.
+  mfadvr::EmptySpaceCache EmptySpace;
 };
 
 vtkMFAVolumeMapper::vtkMFAVolumeMapper() : Internal(new Internals) {
@@ -249,19 +253,24 @@ void vtkMFAVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol) {
       s.rayEnd.clear();
     }
 
-    const mfadvr::Image image = this->Internal->FieldRenderer
-                                    ? this->Internal->FieldRenderer(s)
-                                    : mfadvr::renderVolume(mfadvr::ModelField(*model), s);
+    mfadvr::Image image =
+        this->Internal->FieldRenderer
+            ? this->Internal->FieldRenderer(s)
+            : mfadvr::renderVolume(mfadvr::ModelField(*model, &this->Internal->EmptySpace), s);
     if (image.width != rw || image.height != rh) {
       throw std::runtime_error("the field renderer returned an image of the wrong size");
+    }
+    // A coarse (interactive) frame is magnified smoothly to the viewport, not in blocks.
+    if (rw != width || rh != height) {
+      image = mfadvr::resizeBilinear(image, width, height);
     }
 
     // 8-bit premultiplied RGBA, row 0 at the bottom as OpenGL wants it.
     auto& pixels = this->Internal->Pixels;
-    pixels.resize(static_cast<size_t>(4) * rw * rh);
-    for (int y = 0; y < rh; ++y) {
-      unsigned char* row = pixels.data() + static_cast<size_t>(4) * rw * (rh - 1 - y);
-      for (int x = 0; x < rw; ++x) {
+    pixels.resize(static_cast<size_t>(4) * width * height);
+    for (int y = 0; y < height; ++y) {
+      unsigned char* row = pixels.data() + static_cast<size_t>(4) * width * (height - 1 - y);
+      for (int x = 0; x < width; ++x) {
         const float* p = image.pixel(x, y);
         for (int c = 0; c < 4; ++c) {
           row[4 * x + c] =
@@ -277,8 +286,8 @@ void vtkMFAVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol) {
     this->WarnOnce(note);
   }
 
-  // Drawn pixel for pixel over the viewport (magnified when the image sample distance is above
-  // 1), blended as premultiplied colour: out = image + (1 - alpha) * frame. The image already
+  // Drawn pixel for pixel over the viewport (a coarse frame was magnified bilinearly above),
+  // blended as premultiplied colour: out = image + (1 - alpha) * frame. The image already
   // accounts for the geometry in front, so the depth test is off; the GL state is restored.
   auto* glWindow = vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow());
   if (!glWindow) {
@@ -294,8 +303,9 @@ void vtkMFAVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol) {
   state->vtkglEnable(GL_BLEND);
   state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
   state->vtkglDepthMask(GL_FALSE);
-  glWindow->DrawPixels(originX, originY, originX + width - 1, originY + height - 1, 0, 0, rw - 1,
-                       rh - 1, rw, rh, 4, VTK_UNSIGNED_CHAR, this->Internal->Pixels.data());
+  glWindow->DrawPixels(originX, originY, originX + width - 1, originY + height - 1, 0, 0, width - 1,
+                       height - 1, width, height, 4, VTK_UNSIGNED_CHAR,
+                       this->Internal->Pixels.data());
 
   timer->StopTimer();
   this->TimeToDraw = timer->GetElapsedTime();

@@ -1,0 +1,49 @@
+#include "core/render/EmptySpaceGrid.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+namespace mfadvr {
+
+std::vector<std::uint8_t> buildEmptySpaceFlags(const SpanRanges& r,
+                                               const TransferFunctionTable& table) {
+  const std::int64_t n = std::int64_t(r.cells[0]) * r.cells[1] * r.cells[2];
+  std::vector<std::uint8_t> flags(static_cast<size_t>(n), 0);
+  const float rel = static_cast<float>(r.relativeRounding);
+  tbb::parallel_for(tbb::blocked_range<std::int64_t>(0, n, 1 << 14), [&](const auto& range) {
+    for (std::int64_t i = range.begin(); i < range.end(); ++i) {
+      const float lo = r.min[i], hi = r.max[i];
+      // Equal control points of 0 give exactly 0; otherwise widen by the rounding bound.
+      const float pad = rel * std::max(std::abs(lo), std::abs(hi)) * 2.0f;
+      flags[i] = table.transparentOver(lo - pad, hi + pad) ? 1 : 0;
+    }
+  });
+  return flags;
+}
+
+std::shared_ptr<const std::vector<std::uint8_t>> EmptySpaceCache::flags(
+    const TensorBSpline& spline, const TransferFunctionTable& table) {
+  const std::shared_ptr<const SpanRanges> ranges = spline.spanRanges();
+  const TransferFunctionView v = table.view();
+  std::vector<std::uint64_t> key(static_cast<size_t>((v.count + 63) / 64) + 1, 0);
+  for (int i = 0; i < v.count; ++i)
+    if (v.entries[i].alpha == 0.0f) key[i / 64] |= std::uint64_t(1) << (i % 64);
+  std::uint32_t lo, scale;
+  std::memcpy(&lo, &v.lo, 4);
+  std::memcpy(&scale, &v.scale, 4);
+  key.back() = (std::uint64_t(lo) << 32) | scale;
+
+  std::lock_guard lock(mutex_);
+  if (!flags_ || ranges != ranges_ || key != key_) {
+    flags_ =
+        std::make_shared<const std::vector<std::uint8_t>>(buildEmptySpaceFlags(*ranges, table));
+    ranges_ = ranges;
+    key_ = std::move(key);
+  }
+  return flags_;
+}
+
+}  // namespace mfadvr

@@ -1,0 +1,41 @@
+#pragma once
+// Exact empty-space skipping for MFA models: per knot-span cell, whether the transfer function
+// makes every value the spline can take there transparent.
+//
+// A cell's values lie within its control points' range (SpanRanges: the B-spline convex-hull
+// property), widened by a bound on the kernel's float rounding. The table classifies a value by
+// interpolating two neighbouring entries, and which entries a value touches is monotone in the
+// value, so a range whose touched entries all have opacity 0 yields opacity exactly 0 for every
+// sample in the cell: skipping such cells leaves the image bit-identical.
+//
+// The flags depend on the model and on which table entries are transparent; the cache rebuilds
+// them only when either changes (a colour change or an opacity change that keeps the zero set
+// keeps them), so an interactive session pays once per transfer-function edit.
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <vector>
+
+#include "core/render/TransferFunctionTable.h"
+#include "core/spline/TensorBSpline.h"
+
+namespace mfadvr {
+
+// One flag per cell, x fastest over SpanRanges::cells; non-zero: skip.
+std::vector<std::uint8_t> buildEmptySpaceFlags(const SpanRanges& ranges,
+                                               const TransferFunctionTable& table);
+
+class EmptySpaceCache {
+ public:
+  // Flags for `spline` under `table`; the pointer stays valid until the next call.
+  std::shared_ptr<const std::vector<std::uint8_t>> flags(const TensorBSpline& spline,
+                                                         const TransferFunctionTable& table);
+
+ private:
+  std::mutex mutex_;
+  std::shared_ptr<const SpanRanges> ranges_;  // identifies the spline (shared by its copies)
+  std::vector<std::uint64_t> key_;            // the table's zero-opacity entries, lo and scale
+  std::shared_ptr<const std::vector<std::uint8_t>> flags_;
+};
+
+}  // namespace mfadvr

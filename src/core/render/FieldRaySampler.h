@@ -1,0 +1,64 @@
+#pragma once
+// Any Field's sampler (Field.h: grid filters, the analytic truth, derived fields) as a ray
+// sampler for the shared per-ray integration (kernel/RayIntegrator.h). Host only.
+//
+// Shaded renders ask the field for value and gradient together at every sample, as the grid
+// filters compute both at once; unshaded ones ask for the value alone.
+#include <concepts>
+
+#include "core/field/Field.h"
+
+namespace mfadvr {
+
+template <class S, bool Shade>
+class FieldRaySampler {
+ public:
+  static constexpr bool kSkipsEmptySpace = false;
+  static constexpr bool kHasInside = requires(S & s, const Vec3d& x) {
+    { s.inside(x) } -> std::convertible_to<bool>;
+  };
+
+  explicit FieldRaySampler(S sampler) : s_(std::move(sampler)) {}
+
+  void beginRay(const double*, const double*) {}
+
+  bool inside(const double p[3]) {
+    if constexpr (kHasInside)
+      return s_.inside(Vec3d(p[0], p[1], p[2]));
+    else
+      return true;
+  }
+
+  bool emptyAt(const double*, double&) { return false; }
+
+  float value(const double p[3]) {
+    const Vec3d x(p[0], p[1], p[2]);
+    if constexpr (Shade) {
+      last_ = s_.valueGradient(x);
+      return last_.value;
+    } else {
+      return s_.value(x);
+    }
+  }
+
+  void gradient(float g[3]) const {
+    for (int a = 0; a < 3; ++a) g[a] = last_.gradient[a];
+  }
+
+  // Whether samples can fall outside (a sampler without inside() cannot; one with masked()
+  // says so: a model without a mask cannot).
+  bool canBeOutside() const {
+    if constexpr (!kHasInside)
+      return false;
+    else if constexpr (requires { s_.masked(); })
+      return s_.masked();
+    else
+      return true;
+  }
+
+ private:
+  S s_;
+  ValueGradient last_;
+};
+
+}  // namespace mfadvr

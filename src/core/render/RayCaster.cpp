@@ -1,0 +1,84 @@
+#include "core/render/RayCaster.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <mutex>
+
+namespace mfadvr {
+
+RayParams compileRayParams(const RenderSettings& s, const TransferFunctionTable& table,
+                           const Vec3d& boxMin, const Vec3d& boxMax) {
+  RayParams p;
+  p.camera = RayGenerator(s.camera, s.width, s.height).rays();
+  for (int a = 0; a < 3; ++a) {
+    p.boxMin[a] = boxMin[a];
+    p.boxMax[a] = boxMax[a];
+    p.background[a] = s.background[a];
+  }
+  p.sampleDistance = s.sampleDistance;
+  p.correctionExponent = s.sampleDistance / s.opacityUnitDistance;
+  p.stopOpacity = static_cast<float>(s.earlyTerminationOpacity);
+  p.rayEnd = s.rayEnd.empty() ? nullptr : s.rayEnd.data();
+  p.tf = table.view();
+  p.shade = s.shade;
+  if (s.shade) p.shading = makeShadingParams(s.lighting, s.camera.directionOfProjection());
+  return p;
+}
+
+void forEachTile(const RenderSettings& s, const TileFunction& tile, RenderStats* stats) {
+  using Clock = std::chrono::steady_clock;
+  const auto start = Clock::now();
+  constexpr int kTile = 16;
+  const int tilesX = (s.width + kTile - 1) / kTile, tilesY = (s.height + kTile - 1) / kTile;
+  const int tiles = tilesX * tilesY;
+  std::atomic<std::int64_t> samples{0}, hits{0}, terminated{0}, skipped{0};
+  std::atomic<int> done{0};
+  std::mutex progressMutex;
+  int lastReported = 0;
+
+  auto work = [&] {
+    tbb::parallel_for(tbb::blocked_range<int>(0, tiles, 1), [&](const auto& range) {
+      RayCounters c;
+      for (int t = range.begin(); t < range.end(); ++t) {
+        const int x0 = (t % tilesX) * kTile, y0 = (t / tilesX) * kTile;
+        tile(x0, y0, std::min(x0 + kTile, s.width), std::min(y0 + kTile, s.height), c);
+        const int finished = ++done;
+        if (s.progress) {
+          const int percent = static_cast<int>(100LL * finished / tiles);
+          std::unique_lock lock(progressMutex, std::try_to_lock);
+          if (lock && percent > lastReported) {
+            lastReported = percent;
+            s.progress(static_cast<double>(finished) / tiles);
+          }
+        }
+      }
+      samples += c.samples;
+      hits += c.hits;
+      terminated += c.terminated;
+      skipped += c.skipped;
+    });
+  };
+  if (s.threads > 0) {
+    tbb::task_arena arena(s.threads);
+    arena.execute(work);
+  } else {
+    work();
+  }
+  // The last tile's report can lose the race for the lock; the caller still gets its 1.
+  if (s.progress && lastReported < 100) s.progress(1.0);
+  if (stats) {
+    stats->seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    stats->rays = std::int64_t(s.width) * s.height;
+    stats->raysHit = hits;
+    stats->samples = samples;
+    stats->terminated = terminated;
+    stats->skipped = skipped;
+  }
+}
+
+}  // namespace mfadvr

@@ -1,0 +1,137 @@
+#pragma once
+// The per-ray integration of the ray caster (paper section 3.1, Algorithm 1), one plain function
+// over RayParams and a sampler, for host and device. The CPU driver (RayCaster.h) calls it per
+// pixel from its tiles; a GPU driver calls it per thread.
+//
+// A ray from the camera through the pixel centre is clipped to the box (and to its ray end);
+// the clipped segment is cut into steps of the sample distance (the last one shorter when the
+// length is not a multiple) and the field is sampled at the middle of each step. A sample's
+// opacity a from the transfer function is corrected for its step length dt as in VTK,
+// a' = 1 - (1 - a)^(dt / unit distance), so the image converges as the step shrinks and a
+// constant medium composites to exactly its Beer-Lambert transmittance. The value comes first;
+// the gradient is asked for only for a visible sample of a shaded render. Colours are
+// composited front to back; a ray stops once its opacity reaches the early-termination
+// threshold. The result is composited over the background.
+//
+// The sampler (a "ray sampler") answers, at a physical point p (double[3]):
+//   void beginRay(const double o[3], const double d[3])  the ray about to be walked
+//   bool inside(const double p[3])     false outside a domain mask (only called when Masked)
+//   bool emptyAt(const double p[3], double& tLeave)     only when kSkipsEmptySpace: true when
+//        no value the field can take around p is visible; tLeave: a ray distance up to which
+//        every point of the ray is in that same empty region
+//   float value(const double p[3])     the value at p
+//   void gradient(float g[3])          the physical gradient at the last value()'s point
+// Skipped samples are exactly those that would have been transparent, so the image is the same
+// with and without skipping.
+#include "core/render/kernel/OpacityCorrectionKernel.h"
+#include "core/render/kernel/RayParams.h"
+
+namespace mfadvr {
+
+template <bool Masked, bool Shade, class Sampler>
+MFADVR_HD MFADVR_INLINE void integrateRay(const RayParams& rp, Sampler& sampler, int x, int y,
+                                          float out[4], RayCounters& counters) {
+  double o[3], d[3];
+  primaryRay(rp.camera, x, y, o, d);
+  float red = 0.0f, green = 0.0f, blue = 0.0f, alpha = 0.0f;
+  double tEnter, tExit;
+  const bool crosses = intersectBox(o, d, rp.boxMin, rp.boxMax, tEnter, tExit);
+  if (crosses && rp.rayEnd) {
+    const double end = rp.rayEnd[static_cast<std::int64_t>(y) * rp.camera.width + x];
+    if (end < tExit) tExit = end;
+  }
+  if (crosses && tExit > (tEnter > 0.0 ? tEnter : 0.0)) {
+    ++counters.hits;
+    if (tEnter < 0.0) tEnter = 0.0;
+    const double dt = rp.sampleDistance;
+    // The tolerance keeps a rounding error from adding a step of zero length.
+    const std::int64_t steps = static_cast<std::int64_t>(ceil((tExit - tEnter) / dt - 1e-6));
+    RayShading rayShading;
+    if constexpr (Shade) {
+      const float df[3] = {float(d[0]), float(d[1]), float(d[2])};
+      prepareRayShading(rp.shading, df, rayShading);
+    }
+    sampler.beginRay(o, d);
+    // Visible samples are classified and shaded in packets of up to K, then composited: the
+    // samples of a packet are independent, so their evaluations overlap in the processor, and
+    // only the compositing is a chain. A ray that terminates inside a packet has evaluated at
+    // most K - 1 samples it did not need; the image is unchanged.
+    constexpr int K = 4;
+    std::int64_t k = 0;
+    bool done = false;
+    while (!done && k < steps) {
+      float pr[K], pg[K], pb[K], pa[K];
+      int n = 0;
+      while (n < K && k < steps) {
+        const double t = tEnter + static_cast<double>(k) * dt;
+        const double rest = tExit - t;
+        const double length = dt < rest ? dt : rest;
+        if (!(length > 0.0)) {
+          done = true;
+          break;
+        }
+        // Samplers clamp their own lookups, so a sample a rounding error outside the box is fine.
+        const double m = t + 0.5 * length;
+        const double p[3] = {o[0] + m * d[0], o[1] + m * d[1], o[2] + m * d[2]};
+        ++k;
+        if constexpr (Masked) {
+          if (!sampler.inside(p)) continue;
+        }
+        if constexpr (Sampler::kSkipsEmptySpace) {
+          double tLeave;
+          if (sampler.emptyAt(p, tLeave)) {
+            // Samples j with midpoints tEnter + (j + 1/2) dt <= tLeave lie in the same empty
+            // region: go on after the last of them.
+            const double last = floor((tLeave - tEnter) / dt - 0.5);
+            std::int64_t next = k;
+            if (last >= static_cast<double>(k))
+              next = last < static_cast<double>(steps - 1) ? static_cast<std::int64_t>(last) + 1
+                                                           : steps;
+            counters.skipped += 1 + (next - k);
+            k = next;
+            continue;
+          }
+        }
+        ++counters.samples;
+        const float v = sampler.value(p);
+        const TfEntry tf = rp.tf.classify(v);
+        if (!(tf.alpha > 0.0f)) continue;
+        pa[n] = length == dt ? tf.alphaStep
+                             : correctOpacity(tf.alpha, rp.correctionExponent * length / dt);
+        if constexpr (Shade) {
+          const float c[3] = {tf.r, tf.g, tf.b};
+          float g[3], shaded[3];
+          sampler.gradient(g);
+          shadeSample(rp.shading, rayShading, c, g, shaded);
+          pr[n] = shaded[0];
+          pg[n] = shaded[1];
+          pb[n] = shaded[2];
+        } else {
+          pr[n] = tf.r;
+          pg[n] = tf.g;
+          pb[n] = tf.b;
+        }
+        ++n;
+      }
+      for (int i = 0; i < n; ++i) {
+        const float w = (1.0f - alpha) * pa[i];
+        red += w * pr[i];
+        green += w * pg[i];
+        blue += w * pb[i];
+        alpha += w;
+        if (alpha >= rp.stopOpacity) {
+          ++counters.terminated;
+          done = true;
+          break;
+        }
+      }
+    }
+  }
+  const float behind = 1.0f - alpha;
+  out[0] = red + behind * rp.background[0];
+  out[1] = green + behind * rp.background[1];
+  out[2] = blue + behind * rp.background[2];
+  out[3] = alpha;
+}
+
+}  // namespace mfadvr

@@ -1,0 +1,37 @@
+#pragma once
+// Everything the per-ray integration needs besides the field, as one plain struct (host and
+// device): camera rays, the box, sampling, the transfer-function table, shading, compositing,
+// ray ends. compileRayParams() (render/RayParamsBuilder.h) fills it from RenderSettings; the
+// arrays it points to (table entries, ray ends) are owned by the caller.
+#include <cstdint>
+
+#include "core/render/kernel/CameraRays.h"
+#include "core/render/kernel/ShadingKernel.h"
+#include "core/render/kernel/TransferFunctionView.h"
+
+namespace mfadvr {
+
+struct RayParams {
+  CameraRays camera;
+  double boxMin[3], boxMax[3];
+  double sampleDistance = 1.0;
+  // Opacity correction exponent of a full step (sample distance / opacity unit distance); the
+  // table's alphaStep already holds it, shorter last steps scale it.
+  double correctionExponent = 1.0;
+  float stopOpacity = 0.99f;  // early ray termination
+  float background[3] = {0.0f, 0.0f, 0.0f};
+  const float* rayEnd = nullptr;  // width * height distances along the rays, or null
+  TransferFunctionView tf;
+  bool shade = false;
+  ShadingParams shading;
+};
+
+// Per-thread counts, summed by the driver.
+struct RayCounters {
+  std::int64_t samples = 0;     // field samples taken (not those outside a mask, nor skipped)
+  std::int64_t hits = 0;        // rays that crossed the box
+  std::int64_t terminated = 0;  // rays stopped early
+  std::int64_t skipped = 0;     // samples passed over by empty-space skipping
+};
+
+}  // namespace mfadvr

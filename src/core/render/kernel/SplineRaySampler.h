@@ -1,0 +1,129 @@
+#pragma once
+// The MFA model as a ray sampler (RayIntegrator.h), host and device, for a compile-time degree P
+// (0: per-axis degrees at run time).
+//
+// Span coherence: consecutive samples of a ray mostly stay in one knot-span cell, whose
+// (p+1)^3 control points are gathered once into a local block; a sample then costs the span
+// lookup, Horner's rule for the basis and the contraction over that block (SplineKernel.h).
+// The value comes first; a gradient, asked for only when the sample is visible, reuses the
+// value's z contraction.
+//
+// Exact empty-space skipping (Skip): `empty` flags, per knot-span cell, that no value the spline
+// can take in the cell is visible (EmptySpaceGrid.h: by the B-spline convex-hull property a
+// cell's values lie within its control points' range, widened by the kernel's rounding). A
+// sample in such a cell is not evaluated, and the ray jumps to where it leaves the cell.
+#include <cstdint>
+
+#include "core/mask/MaskView.h"
+#include "core/spline/SplineKernel.h"
+
+namespace mfadvr {
+
+// The model's placement and the optional skipping flags, shared by every ray.
+struct ModelView {
+  SplineView spline;
+  double boxMin[3];
+  double inverseExtent[3];  // physical -> parameter: u = (x - boxMin) * inverseExtent
+  MaskView mask;
+  // Per knot-span cell, x fastest over (count - degree) cells per axis: non-zero when the cell
+  // is invisible under the current transfer function. Null: no skipping information.
+  const std::uint8_t* empty = nullptr;
+};
+
+// Shade: value() also computes the basis derivatives (one Horner pass gives both), which a
+// following gradient() reuses.
+template <int P, bool Skip, bool Shade>
+class SplineRaySampler {
+ public:
+  static constexpr bool kSkipsEmptySpace = Skip;
+  static constexpr int W = SplineDegree<P>::kWidth;
+
+  MFADVR_HD explicit SplineRaySampler(const ModelView& m) : m_(m) {
+    for (int a = 0; a < 3; ++a) {
+      p_[a] = SplineDegree<P>::of(m.spline.axis[a].degree);
+      cells_[a] = m.spline.axis[a].count - p_[a];
+    }
+  }
+
+  MFADVR_HD MFADVR_INLINE void beginRay(const double o[3], const double d[3]) {
+    if constexpr (Skip) {
+      for (int a = 0; a < 3; ++a) {
+        uo_[a] = (o[a] - m_.boxMin[a]) * m_.inverseExtent[a];
+        ud_[a] = d[a] * m_.inverseExtent[a];
+      }
+    }
+  }
+
+  MFADVR_HD MFADVR_INLINE bool inside(const double p[3]) const {
+    double u[3];
+    toParameter(p, u);
+    return insideMask(m_.mask, u);
+  }
+
+  MFADVR_HD MFADVR_INLINE bool emptyAt(const double p[3], double& tLeave) {
+    double u[3];
+    toParameter(p, u);
+    locatePoint(m_.spline, u, loc_);
+    located_ = true;
+    const std::int64_t cell =
+        (loc_[0].span - p_[0]) +
+        cells_[0] * ((loc_[1].span - p_[1]) + std::int64_t(cells_[1]) * (loc_[2].span - p_[2]));
+    if (!m_.empty[cell]) return false;
+    // Where the ray leaves the cell, with the faces pulled in by far more than the rounding of
+    // a sample's parameter, so every sample before tLeave is found in this same cell.
+    constexpr double kInset = 1e-10;
+    tLeave = INFINITY;
+    for (int a = 0; a < 3; ++a) {
+      const double* U = m_.spline.axis[a].knots;
+      double ta = INFINITY;
+      if (ud_[a] > 0.0)
+        ta = (U[loc_[a].span + 1] - kInset - uo_[a]) / ud_[a];
+      else if (ud_[a] < 0.0)
+        ta = (U[loc_[a].span] + kInset - uo_[a]) / ud_[a];
+      if (ta < tLeave) tLeave = ta;
+    }
+    return true;
+  }
+
+  MFADVR_HD MFADVR_INLINE float value(const double p[3]) {
+    if (!(Skip && located_)) {
+      double u[3];
+      toParameter(p, u);
+      locatePoint(m_.spline, u, loc_);
+    }
+    located_ = false;
+    if (loc_[0].span != cached_[0] || loc_[1].span != cached_[1] || loc_[2].span != cached_[2]) {
+      gatherBlock<P>(m_.spline, loc_, block_);
+      for (int a = 0; a < 3; ++a) cached_[a] = loc_[a].span;
+    }
+    pointBasis<P, kOrder>(m_.spline, loc_, basis_);
+    return contractValue<P, kOrder>(block_, basis_, Tz_);
+  }
+
+  // Physical gradient at the last value()'s point; the value's basis and z contraction are
+  // reused.
+  MFADVR_HD MFADVR_INLINE void gradient(float g[3]) const {
+    static_assert(Shade, "gradients need a sampler made for shading");
+    contractPartials<P, kOrder>(block_, basis_, Tz_, g);
+    for (int a = 0; a < 3; ++a) g[a] *= static_cast<float>(m_.inverseExtent[a]);
+  }
+
+ private:
+  MFADVR_HD MFADVR_INLINE void toParameter(const double p[3], double u[3]) const {
+    for (int a = 0; a < 3; ++a) u[a] = (p[a] - m_.boxMin[a]) * m_.inverseExtent[a];
+  }
+
+  const ModelView& m_;
+  int p_[3];
+  int cells_[3];
+  int cached_[3] = {-1, -1, -1};
+  bool located_ = false;
+  AxisLocation loc_[3];
+  double uo_[3] = {0.0, 0.0, 0.0}, ud_[3] = {0.0, 0.0, 0.0};
+  static constexpr int kOrder = Shade ? 1 : 0;
+  ControlBlock<P> block_;
+  PointBasis<P, kOrder> basis_;
+  float Tz_[W * W];
+};
+
+}  // namespace mfadvr

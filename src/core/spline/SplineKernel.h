@@ -1,0 +1,358 @@
+#pragma once
+// The per-point tensor B-spline evaluation, header-only over a SplineView: span lookup, basis
+// functions, separable contraction of the control points, for the value, the value and gradient,
+// or the value, gradient and Hessian (parametric derivatives). Host and device code (MFADVR_HD).
+//
+// The degree is a template parameter P, chosen once per render or batch (splineDegreeSwitch):
+// with P > 0 all three axes have degree P and every loop unrolls; P = 0 reads the per-axis
+// degrees at run time (mixed degrees). There is one formula for each quantity; the ray sampler
+// (render/kernel/SplineRaySampler.h) calls the same functions on a gathered control block.
+//
+// Basis functions come from per-span polynomials (KnotVector::basisPolynomials, derived from
+// The NURBS Book's A2.3): a point costs a span lookup and Horner's rule in the span's local
+// coordinate, with no divisions and no recurrences.
+#include <cstdint>
+#include <type_traits>
+
+#include "core/spline/SplineView.h"
+
+namespace mfadvr {
+
+inline constexpr int kSplineMaxDegree = 7;  // = kMaxDegree of KnotVector.h
+
+// Compile-time degree P, or the run-time one when P = 0.
+template <int P>
+struct SplineDegree {
+  static constexpr int kWidth = P > 0 ? P + 1 : kSplineMaxDegree + 1;  // array bound
+  MFADVR_HD static constexpr int of(int runtime) { return P > 0 ? P : runtime; }
+};
+
+// W floats as one SIMD value where the host compiler offers vector extensions (GCC, Clang) and
+// the degree is fixed; plain loops otherwise (nvcc: one thread per ray already). Horner's rule
+// over the p+1 basis polynomials of an axis uses it; both forms compute the same sums.
+#if (defined(__GNUC__) || defined(__clang__)) && !defined(__CUDACC__)
+#define MFADVR_KERNEL_VECTOR_LANES 1
+#endif
+
+template <int W, bool Fixed>
+struct Lanes {
+#if defined(MFADVR_KERNEL_VECTOR_LANES)
+  static constexpr bool kVector = Fixed && W <= 8;
+#else
+  static constexpr bool kVector = false;
+#endif
+};
+
+#if defined(MFADVR_KERNEL_VECTOR_LANES)
+typedef float LaneVector4 __attribute__((vector_size(16)));
+typedef float LaneVector8 __attribute__((vector_size(32)));
+template <int W>
+using LaneVector = std::conditional_t<(W <= 4), LaneVector4, LaneVector8>;
+
+template <int W>
+MFADVR_INLINE LaneVector<W> loadLanes(const float* x) {
+  LaneVector<W> v = {};
+  __builtin_memcpy(&v, x, W * sizeof(float));
+  return v;
+}
+template <int W>
+MFADVR_INLINE void storeLanes(const LaneVector<W>& v, float* x) {
+  __builtin_memcpy(x, &v, W * sizeof(float));
+}
+template <int W>
+MFADVR_INLINE float sumLanes(const LaneVector<W>& v) {
+  float s = 0.0f;
+  for (int i = 0; i < W; ++i) s += v[i];
+  return s;
+}
+#endif
+
+// Where a parametric coordinate falls on one axis: its span and local coordinate in [-1/2, 1/2]
+// (measured from the span's midpoint, as KnotAxisView::poly expects).
+struct AxisLocation {
+  int span;
+  float tau;
+};
+
+MFADVR_HD MFADVR_INLINE AxisLocation locateOnAxis(const KnotAxisView& a, double u) {
+  u = !(u > 0.0) ? 0.0 : (u > 1.0 ? 1.0 : u);  // NaN maps to 0: a finite answer
+  const int s = findSpan(a, u);
+  return {s, static_cast<float>((u - a.knots[s]) * a.inverseLength[s] - 0.5)};
+}
+
+// The p+1 non-zero basis functions at `loc` (N), and with Order >= 1 their first, with Order 2
+// also their second derivatives with respect to u (D1, D2).
+template <int P, int Order>
+MFADVR_HD MFADVR_INLINE void axisBasis(const KnotAxisView& a, AxisLocation loc, float* N, float* D1,
+                                       float* D2) {
+  const int p = SplineDegree<P>::of(a.degree);
+  const int w = p + 1;
+  const float* c = a.poly + static_cast<std::int64_t>(loc.span) * w * w;
+  const float t = loc.tau;
+  const float inv = static_cast<float>(a.inverseLength[loc.span]);
+#if defined(MFADVR_KERNEL_VECTOR_LANES)
+  if constexpr (Lanes<P + 1, (P > 0)>::kVector) {
+    // Horner's rule on all p+1 functions at once; d/du = d/dtau / (span length).
+    constexpr int V = P + 1;
+    LaneVector<V> n = loadLanes<V>(c + P * V), d1 = {}, d2 = {};
+    if constexpr (Order >= 1) d1 = float(P) * n;
+    if constexpr (Order >= 2) d2 = float(P * (P - 1)) * n;
+    for (int k = P - 1; k >= 0; --k) {
+      const LaneVector<V> ck = loadLanes<V>(c + k * V);
+      n = n * t + ck;
+      if constexpr (Order >= 1)
+        if (k >= 1) d1 = d1 * t + float(k) * ck;
+      if constexpr (Order >= 2)
+        if (k >= 2) d2 = d2 * t + float(k * (k - 1)) * ck;
+    }
+    storeLanes<V>(n, N);
+    if constexpr (Order >= 1) storeLanes<V>(d1 * inv, D1);
+    if constexpr (Order >= 2) storeLanes<V>(d2 * (inv * inv), D2);
+    return;
+  }
+#endif
+  for (int r = 0; r < w; ++r) N[r] = c[p * w + r];
+  if constexpr (Order >= 1)
+    for (int r = 0; r < w; ++r) D1[r] = static_cast<float>(p) * c[p * w + r];
+  if constexpr (Order >= 2)
+    for (int r = 0; r < w; ++r) D2[r] = static_cast<float>(p * (p - 1)) * c[p * w + r];
+  for (int k = p - 1; k >= 0; --k) {
+    for (int r = 0; r < w; ++r) N[r] = N[r] * t + c[k * w + r];
+    if constexpr (Order >= 1)
+      if (k >= 1)
+        for (int r = 0; r < w; ++r) D1[r] = D1[r] * t + static_cast<float>(k) * c[k * w + r];
+    if constexpr (Order >= 2)
+      if (k >= 2)
+        for (int r = 0; r < w; ++r)
+          D2[r] = D2[r] * t + static_cast<float>(k * (k - 1)) * c[k * w + r];
+  }
+  if constexpr (Order >= 1) {
+    for (int r = 0; r < w; ++r) D1[r] *= inv;
+    if constexpr (Order >= 2)
+      for (int r = 0; r < w; ++r) D2[r] *= inv * inv;
+  }
+}
+
+// The basis of all three axes at one point.
+template <int P, int Order>
+struct PointBasis {
+  static constexpr int W = SplineDegree<P>::kWidth;
+  int p[3];
+  float N[3][W];
+  float D1[3][Order >= 1 ? W : 1];
+  float D2[3][Order >= 2 ? W : 1];
+};
+
+template <int P, int Order>
+MFADVR_HD MFADVR_INLINE void pointBasis(const SplineView& v, const AxisLocation loc[3],
+                                        PointBasis<P, Order>& b) {
+  for (int a = 0; a < 3; ++a) {
+    b.p[a] = SplineDegree<P>::of(v.axis[a].degree);
+    axisBasis<P, Order>(v.axis[a], loc[a], b.N[a], Order >= 1 ? b.D1[a] : nullptr,
+                        Order >= 2 ? b.D2[a] : nullptr);
+  }
+}
+
+// The contraction works on the point's (p+1)^3 control points gathered into a contiguous block
+// B[i + W (j + W k)] (W = p+1 for a fixed degree): first over z, T = sum_k N2[k] B(., ., k),
+// a multiply-add over whole (p+1)^2 slices; then over y, R = sum_j N1[j] T(., j); then the dot
+// product with the x basis. Every loop runs over contiguous memory with a fixed trip count, so
+// the host compiler vectorizes it; the ray sampler keeps the block while a ray stays in a cell.
+template <int P>
+struct ControlBlock {
+  static constexpr int W = SplineDegree<P>::kWidth;
+  float c[W * W * W];
+};
+
+// Offset of the control block of the spans `loc` in the spline's control array.
+template <int P>
+MFADVR_HD MFADVR_INLINE std::int64_t blockOffset(const SplineView& v, const AxisLocation loc[3]) {
+  const std::int64_t n0 = v.axis[0].count, n1 = v.axis[1].count;
+  return (loc[0].span - SplineDegree<P>::of(v.axis[0].degree)) +
+         n0 * ((loc[1].span - SplineDegree<P>::of(v.axis[1].degree)) +
+               n1 * (loc[2].span - SplineDegree<P>::of(v.axis[2].degree)));
+}
+
+template <int P>
+MFADVR_HD MFADVR_INLINE void gatherBlock(const SplineView& v, const AxisLocation loc[3],
+                                         ControlBlock<P>& block) {
+  constexpr int W = ControlBlock<P>::W;
+  const std::int64_t n0 = v.axis[0].count, n1 = v.axis[1].count;
+  const int p0 = SplineDegree<P>::of(v.axis[0].degree), p1 = SplineDegree<P>::of(v.axis[1].degree),
+            p2 = SplineDegree<P>::of(v.axis[2].degree);
+  const float* src = v.ctrl + blockOffset<P>(v, loc);
+  for (int k = 0; k <= p2; ++k)
+    for (int j = 0; j <= p1; ++j) {
+      const float* row = src + n0 * (j + n1 * k);
+      float* dst = block.c + W * (j + W * k);
+      for (int i = 0; i <= p0; ++i) dst[i] = row[i];
+    }
+}
+
+// T(i, j) = sum_k wk[k] B(i, j, k), for i <= p0, j <= p1: multiply-adds over whole slices.
+template <int P>
+MFADVR_HD MFADVR_INLINE void contractZ(const ControlBlock<P>& B, const int p[3], const float* wk,
+                                       float* T) {
+  constexpr int W = ControlBlock<P>::W;
+  if constexpr (P > 0) {
+    // Fixed degree: a slice is W*W contiguous floats.
+    for (int n = 0; n < W * W; ++n) T[n] = wk[0] * B.c[n];
+    for (int k = 1; k < W; ++k)
+      for (int n = 0; n < W * W; ++n) T[n] += wk[k] * B.c[W * W * k + n];
+  } else {
+    const int p0 = p[0], p1 = p[1], p2 = p[2];
+    for (int j = 0; j <= p1; ++j)
+      for (int i = 0; i <= p0; ++i) T[W * j + i] = wk[0] * B.c[W * j + i];
+    for (int k = 1; k <= p2; ++k)
+      for (int j = 0; j <= p1; ++j)
+        for (int i = 0; i <= p0; ++i) T[W * j + i] += wk[k] * B.c[W * (j + W * k) + i];
+  }
+}
+
+// R(i) = sum_j wj[j] T(i, j), then the dot product with wi.
+template <int P>
+MFADVR_HD MFADVR_INLINE float contractYX(const float* T, const int p[3], const float* wj,
+                                         const float* wi) {
+  constexpr int W = ControlBlock<P>::W;
+  const int p0 = SplineDegree<P>::of(p[0]), p1 = SplineDegree<P>::of(p[1]);
+  float R[W];
+  for (int i = 0; i <= p0; ++i) R[i] = wj[0] * T[i];
+  for (int j = 1; j <= p1; ++j)
+    for (int i = 0; i <= p0; ++i) R[i] += wj[j] * T[W * j + i];
+  float v = 0.0f;
+  for (int i = 0; i <= p0; ++i) v += wi[i] * R[i];
+  return v;
+}
+
+// Value: sum over the block of B(i,j,k) N0[i] N1[j] N2[k]. Tz (optional, W*W floats) keeps the
+// z contraction for a gradient that may follow.
+template <int P, int Order>
+MFADVR_HD MFADVR_INLINE float contractValue(const ControlBlock<P>& B, const PointBasis<P, Order>& b,
+                                            float* Tz) {
+  contractZ<P>(B, b.p, b.N[2], Tz);
+  return contractYX<P>(Tz, b.p, b.N[1], b.N[0]);
+}
+
+// The three parametric partials from the block, given the value's z contraction Tz:
+// d/du0 = (Tz . N1) . D0, d/du1 = (Tz . D1) . N0, d/du2 = (sum_k D2[k] B) . N1 . N0.
+template <int P, int Order>
+MFADVR_HD MFADVR_INLINE void contractPartials(const ControlBlock<P>& B,
+                                              const PointBasis<P, Order>& b, const float* Tz,
+                                              float g[3]) {
+  static_assert(Order >= 1, "the gradient needs first derivatives of the basis");
+  constexpr int W = ControlBlock<P>::W;
+  float Td[W * W];
+  contractZ<P>(B, b.p, b.D1[2], Td);
+  g[0] = contractYX<P>(Tz, b.p, b.N[1], b.D1[0]);
+  g[1] = contractYX<P>(Tz, b.p, b.D1[1], b.N[0]);
+  g[2] = contractYX<P>(Td, b.p, b.N[1], b.N[0]);
+}
+
+// Value, gradient and Hessian, out = {v, gx, gy, gz, xx, xy, xz, yy, yz, zz}; accumulated in
+// double (this path serves queries, not the renderer's inner loop).
+template <int P>
+MFADVR_HD MFADVR_INLINE void contractHessian(const ControlBlock<P>& B, const PointBasis<P, 2>& b,
+                                             float out[10]) {
+  constexpr int W = ControlBlock<P>::W;
+  const float* block = B.c;
+  const std::int64_t sy = W, sz = W * W;
+  const int p0 = SplineDegree<P>::of(b.p[0]), p1 = SplineDegree<P>::of(b.p[1]),
+            p2 = SplineDegree<P>::of(b.p[2]);
+  // acc[a][c][e]: sum of P * N0^(a) N1^(c) N2^(e) for derivative orders a + c + e <= 2.
+  double acc[3][3][3] = {};
+  for (int k = 0; k <= p2; ++k) {
+    const float zk[3] = {b.N[2][k], b.D1[2][k], b.D2[2][k]};
+    for (int j = 0; j <= p1; ++j) {
+      const float yj[3] = {b.N[1][j], b.D1[1][j], b.D2[1][j]};
+      const float* row = block + sy * j + sz * k;
+      double x[3] = {0.0, 0.0, 0.0};
+      for (int i = 0; i <= p0; ++i) {
+        x[0] += double(b.N[0][i]) * row[i];
+        x[1] += double(b.D1[0][i]) * row[i];
+        x[2] += double(b.D2[0][i]) * row[i];
+      }
+      for (int a = 0; a < 3; ++a)
+        for (int c = 0; a + c < 3; ++c)
+          for (int e = 0; a + c + e < 3; ++e) acc[a][c][e] += x[a] * yj[c] * zk[e];
+    }
+  }
+  const double r[10] = {acc[0][0][0], acc[1][0][0], acc[0][1][0], acc[0][0][1], acc[2][0][0],
+                        acc[1][1][0], acc[1][0][1], acc[0][2][0], acc[0][1][1], acc[0][0][2]};
+  for (int i = 0; i < 10; ++i) out[i] = static_cast<float>(r[i]);
+}
+
+MFADVR_HD MFADVR_INLINE void locatePoint(const SplineView& v, const double u[3],
+                                         AxisLocation loc[3]) {
+  for (int a = 0; a < 3; ++a) loc[a] = locateOnAxis(v.axis[a], u[a]);
+}
+
+// Point queries at a parametric coordinate u (clamped to [0,1]^3).
+template <int P>
+MFADVR_HD MFADVR_INLINE float splineValue(const SplineView& v, const double u[3]) {
+  AxisLocation loc[3];
+  locatePoint(v, u, loc);
+  PointBasis<P, 0> b;
+  pointBasis<P, 0>(v, loc, b);
+  ControlBlock<P> block;
+  gatherBlock<P>(v, loc, block);
+  float Tz[ControlBlock<P>::W * ControlBlock<P>::W];
+  return contractValue<P, 0>(block, b, Tz);
+}
+
+// out = {value, d/du0, d/du1, d/du2}.
+template <int P>
+MFADVR_HD MFADVR_INLINE void splineValueGradient(const SplineView& v, const double u[3],
+                                                 float out[4]) {
+  AxisLocation loc[3];
+  locatePoint(v, u, loc);
+  PointBasis<P, 1> b;
+  pointBasis<P, 1>(v, loc, b);
+  ControlBlock<P> block;
+  gatherBlock<P>(v, loc, block);
+  float Tz[ControlBlock<P>::W * ControlBlock<P>::W];
+  out[0] = contractValue<P, 1>(block, b, Tz);
+  contractPartials<P, 1>(block, b, Tz, out + 1);
+}
+
+// out = {value, gradient (3), Hessian xx, xy, xz, yy, yz, zz}.
+template <int P>
+MFADVR_HD MFADVR_INLINE void splineValueGradientHessian(const SplineView& v, const double u[3],
+                                                        float out[10]) {
+  AxisLocation loc[3];
+  locatePoint(v, u, loc);
+  PointBasis<P, 2> b;
+  pointBasis<P, 2>(v, loc, b);
+  ControlBlock<P> block;
+  gatherBlock<P>(v, loc, block);
+  contractHessian<P>(block, b, out);
+}
+
+// Calls f(std::integral_constant-like tag) with the compile-time degree for `v`: P = 1..7 when
+// all three degrees are equal, P = 0 (run-time degrees) otherwise. The one switch per render.
+template <class F>
+decltype(auto) splineDegreeSwitch(const SplineView& v, F&& f) {
+  const int p = v.axis[0].degree;
+  if (p == v.axis[1].degree && p == v.axis[2].degree) {
+    switch (p) {
+      case 1:
+        return f.template operator()<1>();
+      case 2:
+        return f.template operator()<2>();
+      case 3:
+        return f.template operator()<3>();
+      case 4:
+        return f.template operator()<4>();
+      case 5:
+        return f.template operator()<5>();
+      case 6:
+        return f.template operator()<6>();
+      case 7:
+        return f.template operator()<7>();
+      default:
+        break;
+    }
+  }
+  return f.template operator()<0>();
+}
+
+}  // namespace mfadvr

@@ -1,0 +1,219 @@
+// Exact empty-space skipping: the span ranges bound the spline, the table's transparency test
+// agrees with classification, and images are bit-identical with skipping on and off (masked and
+// unmasked models, shaded and not, several transfer functions), for any thread count. Also: the
+// model's own render path against the generic field path (same rays, same function).
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "core/analytic/BuiltinFunction.h"
+#include "core/encode/StructuredEncoder.h"
+#include "core/field/ModelField.h"
+#include "core/image/ImageMetrics.h"
+#include "core/render/EmptySpaceGrid.h"
+#include "core/render/RayCaster.h"
+#include "core/spline/SplineKernel.h"
+
+namespace mfadvr {
+namespace {
+
+const Model& marschnerLobb() {
+  static const Model m = [] {
+    const auto f = makeBuiltin("marschner-lobb");
+    StructuredFitOptions o;
+    o.controlCounts = {24, 24, 24};
+    return encodeStructured(sampleBuiltin(*f, {33, 33, 33}), o);
+  }();
+  return m;
+}
+
+// The same model with a domain mask: a ball of nodes.
+const Model& maskedMarschnerLobb() {
+  static const Model m = [] {
+    Model copy = marschnerLobb();
+    const Index3 dims{17, 17, 17};
+    std::vector<std::uint8_t> nodes(17 * 17 * 17);
+    for (int k = 0; k < 17; ++k)
+      for (int j = 0; j < 17; ++j)
+        for (int i = 0; i < 17; ++i)
+          nodes[i + 17 * (j + 17 * k)] =
+              (i - 8) * (i - 8) + (j - 8) * (j - 8) + (k - 8) * (k - 8) <= 49 ? 1 : 0;
+    copy.setMask(DomainMask(MaskKind::PointCoverage, dims, nodes));
+    return copy;
+  }();
+  return m;
+}
+
+TransferFunction tfWith(std::vector<OpacityPoint> opacity) {
+  TransferFunction tf;
+  tf.space = TfSpace::Data;
+  tf.color = {
+      {0.0, Vec3f(0.1f, 0.2f, 1.0f)}, {0.5, Vec3f(1, 1, 1)}, {1.0, Vec3f(1.0f, 0.3f, 0.1f)}};
+  tf.opacity = std::move(opacity);
+  return tf;
+}
+
+std::vector<TransferFunction> testTransferFunctions() {
+  return {
+      tfWith({{0.5, 0.0f}, {0.5, 0.8f}, {1.0, 0.8f}}),                             // step at 0.5
+      tfWith({{0.0, 0.0f}, {0.6, 0.0f}, {0.9, 1.0f}}),                             // ramp from 0.6
+      tfWith({{0.0, 0.0f}, {0.2, 0.0f}, {0.25, 0.7f}, {0.3, 0.0f}, {1.0, 0.0f}}),  // one band
+      tfWith({{0.0, 0.0f}, {1.0, 1.0f}}),  // ramp from 0: only exact zeros are invisible
+      tfWith({{0.0, 0.0f}, {1.0, 0.0f}}),  // nothing visible
+  };
+}
+
+RenderSettings settingsFor(const Model& m, const TransferFunction& tf, bool shade) {
+  RenderSettings s;
+  s.width = 64;
+  s.height = 48;
+  s.camera.resetToBounds(m.domain().min, m.domain().max);
+  s.camera.azimuth(25);
+  s.camera.elevation(15);
+  s.sampleDistance = 0.5 * m.dataSpacing().minCoeff();
+  s.opacityUnitDistance = m.dataSpacing().minCoeff();
+  s.transferFunction = tf;
+  s.shade = shade;
+  s.background = Vec3f(0.1f, 0.1f, 0.15f);
+  return s;
+}
+
+TEST(SpanRanges, BoundEveryValueOfTheCell) {
+  const Model& m = marschnerLobb();
+  const SpanRanges& r = *m.spline().spanRanges();
+  const SplineView v = m.spline().view();
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> uni(0.0, 1.0);
+  for (int t = 0; t < 5000; ++t) {
+    const double u[3] = {uni(rng), uni(rng), uni(rng)};
+    AxisLocation loc[3];
+    locatePoint(v, u, loc);
+    const std::int64_t cell =
+        (loc[0].span - 3) +
+        r.cells[0] * ((loc[1].span - 3) + std::int64_t(r.cells[1]) * (loc[2].span - 3));
+    const float value = splineValue<3>(v, u);
+    const float pad = static_cast<float>(r.relativeRounding) *
+                      std::max(std::abs(r.min[cell]), std::abs(r.max[cell]));
+    EXPECT_GE(value, r.min[cell] - pad);
+    EXPECT_LE(value, r.max[cell] + pad);
+  }
+  EXPECT_GT(r.relativeRounding, 0.0);
+  EXPECT_LT(r.relativeRounding, 1e-3);  // a bound, not a guess: it should stay small
+}
+
+TEST(TransferFunctionTable, TransparentOverAgreesWithClassification) {
+  for (const TransferFunction& tf : testTransferFunctions()) {
+    const TransferFunctionTable table(tf, OpacityCorrection(0.5));
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<float> uni(-0.2f, 1.2f);
+    for (int t = 0; t < 2000; ++t) {
+      float lo = uni(rng), hi = uni(rng);
+      if (lo > hi) std::swap(lo, hi);
+      if (t % 3 == 0) hi = lo + 1e-3f * (hi - lo);  // narrow ranges, as most cells have
+      if (!table.transparentOver(lo, hi)) continue;
+      // Claimed transparent: every value in between classifies to opacity 0.
+      for (int i = 0; i <= 64; ++i) {
+        const float x = lo + (hi - lo) * static_cast<float>(i) / 64.0f;
+        EXPECT_EQ(table.classify(x).alpha, 0.0f) << "range " << lo << ".." << hi;
+      }
+    }
+  }
+  // A range with visible values is never claimed transparent.
+  const TransferFunctionTable step(testTransferFunctions()[0], OpacityCorrection(0.5));
+  EXPECT_FALSE(step.transparentOver(0.4f, 0.6f));
+  EXPECT_TRUE(step.transparentOver(0.0f, 0.45f));
+}
+
+void expectIdenticalWithAndWithoutSkipping(const Model& m) {
+  int skippedSomewhere = 0;
+  for (const TransferFunction& tf : testTransferFunctions())
+    for (bool shade : {false, true}) {
+      RenderSettings s = settingsFor(m, tf, shade);
+      RenderStats on, off;
+      const Image a = renderVolume(ModelField(m), s, &on);
+      s.skipEmptySpace = false;
+      const Image b = renderVolume(ModelField(m), s, &off);
+      EXPECT_EQ(a.rgba, b.rgba) << "shade " << shade;
+      EXPECT_EQ(off.skipped, 0);
+      EXPECT_LE(on.samples, off.samples);
+      if (on.skipped > 0) ++skippedSomewhere;
+    }
+  EXPECT_GE(skippedSomewhere, 6);  // the test has to exercise the skipping
+}
+
+TEST(EmptySpaceSkipping, ImagesAreBitIdenticalOnAnUnmaskedModel) {
+  expectIdenticalWithAndWithoutSkipping(marschnerLobb());
+}
+
+TEST(EmptySpaceSkipping, ImagesAreBitIdenticalOnAMaskedModel) {
+  expectIdenticalWithAndWithoutSkipping(maskedMarschnerLobb());
+}
+
+TEST(EmptySpaceSkipping, SkipsMostOfASparseScene) {
+  // A Gaussian beam with a step at half its range: the beam's core is visible, the rest empty.
+  const auto f = makeBuiltin("gaussian-beam");
+  StructuredFitOptions o;
+  o.degree = {2, 2, 2};
+  const Model m = encodeStructured(sampleBuiltin(*f, {32, 32, 32}), o);
+  const double mid = 0.5 * (m.valueMin() + m.valueMax());
+  TransferFunction tf = tfWith({{mid, 0.0f}, {mid, 0.8f}, {m.valueMax(), 0.8f}});
+  tf.color = {{m.valueMin(), Vec3f(1, 1, 1)}, {m.valueMax(), Vec3f(1, 0, 0)}};
+  RenderSettings s = settingsFor(m, tf, false);
+  RenderStats on, off;
+  renderVolume(ModelField(m), s, &on);
+  s.skipEmptySpace = false;
+  renderVolume(ModelField(m), s, &off);
+  EXPECT_LT(on.samples, off.samples / 2);
+}
+
+TEST(EmptySpaceSkipping, SameImageForAnyThreadCount) {
+  const Model& m = maskedMarschnerLobb();
+  RenderSettings s = settingsFor(m, testTransferFunctions()[1], true);
+  s.threads = 1;
+  const Image one = renderVolume(ModelField(m), s);
+  s.threads = 2;
+  const Image two = renderVolume(ModelField(m), s);
+  s.threads = 0;
+  const Image all = renderVolume(ModelField(m), s);
+  EXPECT_EQ(one.rgba, two.rgba);
+  EXPECT_EQ(one.rgba, all.rgba);
+}
+
+TEST(EmptySpaceCache, RebuildsOnlyWhenTheZeroSetChanges) {
+  const Model& m = marschnerLobb();
+  EmptySpaceCache cache;
+  const TransferFunctionTable a(testTransferFunctions()[0], OpacityCorrection(0.5));
+  const auto first = cache.flags(m.spline(), a);
+  EXPECT_EQ(cache.flags(m.spline(), a), first);  // same table: the same flags object
+  // Another colour map with the same zero set keeps the flags.
+  TransferFunction recoloured = testTransferFunctions()[0];
+  recoloured.color = {{0.0, Vec3f(1, 0, 0)}, {1.0, Vec3f(0, 1, 0)}};
+  EXPECT_EQ(cache.flags(m.spline(), TransferFunctionTable(recoloured, OpacityCorrection(0.5))),
+            first);
+  const auto other = cache.flags(
+      m.spline(), TransferFunctionTable(testTransferFunctions()[1], OpacityCorrection(0.5)));
+  EXPECT_NE(other, first);
+  EXPECT_NE(*other, *first);
+}
+
+// A model wrapped so that renderVolume takes the generic field path (FieldRaySampler over the
+// model's point queries) instead of the spline ray sampler.
+struct GenericModelField {
+  ModelField inner;
+  Vec3d boxMin() const { return inner.boxMin(); }
+  Vec3d boxMax() const { return inner.boxMax(); }
+  ModelField::Sampler sampler() const { return inner.sampler(); }
+};
+
+TEST(ModelRenderPath, AgreesWithTheGenericFieldPath) {
+  for (const Model* m : {&marschnerLobb(), &maskedMarschnerLobb()})
+    for (bool shade : {false, true}) {
+      const RenderSettings s = settingsFor(*m, testTransferFunctions()[1], shade);
+      const Image a = renderVolume(ModelField(*m), s);
+      const Image b = renderVolume(GenericModelField{ModelField(*m)}, s);
+      EXPECT_GE(compareImages(toImage8(a), toImage8(b)).psnr, 60.0) << "shade " << shade;
+    }
+}
+
+}  // namespace
+}  // namespace mfadvr
