@@ -11,6 +11,7 @@
 // Basis functions come from per-span polynomials (KnotVector::basisPolynomials, derived from
 // The NURBS Book's A2.3): a point costs a span lookup and Horner's rule in the span's local
 // coordinate, with no divisions and no recurrences.
+#include <cstddef>
 #include <cstdint>
 #include <type_traits>
 
@@ -49,21 +50,22 @@ typedef float LaneVector8 __attribute__((vector_size(32)));
 template <int W>
 using LaneVector = std::conditional_t<(W <= 4), LaneVector4, LaneVector8>;
 
+// W floats into a vector (unused lanes zero). Full vectors are copied whole; shorter ones are
+// built lane by lane, since a narrow copy into a wide stack value stalls the load that follows.
 template <int W>
 MFADVR_INLINE LaneVector<W> loadLanes(const float* x) {
-  LaneVector<W> v = {};
-  __builtin_memcpy(&v, x, W * sizeof(float));
+  LaneVector<W> v;
+  if constexpr (W == 4 || W == 8) {
+    __builtin_memcpy(&v, x, W * sizeof(float));
+  } else {
+    v = LaneVector<W>{};
+    for (int i = 0; i < W; ++i) v[i] = x[i];
+  }
   return v;
 }
 template <int W>
 MFADVR_INLINE void storeLanes(const LaneVector<W>& v, float* x) {
-  __builtin_memcpy(x, &v, W * sizeof(float));
-}
-template <int W>
-MFADVR_INLINE float sumLanes(const LaneVector<W>& v) {
-  float s = 0.0f;
-  for (int i = 0; i < W; ++i) s += v[i];
-  return s;
+  for (int i = 0; i < W; ++i) x[i] = v[i];
 }
 #endif
 
@@ -153,15 +155,112 @@ MFADVR_HD MFADVR_INLINE void pointBasis(const SplineView& v, const AxisLocation 
   }
 }
 
-// The contraction works on the point's (p+1)^3 control points gathered into a contiguous block
-// B[i + W (j + W k)] (W = p+1 for a fixed degree): first over z, T = sum_k N2[k] B(., ., k),
-// a multiply-add over whole (p+1)^2 slices; then over y, R = sum_j N1[j] T(., j); then the dot
-// product with the x basis. Every loop runs over contiguous memory with a fixed trip count, so
-// the host compiler vectorizes it; the ray sampler keeps the block while a ray stays in a cell.
+// The contraction works on the point's (p+1)^3 control points gathered into a block of rows:
+// row (j, k) holds P(0..p0, j, k). First over z, T(j) = sum_k N2[k] row(j, k); then over y,
+// R = sum_j N1[j] T(j); then the dot product of R with the x basis. On the host with a fixed
+// degree a row is one SIMD value (LaneVector), so each step is a vector multiply-add; otherwise
+// it is an array of floats with the same sums in loops. The ray sampler keeps the block while a
+// ray stays in a cell.
+template <int W>
+struct ScalarRow {
+  float v[W];
+};
+
+template <int P>
+struct BlockRow {
+#if defined(MFADVR_KERNEL_VECTOR_LANES)
+  using type = std::conditional_t<Lanes<P + 1, (P > 0)>::kVector, LaneVector<P + 1>,
+                                  ScalarRow<SplineDegree<P>::kWidth>>;
+#else
+  using type = ScalarRow<SplineDegree<P>::kWidth>;
+#endif
+};
+template <int P>
+using Row = typename BlockRow<P>::type;
+
+template <int W>
+MFADVR_HD MFADVR_INLINE void rowLoad(ScalarRow<W>& r, const float* src, int n) {
+  for (int i = 0; i < n; ++i) r.v[i] = src[i];
+}
+template <int W>
+MFADVR_HD MFADVR_INLINE void rowScale(ScalarRow<W>& acc, float w, const ScalarRow<W>& r, int n) {
+  for (int i = 0; i < n; ++i) acc.v[i] = w * r.v[i];
+}
+template <int W>
+MFADVR_HD MFADVR_INLINE void rowFma(ScalarRow<W>& acc, float w, const ScalarRow<W>& r, int n) {
+  for (int i = 0; i < n; ++i) acc.v[i] += w * r.v[i];
+}
+template <int W>
+MFADVR_HD MFADVR_INLINE float rowDot(const ScalarRow<W>& r, const float* basis, int n) {
+  float s = 0.0f;
+  for (int i = 0; i < n; ++i) s += basis[i] * r.v[i];
+  return s;
+}
+template <int W>
+MFADVR_HD MFADVR_INLINE float rowComponent(const ScalarRow<W>& r, int i) {
+  return r.v[i];
+}
+#if defined(MFADVR_KERNEL_VECTOR_LANES)
+// n is the row length W, fixed by the vector's type (4 lanes for W <= 4, else 8).
+MFADVR_INLINE void rowLoad(LaneVector4& r, const float* src, int n) {
+  switch (n) {
+    case 1:
+      r = loadLanes<1>(src);
+      break;
+    case 2:
+      r = loadLanes<2>(src);
+      break;
+    case 3:
+      r = loadLanes<3>(src);
+      break;
+    default:
+      r = loadLanes<4>(src);
+      break;
+  }
+}
+MFADVR_INLINE void rowLoad(LaneVector8& r, const float* src, int n) {
+  switch (n) {
+    case 5:
+      r = loadLanes<5>(src);
+      break;
+    case 6:
+      r = loadLanes<6>(src);
+      break;
+    case 7:
+      r = loadLanes<7>(src);
+      break;
+    default:
+      r = loadLanes<8>(src);
+      break;
+  }
+}
+template <class V>
+MFADVR_INLINE void rowScale(V& acc, float w, const V& r, int) {
+  acc = w * r;
+}
+template <class V>
+MFADVR_INLINE void rowFma(V& acc, float w, const V& r, int) {
+  acc += w * r;
+}
+template <class V>
+MFADVR_INLINE float rowDot(const V& r, const float* basis, int n) {
+  V b;
+  rowLoad(b, basis, n);
+  const V m = r * b;
+  float s = 0.0f;
+  for (int i = 0; i < n; ++i) s += m[i];
+  return s;
+}
+template <class V>
+MFADVR_INLINE float rowComponent(const V& r, int i) {
+  return r[i];
+}
+#endif
+
 template <int P>
 struct ControlBlock {
   static constexpr int W = SplineDegree<P>::kWidth;
-  float c[W * W * W];
+  Row<P> rows[W * W];  // row (j, k) at j + W k
 };
 
 // Offset of the control block of the spans `loc` in the spline's control array.
@@ -182,66 +281,50 @@ MFADVR_HD MFADVR_INLINE void gatherBlock(const SplineView& v, const AxisLocation
             p2 = SplineDegree<P>::of(v.axis[2].degree);
   const float* src = v.ctrl + blockOffset<P>(v, loc);
   for (int k = 0; k <= p2; ++k)
-    for (int j = 0; j <= p1; ++j) {
-      const float* row = src + n0 * (j + n1 * k);
-      float* dst = block.c + W * (j + W * k);
-      for (int i = 0; i <= p0; ++i) dst[i] = row[i];
-    }
+    for (int j = 0; j <= p1; ++j) rowLoad(block.rows[j + W * k], src + n0 * (j + n1 * k), p0 + 1);
 }
 
-// T(i, j) = sum_k wk[k] B(i, j, k), for i <= p0, j <= p1: multiply-adds over whole slices.
+// T(j) = sum_k wk[k] row(j, k), j <= p1.
 template <int P>
 MFADVR_HD MFADVR_INLINE void contractZ(const ControlBlock<P>& B, const int p[3], const float* wk,
-                                       float* T) {
+                                       Row<P>* T) {
   constexpr int W = ControlBlock<P>::W;
-  if constexpr (P > 0) {
-    // Fixed degree: a slice is W*W contiguous floats.
-    for (int n = 0; n < W * W; ++n) T[n] = wk[0] * B.c[n];
-    for (int k = 1; k < W; ++k)
-      for (int n = 0; n < W * W; ++n) T[n] += wk[k] * B.c[W * W * k + n];
-  } else {
-    const int p0 = p[0], p1 = p[1], p2 = p[2];
-    for (int j = 0; j <= p1; ++j)
-      for (int i = 0; i <= p0; ++i) T[W * j + i] = wk[0] * B.c[W * j + i];
-    for (int k = 1; k <= p2; ++k)
-      for (int j = 0; j <= p1; ++j)
-        for (int i = 0; i <= p0; ++i) T[W * j + i] += wk[k] * B.c[W * (j + W * k) + i];
+  const int n = SplineDegree<P>::of(p[0]) + 1, p1 = SplineDegree<P>::of(p[1]),
+            p2 = SplineDegree<P>::of(p[2]);
+  for (int j = 0; j <= p1; ++j) {
+    rowScale(T[j], wk[0], B.rows[j], n);
+    for (int k = 1; k <= p2; ++k) rowFma(T[j], wk[k], B.rows[j + W * k], n);
   }
 }
 
-// R(i) = sum_j wj[j] T(i, j), then the dot product with wi.
+// R = sum_j wj[j] T(j), then the dot product with wi.
 template <int P>
-MFADVR_HD MFADVR_INLINE float contractYX(const float* T, const int p[3], const float* wj,
+MFADVR_HD MFADVR_INLINE float contractYX(const Row<P>* T, const int p[3], const float* wj,
                                          const float* wi) {
-  constexpr int W = ControlBlock<P>::W;
-  const int p0 = SplineDegree<P>::of(p[0]), p1 = SplineDegree<P>::of(p[1]);
-  float R[W];
-  for (int i = 0; i <= p0; ++i) R[i] = wj[0] * T[i];
-  for (int j = 1; j <= p1; ++j)
-    for (int i = 0; i <= p0; ++i) R[i] += wj[j] * T[W * j + i];
-  float v = 0.0f;
-  for (int i = 0; i <= p0; ++i) v += wi[i] * R[i];
-  return v;
+  const int n = SplineDegree<P>::of(p[0]) + 1, p1 = SplineDegree<P>::of(p[1]);
+  Row<P> R;
+  rowScale(R, wj[0], T[0], n);
+  for (int j = 1; j <= p1; ++j) rowFma(R, wj[j], T[j], n);
+  return rowDot(R, wi, n);
 }
 
-// Value: sum over the block of B(i,j,k) N0[i] N1[j] N2[k]. Tz (optional, W*W floats) keeps the
-// z contraction for a gradient that may follow.
+// Value: sum over the block of P(i,j,k) N0[i] N1[j] N2[k]. Tz (W rows) keeps the z contraction
+// for a gradient that may follow.
 template <int P, int Order>
 MFADVR_HD MFADVR_INLINE float contractValue(const ControlBlock<P>& B, const PointBasis<P, Order>& b,
-                                            float* Tz) {
+                                            Row<P>* Tz) {
   contractZ<P>(B, b.p, b.N[2], Tz);
   return contractYX<P>(Tz, b.p, b.N[1], b.N[0]);
 }
 
 // The three parametric partials from the block, given the value's z contraction Tz:
-// d/du0 = (Tz . N1) . D0, d/du1 = (Tz . D1) . N0, d/du2 = (sum_k D2[k] B) . N1 . N0.
+// d/du0 = (Tz . N1) . D0, d/du1 = (Tz . D1) . N0, d/du2 = (sum_k D2[k] rows) . N1 . N0.
 template <int P, int Order>
 MFADVR_HD MFADVR_INLINE void contractPartials(const ControlBlock<P>& B,
-                                              const PointBasis<P, Order>& b, const float* Tz,
+                                              const PointBasis<P, Order>& b, const Row<P>* Tz,
                                               float g[3]) {
   static_assert(Order >= 1, "the gradient needs first derivatives of the basis");
-  constexpr int W = ControlBlock<P>::W;
-  float Td[W * W];
+  Row<P> Td[ControlBlock<P>::W];
   contractZ<P>(B, b.p, b.D1[2], Td);
   g[0] = contractYX<P>(Tz, b.p, b.N[1], b.D1[0]);
   g[1] = contractYX<P>(Tz, b.p, b.D1[1], b.N[0]);
@@ -254,8 +337,6 @@ template <int P>
 MFADVR_HD MFADVR_INLINE void contractHessian(const ControlBlock<P>& B, const PointBasis<P, 2>& b,
                                              float out[10]) {
   constexpr int W = ControlBlock<P>::W;
-  const float* block = B.c;
-  const std::int64_t sy = W, sz = W * W;
   const int p0 = SplineDegree<P>::of(b.p[0]), p1 = SplineDegree<P>::of(b.p[1]),
             p2 = SplineDegree<P>::of(b.p[2]);
   // acc[a][c][e]: sum of P * N0^(a) N1^(c) N2^(e) for derivative orders a + c + e <= 2.
@@ -264,12 +345,13 @@ MFADVR_HD MFADVR_INLINE void contractHessian(const ControlBlock<P>& B, const Poi
     const float zk[3] = {b.N[2][k], b.D1[2][k], b.D2[2][k]};
     for (int j = 0; j <= p1; ++j) {
       const float yj[3] = {b.N[1][j], b.D1[1][j], b.D2[1][j]};
-      const float* row = block + sy * j + sz * k;
+      const Row<P>& row = B.rows[j + W * k];
       double x[3] = {0.0, 0.0, 0.0};
       for (int i = 0; i <= p0; ++i) {
-        x[0] += double(b.N[0][i]) * row[i];
-        x[1] += double(b.D1[0][i]) * row[i];
-        x[2] += double(b.D2[0][i]) * row[i];
+        const double c = rowComponent(row, i);
+        x[0] += double(b.N[0][i]) * c;
+        x[1] += double(b.D1[0][i]) * c;
+        x[2] += double(b.D2[0][i]) * c;
       }
       for (int a = 0; a < 3; ++a)
         for (int c = 0; a + c < 3; ++c)
@@ -295,7 +377,7 @@ MFADVR_HD MFADVR_INLINE float splineValue(const SplineView& v, const double u[3]
   pointBasis<P, 0>(v, loc, b);
   ControlBlock<P> block;
   gatherBlock<P>(v, loc, block);
-  float Tz[ControlBlock<P>::W * ControlBlock<P>::W];
+  Row<P> Tz[ControlBlock<P>::W];
   return contractValue<P, 0>(block, b, Tz);
 }
 
@@ -309,7 +391,7 @@ MFADVR_HD MFADVR_INLINE void splineValueGradient(const SplineView& v, const doub
   pointBasis<P, 1>(v, loc, b);
   ControlBlock<P> block;
   gatherBlock<P>(v, loc, block);
-  float Tz[ControlBlock<P>::W * ControlBlock<P>::W];
+  Row<P> Tz[ControlBlock<P>::W];
   out[0] = contractValue<P, 1>(block, b, Tz);
   contractPartials<P, 1>(block, b, Tz, out + 1);
 }

@@ -123,7 +123,7 @@ class SplineRaySampler {
   static constexpr int kOrder = Shade ? 1 : 0;
   ControlBlock<P> block_;
   PointBasis<P, kOrder> basis_;
-  float Tz_[W * W];
+  Row<P> Tz_[W];
 };
 
 }  // namespace mfadvr
