@@ -12,6 +12,7 @@
 #include "core/image/ImageMetrics.h"
 #include "core/render/EmptySpaceGrid.h"
 #include "core/render/RayCaster.h"
+#include "core/render/kernel/SplineRaySampler.h"
 #include "core/spline/SplineKernel.h"
 
 namespace mfadvr {
@@ -193,7 +194,17 @@ TEST(EmptySpaceCache, RebuildsOnlyWhenTheZeroSetChanges) {
   const auto other = cache.flags(
       m.spline(), TransferFunctionTable(testTransferFunctions()[1], OpacityCorrection(0.5)));
   EXPECT_NE(other, first);
-  EXPECT_NE(*other, *first);
+  EXPECT_NE(other->cells, first->cells);
+  // Blocks are empty exactly when all their cells are.
+  const SpanRanges& r = *m.spline().spanRanges();
+  for (int k = 0; k < r.cells[2]; ++k)
+    for (int j = 0; j < r.cells[1]; ++j)
+      for (int i = 0; i < r.cells[0]; ++i) {
+        const int b =
+            i / kEmptyBlock +
+            other->blockCounts[0] * (j / kEmptyBlock + other->blockCounts[1] * (k / kEmptyBlock));
+        if (other->blocks[b]) EXPECT_TRUE(other->cells[i + r.cells[0] * (j + r.cells[1] * k)]);
+      }
 }
 
 // A model wrapped so that renderVolume takes the generic field path (FieldRaySampler over the

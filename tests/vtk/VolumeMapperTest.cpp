@@ -169,6 +169,23 @@ TEST(VolumeMapper, ImageSampleDistanceRendersFewerRays) {
   const double psnr = compareImages(full, coarse).psnr;
   EXPECT_GT(psnr, 20.0);  // the same picture, magnified
   EXPECT_LT(psnr, 40.0);  // but not the full-resolution one
+
+  // Magnified smoothly, not in blocks: with one ray per 4x4 pixels, a blocky magnification
+  // would repeat each colour over whole 4-pixel runs; bilinear magnification changes the
+  // colour between most horizontal neighbours where the full image does.
+  scene.mapper->SetImageSampleDistance(4.0);
+  const Image8 coarser = scene.render();
+  int changing = 0, equal = 0;
+  for (int y = 0; y < coarser.height; ++y)
+    for (int x = 0; x + 1 < coarser.width; ++x) {
+      const std::uint8_t* a = &coarser.data[(static_cast<size_t>(y) * coarser.width + x) * 3];
+      const std::uint8_t* f = &full.data[(static_cast<size_t>(y) * full.width + x) * 3];
+      if (f[0] == f[3] && f[1] == f[4] && f[2] == f[5]) continue;  // flat in the full image
+      ++changing;
+      if (a[0] == a[3] && a[1] == a[4] && a[2] == a[5]) ++equal;
+    }
+  ASSERT_GT(changing, 1000);
+  EXPECT_LT(equal, changing / 3);  // blocky: about 3 in 4 neighbours would be equal
 }
 
 TEST(VolumeMapper, EncodesImageDataOnTheStandardPort) {

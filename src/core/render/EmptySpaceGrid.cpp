@@ -1,5 +1,7 @@
 #include "core/render/EmptySpaceGrid.h"
 
+#include "core/render/kernel/SplineRaySampler.h"  // kEmptyBlock
+
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -8,10 +10,11 @@
 
 namespace mfadvr {
 
-std::vector<std::uint8_t> buildEmptySpaceFlags(const SpanRanges& r,
-                                               const TransferFunctionTable& table) {
+EmptySpaceFlags buildEmptySpaceFlags(const SpanRanges& r, const TransferFunctionTable& table) {
   const std::int64_t n = std::int64_t(r.cells[0]) * r.cells[1] * r.cells[2];
-  std::vector<std::uint8_t> flags(static_cast<size_t>(n), 0);
+  EmptySpaceFlags out;
+  std::vector<std::uint8_t>& flags = out.cells;
+  flags.assign(static_cast<size_t>(n), 0);
   const float rel = static_cast<float>(r.relativeRounding);
   tbb::parallel_for(tbb::blocked_range<std::int64_t>(0, n, 1 << 14), [&](const auto& range) {
     for (std::int64_t i = range.begin(); i < range.end(); ++i) {
@@ -21,11 +24,22 @@ std::vector<std::uint8_t> buildEmptySpaceFlags(const SpanRanges& r,
       flags[i] = table.transparentOver(lo - pad, hi + pad) ? 1 : 0;
     }
   });
-  return flags;
+  for (int a = 0; a < 3; ++a) out.blockCounts[a] = (r.cells[a] + kEmptyBlock - 1) / kEmptyBlock;
+  const int* b = out.blockCounts;
+  out.blocks.assign(static_cast<size_t>(b[0]) * b[1] * b[2], 1);
+  for (int k = 0; k < r.cells[2]; ++k)
+    for (int j = 0; j < r.cells[1]; ++j)
+      for (int i = 0; i < r.cells[0]; ++i) {
+        const bool empty = flags[i + std::int64_t(r.cells[0]) * (j + std::int64_t(r.cells[1]) * k)];
+        out.emptyCells += empty ? 1 : 0;
+        if (!empty)
+          out.blocks[i / kEmptyBlock + b[0] * (j / kEmptyBlock + b[1] * (k / kEmptyBlock))] = 0;
+      }
+  return out;
 }
 
-std::shared_ptr<const std::vector<std::uint8_t>> EmptySpaceCache::flags(
-    const TensorBSpline& spline, const TransferFunctionTable& table) {
+std::shared_ptr<const EmptySpaceFlags> EmptySpaceCache::flags(const TensorBSpline& spline,
+                                                              const TransferFunctionTable& table) {
   const std::shared_ptr<const SpanRanges> ranges = spline.spanRanges();
   const TransferFunctionView v = table.view();
   std::vector<std::uint64_t> key(static_cast<size_t>((v.count + 63) / 64) + 1, 0);
@@ -38,8 +52,7 @@ std::shared_ptr<const std::vector<std::uint8_t>> EmptySpaceCache::flags(
 
   std::lock_guard lock(mutex_);
   if (!flags_ || ranges != ranges_ || key != key_) {
-    flags_ =
-        std::make_shared<const std::vector<std::uint8_t>>(buildEmptySpaceFlags(*ranges, table));
+    flags_ = std::make_shared<const EmptySpaceFlags>(buildEmptySpaceFlags(*ranges, table));
     ranges_ = ranges;
     key_ = std::move(key);
   }

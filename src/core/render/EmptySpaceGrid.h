@@ -21,21 +21,29 @@
 
 namespace mfadvr {
 
-// One flag per cell, x fastest over SpanRanges::cells; non-zero: skip.
-std::vector<std::uint8_t> buildEmptySpaceFlags(const SpanRanges& ranges,
-                                               const TransferFunctionTable& table);
+// One flag per cell, x fastest over SpanRanges::cells (non-zero: skip), and one per block of
+// kEmptyBlock^3 cells (non-zero: every cell of the block is empty), for a ray to cross large
+// empty regions a block at a time.
+struct EmptySpaceFlags {
+  std::vector<std::uint8_t> cells;
+  std::vector<std::uint8_t> blocks;
+  int blockCounts[3] = {0, 0, 0};
+  std::int64_t emptyCells = 0;
+};
+
+EmptySpaceFlags buildEmptySpaceFlags(const SpanRanges& ranges, const TransferFunctionTable& table);
 
 class EmptySpaceCache {
  public:
-  // Flags for `spline` under `table`; the pointer stays valid until the next call.
-  std::shared_ptr<const std::vector<std::uint8_t>> flags(const TensorBSpline& spline,
-                                                         const TransferFunctionTable& table);
+  // Flags for `spline` under `table`; the object stays valid as long as the pointer is held.
+  std::shared_ptr<const EmptySpaceFlags> flags(const TensorBSpline& spline,
+                                               const TransferFunctionTable& table);
 
  private:
   std::mutex mutex_;
   std::shared_ptr<const SpanRanges> ranges_;  // identifies the spline (shared by its copies)
   std::vector<std::uint64_t> key_;            // the table's zero-opacity entries, lo and scale
-  std::shared_ptr<const std::vector<std::uint8_t>> flags_;
+  std::shared_ptr<const EmptySpaceFlags> flags_;
 };
 
 }  // namespace mfadvr

@@ -23,12 +23,17 @@ Image renderModel(const ModelField& field, const RenderSettings& settings, Rende
     view.inverseExtent[a] = 1.0 / extent[a];
   }
   view.mask = model.mask().view();
-  std::shared_ptr<const std::vector<std::uint8_t>> flags;
+  std::shared_ptr<const EmptySpaceFlags> flags;
   if (settings.skipEmptySpace) {
     EmptySpaceCache local;
     EmptySpaceCache& cache = field.emptySpaceCache() ? *field.emptySpaceCache() : local;
     flags = cache.flags(model.spline(), table);
-    view.empty = flags->data();
+    // Nothing to skip: the loop without the per-sample test.
+    if (flags->emptyCells > 0) {
+      view.empty = flags->cells.data();
+      view.emptyBlocks = flags->blocks.data();
+      for (int a = 0; a < 3; ++a) view.blocks[a] = flags->blockCounts[a];
+    }
   }
 
   Image image(settings.width, settings.height);

@@ -28,7 +28,13 @@ struct ModelView {
   // Per knot-span cell, x fastest over (count - degree) cells per axis: non-zero when the cell
   // is invisible under the current transfer function. Null: no skipping information.
   const std::uint8_t* empty = nullptr;
+  // Per block of kEmptyBlock^3 cells (x fastest, blocks[a] per axis): non-zero when every cell
+  // of the block is empty, so that a ray crosses a large empty region a block at a time.
+  const std::uint8_t* emptyBlocks = nullptr;
+  int blocks[3] = {0, 0, 0};
 };
+
+inline constexpr int kEmptyBlock = 8;
 
 // Shade: value() also computes the basis derivatives (one Horner pass gives both), which a
 // following gradient() reuses.
@@ -50,6 +56,7 @@ class SplineRaySampler {
       for (int a = 0; a < 3; ++a) {
         uo_[a] = (o[a] - m_.boxMin[a]) * m_.inverseExtent[a];
         ud_[a] = d[a] * m_.inverseExtent[a];
+        invUd_[a] = ud_[a] != 0.0 ? 1.0 / ud_[a] : 0.0;
       }
     }
   }
@@ -69,17 +76,33 @@ class SplineRaySampler {
         (loc_[0].span - p_[0]) +
         cells_[0] * ((loc_[1].span - p_[1]) + std::int64_t(cells_[1]) * (loc_[2].span - p_[2]));
     if (!m_.empty[cell]) return false;
-    // Where the ray leaves the cell, with the faces pulled in by far more than the rounding of
-    // a sample's parameter, so every sample before tLeave is found in this same cell.
+    // The region to leave: the whole block of cells when it is all empty, else the cell. Its
+    // faces are knots; they are pulled in by far more than the rounding of a sample's
+    // parameter, so every sample before tLeave is found in this same empty region.
+    int lo[3], hi[3];  // span range of the region on each axis
+    int c[3];
+    for (int a = 0; a < 3; ++a) c[a] = (loc_[a].span - p_[a]) / kEmptyBlock;
+    if (m_.emptyBlocks[c[0] + m_.blocks[0] * (c[1] + m_.blocks[1] * c[2])]) {
+      for (int a = 0; a < 3; ++a) {
+        lo[a] = p_[a] + c[a] * kEmptyBlock;
+        const int end = lo[a] + kEmptyBlock;
+        hi[a] = end < cells_[a] + p_[a] ? end : cells_[a] + p_[a];
+      }
+    } else {
+      for (int a = 0; a < 3; ++a) {
+        lo[a] = loc_[a].span;
+        hi[a] = loc_[a].span + 1;
+      }
+    }
     constexpr double kInset = 1e-10;
     tLeave = INFINITY;
     for (int a = 0; a < 3; ++a) {
       const double* U = m_.spline.axis[a].knots;
       double ta = INFINITY;
       if (ud_[a] > 0.0)
-        ta = (U[loc_[a].span + 1] - kInset - uo_[a]) / ud_[a];
+        ta = (U[hi[a]] - kInset - uo_[a]) * invUd_[a];
       else if (ud_[a] < 0.0)
-        ta = (U[loc_[a].span] + kInset - uo_[a]) / ud_[a];
+        ta = (U[lo[a]] + kInset - uo_[a]) * invUd_[a];
       if (ta < tLeave) tLeave = ta;
     }
     return true;
@@ -119,7 +142,7 @@ class SplineRaySampler {
   int cached_[3] = {-1, -1, -1};
   bool located_ = false;
   AxisLocation loc_[3];
-  double uo_[3] = {0.0, 0.0, 0.0}, ud_[3] = {0.0, 0.0, 0.0};
+  double uo_[3] = {0.0, 0.0, 0.0}, ud_[3] = {0.0, 0.0, 0.0}, invUd_[3] = {0.0, 0.0, 0.0};
   static constexpr int kOrder = Shade ? 1 : 0;
   ControlBlock<P> block_;
   PointBasis<P, kOrder> basis_;
