@@ -203,7 +203,9 @@ TEST(EmptySpaceCache, RebuildsOnlyWhenTheZeroSetChanges) {
         const int b =
             i / kEmptyBlock +
             other->blockCounts[0] * (j / kEmptyBlock + other->blockCounts[1] * (k / kEmptyBlock));
-        if (other->blocks[b]) EXPECT_TRUE(other->cells[i + r.cells[0] * (j + r.cells[1] * k)]);
+        if (other->blocks[b]) {
+          EXPECT_TRUE(other->cells[i + r.cells[0] * (j + r.cells[1] * k)]);
+        }
       }
 }
 
