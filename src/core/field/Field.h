@@ -2,9 +2,10 @@
 // What the ray caster samples: a scalar field over a physical box, with its gradient.
 //
 // Every reconstruction method (the MFA model, the grid filters, the analytic ground truth) is a
-// Field, so that RayCaster<Field> renders them all with the same rays, samples, transfer
-// functions, shading and compositing, and a comparison measures only the reconstruction
-// (DESIGN.md section 2). Dispatch is static: the hot loop inlines the field's sampler.
+// Field, so that renderVolume (RayCaster.h) renders them all through the same per-ray
+// integration, with the same rays, samples, transfer functions, shading and compositing, and a
+// comparison measures only the reconstruction. Dispatch is static: the ray loop is instantiated
+// for each field's sampler and inlines it (the MFA model through its own SplineRaySampler).
 //
 // A Field is cheap to copy-reference and immutable; each render thread asks it for a Sampler,
 // which may keep per-thread state (e.g. the last cell's coefficients).

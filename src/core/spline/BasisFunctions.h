@@ -1,9 +1,9 @@
 #pragma once
 // B-spline basis functions and their derivatives (The NURBS Book, algorithms A2.2 and A2.3).
 //
-// The routines take the degree as a plain int but are force-inlined: called with a
-// compile-time constant (from the degree-specialized evaluators) the loops unroll completely,
-// called with a runtime degree they serve every other case. One implementation, both speeds.
+// The encoders use them to assemble their systems (in double); KnotVector derives from A2.3 the
+// per-span basis polynomials that the evaluation kernel (SplineKernel.h) reads. Force-inlined:
+// called with a compile-time degree the loops unroll.
 #include "core/spline/KnotVector.h"
 #include "core/util/HostDevice.h"
 
