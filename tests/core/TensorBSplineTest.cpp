@@ -7,22 +7,12 @@
 #include <random>
 #include <thread>
 
+#include "RandomSpline.h"
 #include "core/encode/StructuredEncoder.h"
 #include "core/util/Error.h"
 
 namespace mfadvr {
 namespace {
-
-TensorBSpline randomSpline(Degree3 p, Index3 n, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<float> uni(-1.0f, 1.0f);
-  std::vector<float> ctrl(static_cast<size_t>(n[0] * n[1] * n[2]));
-  for (float& c : ctrl) c = uni(rng);
-  return TensorBSpline({KnotVector::clampedUniform(p[0], static_cast<int>(n[0])),
-                        KnotVector::clampedUniform(p[1], static_cast<int>(n[1])),
-                        KnotVector::clampedUniform(p[2], static_cast<int>(n[2]))},
-                       std::move(ctrl));
-}
 
 std::vector<Vec3d> randomPoints(int count, unsigned seed, double lo = 0.0, double hi = 1.0) {
   std::mt19937 rng(seed);
