@@ -11,7 +11,8 @@
 // Exact empty-space skipping (Skip): `empty` flags, per knot-span cell, that no value the spline
 // can take in the cell is visible (EmptySpaceGrid.h: by the B-spline convex-hull property a
 // cell's values lie within its control points' range, widened by the kernel's rounding). A
-// sample in such a cell is not evaluated, and the ray jumps to where it leaves the cell.
+// sample in such a cell is not evaluated, and the ray jumps to where it leaves the cell, or the
+// whole block of kEmptyBlock^3 cells around it when every cell of the block is empty.
 #include <cstdint>
 
 #include "core/mask/MaskView.h"
