@@ -190,7 +190,7 @@ Command addViewCommand(CLI::App& app) {
     EncodeCliOptions encode;
     RenderOptions render;
     bool quiet = false;
-    double interactiveFps = 10.0;
+    double interactiveFps = 15.0;  // vtkRenderWindowInteractor's default desired update rate
     int benchmarkFrames = 0;
   };
   auto o = std::make_shared<Options>();
