@@ -35,10 +35,14 @@ struct SplineDegree {
 #define MFADVR_KERNEL_VECTOR_LANES 1
 #endif
 
+// 8-lane values only where the target has 256-bit registers (AVX): elsewhere degrees above 3
+// take the plain loops rather than values the ABI would pass in memory.
 template <int W, bool Fixed>
 struct Lanes {
-#if defined(MFADVR_KERNEL_VECTOR_LANES)
+#if defined(MFADVR_KERNEL_VECTOR_LANES) && defined(__AVX__)
   static constexpr bool kVector = Fixed && W <= 8;
+#elif defined(MFADVR_KERNEL_VECTOR_LANES)
+  static constexpr bool kVector = Fixed && W <= 4;
 #else
   static constexpr bool kVector = false;
 #endif
@@ -218,6 +222,7 @@ MFADVR_INLINE void rowLoad(LaneVector4& r, const float* src, int n) {
       break;
   }
 }
+#if defined(__AVX__)
 MFADVR_INLINE void rowLoad(LaneVector8& r, const float* src, int n) {
   switch (n) {
     case 5:
@@ -234,6 +239,7 @@ MFADVR_INLINE void rowLoad(LaneVector8& r, const float* src, int n) {
       break;
   }
 }
+#endif
 template <class V>
 MFADVR_INLINE void rowScale(V& acc, float w, const V& r, int) {
   acc = w * r;
