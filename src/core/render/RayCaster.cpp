@@ -25,7 +25,6 @@ RayParams compileRayParams(const RenderSettings& s, const TransferFunctionTable&
   p.stopOpacity = static_cast<float>(s.earlyTerminationOpacity);
   p.rayEnd = s.rayEnd.empty() ? nullptr : s.rayEnd.data();
   p.tf = table.view();
-  p.shade = s.shade;
   if (s.shade) p.shading = makeShadingParams(s.lighting, s.camera.directionOfProjection());
   return p;
 }

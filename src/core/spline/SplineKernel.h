@@ -54,18 +54,23 @@ typedef float LaneVector8 __attribute__((vector_size(32)));
 template <int W>
 using LaneVector = std::conditional_t<(W <= 4), LaneVector4, LaneVector8>;
 
-// W floats into a vector (unused lanes zero). Full vectors are copied whole; shorter ones are
-// built lane by lane, since a narrow copy into a wide stack value stalls the load that follows.
-template <int W>
-MFADVR_INLINE LaneVector<W> loadLanes(const float* x) {
-  LaneVector<W> v;
-  if constexpr (W == 4 || W == 8) {
-    __builtin_memcpy(&v, x, W * sizeof(float));
+// n floats into a vector of type V (unused lanes zero). Full vectors are copied whole; shorter
+// ones are built lane by lane, since a narrow copy into a wide stack value stalls the load that
+// follows. n is a compile-time constant wherever this is inlined.
+template <class V>
+MFADVR_INLINE V loadLanesOf(const float* x, int n) {
+  V v;
+  if (n * sizeof(float) == sizeof(V)) {
+    __builtin_memcpy(&v, x, sizeof(V));
   } else {
-    v = LaneVector<W>{};
-    for (int i = 0; i < W; ++i) v[i] = x[i];
+    v = V{};
+    for (int i = 0; i < n; ++i) v[i] = x[i];
   }
   return v;
+}
+template <int W>
+MFADVR_INLINE LaneVector<W> loadLanes(const float* x) {
+  return loadLanesOf<LaneVector<W>>(x, W);
 }
 template <int W>
 MFADVR_INLINE void storeLanes(const LaneVector<W>& v, float* x) {
@@ -206,40 +211,10 @@ MFADVR_HD MFADVR_INLINE float rowComponent(const ScalarRow<W>& r, int i) {
 }
 #if defined(MFADVR_KERNEL_VECTOR_LANES)
 // n is the row length W, fixed by the vector's type (4 lanes for W <= 4, else 8).
-MFADVR_INLINE void rowLoad(LaneVector4& r, const float* src, int n) {
-  switch (n) {
-    case 1:
-      r = loadLanes<1>(src);
-      break;
-    case 2:
-      r = loadLanes<2>(src);
-      break;
-    case 3:
-      r = loadLanes<3>(src);
-      break;
-    default:
-      r = loadLanes<4>(src);
-      break;
-  }
+template <class V>
+MFADVR_INLINE void rowLoad(V& r, const float* src, int n) {
+  r = loadLanesOf<V>(src, n);
 }
-#if defined(__AVX__)
-MFADVR_INLINE void rowLoad(LaneVector8& r, const float* src, int n) {
-  switch (n) {
-    case 5:
-      r = loadLanes<5>(src);
-      break;
-    case 6:
-      r = loadLanes<6>(src);
-      break;
-    case 7:
-      r = loadLanes<7>(src);
-      break;
-    default:
-      r = loadLanes<8>(src);
-      break;
-  }
-}
-#endif
 template <class V>
 MFADVR_INLINE void rowScale(V& acc, float w, const V& r, int) {
   acc = w * r;

@@ -22,8 +22,7 @@ struct RayParams {
   float background[3] = {0.0f, 0.0f, 0.0f};
   const float* rayEnd = nullptr;  // width * height distances along the rays, or null
   TransferFunctionView tf;
-  bool shade = false;
-  ShadingParams shading;
+  ShadingParams shading;  // filled for shaded renders (integrateRay<..., Shade = true>)
 };
 
 // Per-thread counts, summed by the driver.

@@ -49,6 +49,7 @@ class SplineRaySampler {
     for (int a = 0; a < 3; ++a) {
       p_[a] = SplineDegree<P>::of(m.spline.axis[a].degree);
       cells_[a] = m.spline.axis[a].count - p_[a];
+      gradientScale_[a] = static_cast<float>(m.inverseExtent[a]);
     }
   }
 
@@ -129,7 +130,7 @@ class SplineRaySampler {
   MFADVR_HD MFADVR_INLINE void gradient(float g[3]) const {
     static_assert(Shade, "gradients need a sampler made for shading");
     contractPartials<P, kOrder>(block_, basis_, Tz_, g);
-    for (int a = 0; a < 3; ++a) g[a] *= static_cast<float>(m_.inverseExtent[a]);
+    for (int a = 0; a < 3; ++a) g[a] *= gradientScale_[a];
   }
 
  private:
@@ -140,6 +141,7 @@ class SplineRaySampler {
   const ModelView& m_;
   int p_[3];
   int cells_[3];
+  float gradientScale_[3];  // parametric -> physical derivative: 1 / box extent
   int cached_[3] = {-1, -1, -1};
   bool located_ = false;
   AxisLocation loc_[3];
