@@ -19,7 +19,7 @@ void encode(benchmark::State& state) {
   o.degree = {degree, degree, degree};
   o.controlCounts = {ctrl, ctrl, ctrl};
   FitReport r;
-  for (auto _ : state) benchmark::DoNotOptimize(encodeStructured(g, o, &r));
+  for (auto _ : state) benchmark::DoNotOptimize(fitStructured(g, o, &r));
   state.counters["max_rel_error"] = r.maxRelativeError();
   state.counters["samples_per_s"] = benchmark::Counter(
       static_cast<double>(g.sampleCount()), benchmark::Counter::kIsIterationInvariantRate);

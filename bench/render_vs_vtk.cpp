@@ -1,9 +1,10 @@
 // mfadvr_render_vs_vtk: frame time of every reconstruction method of our ray caster against VTK
-// 9.1's vtkFixedPointVolumeRayCastMapper, side by side in one run (DESIGN.md sections 4 and 6;
-// docs/benchmarks.md). The scene is the Gaussian beam sampled at N^3 on [-1,1]^3; the MFA model
-// interpolates it (degree 2, N^3 control points, as the paper). Both renderers get the same
-// volume, camera, transfer function, lighting coefficients, image size and sample distance (the
-// VTK scene comes from the mfadvr_vtkrender library, as `mfadvr render --method vtk-fixedpoint`).
+// 9.1's vtkFixedPointVolumeRayCastMapper, side by side in one run (docs/benchmarks.md;
+// docs/architecture.md, Cost model of the renderer). The scene is the Gaussian beam sampled at N^3
+// on [-1,1]^3; the MFA model interpolates it (degree 2, N^3 control points, as the paper). Both
+// renderers get the same volume, camera, transfer function, lighting coefficients, image size and
+// sample distance (the VTK scene comes from the mfadvr_vtkrender library, as `mfadvr render
+// --method vtk-fixedpoint`).
 //
 // Debian's VTK needs an X display even off screen: run under `xvfb-run -a`.
 #include <CLI/CLI.hpp>
@@ -126,7 +127,7 @@ int run(const Options& o) {
     fit.degree = {2, 2, 2};
     fit.controlCounts = {n, n, n};
     const auto encodeStart = Clock::now();
-    const Model model = encodeStructured(grid, fit);
+    const Model model = fitStructured(grid, fit);
     const double encodeSeconds = secondsSince(encodeStart);
     std::printf("%d^3: MFA encode (p = 2, %d^3 control points) %.3f s\n", n, n, encodeSeconds);
 

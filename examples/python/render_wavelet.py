@@ -33,7 +33,7 @@ def main(out=None):
            encoder.GetLastFitSeconds()))
 
     mapper = mfadvr.vtkMFAVolumeMapper()
-    mapper.SetMFAInputConnection(encoder.GetOutputPort())
+    mapper.SetInputConnection(encoder.GetOutputPort())
 
     color = vtkColorTransferFunction()
     color.AddRGBPoint(40.0, 0.23, 0.30, 0.75)

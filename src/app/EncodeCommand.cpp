@@ -5,6 +5,7 @@
 #include "app/EncodeCliOptions.h"
 #include "app/FitReportOutput.h"
 #include "app/OptionParsing.h"
+#include "app/SceneLoader.h"
 #include "core/encode/Encoder.h"
 #include "core/model/ModelFile.h"
 #include "io/ScatteredLoader.h"
@@ -96,11 +97,12 @@ Command addEncodeCommand(CLI::App& app) {
                                 " tetrahedra"
                           : "")
                   << "\n";
-      model = encodePoints(data, options, &report);
+      model = encodeScattered(data, options, &report);
     } else {
       const VolumeLoadOptions load = parseVolumeLoadOptions(o->spacing, o->origin, o->field);
       const StructuredGrid grid = loadStructuredVolume(o->input, load);
-      model = encodeGrid(grid, options, &report);
+      printReaderNotes(grid);
+      model = encodeStructured(grid, options, &report);
     }
     if (report.points > 0 && report.solverResidual > 1e-4)
       std::cerr << "mfadvr: warning: the solver stopped at a relative residual of "

@@ -39,7 +39,7 @@ void takeModelFacts(LoadedScene& s) {
 }
 
 // Box, value range and spacing of scattered data that is not encoded: the spacing that
-// takeModelFacts would find in the model `encodePoints` makes with these options, so that the
+// takeModelFacts would find in the model `encodeScattered` makes with these options, so that the
 // default step and opacity unit distance match those of --method mfa on the same input.
 void takeScatteredFacts(LoadedScene& s, const ScatteredData& data, const EncodeOptions& encode) {
   s.boxMin = data.boxMin();
@@ -59,6 +59,11 @@ void takeScatteredFacts(LoadedScene& s, const ScatteredData& data, const EncodeO
 }
 
 }  // namespace
+
+void printReaderNotes(const StructuredGrid& grid) {
+  for (const std::string& note : grid.notes)
+    std::cerr << "mfadvr: note: " << grid.source << ": " << note << "\n";
+}
 
 bool isModelFile(const std::string& path) {
   return path.size() > 4 && path.compare(path.size() - 4, 4, ".mfa") == 0;
@@ -117,7 +122,7 @@ LoadedScene loadScene(const std::string& input, const SceneNeeds& needs,
     s.loadSeconds = since(start);
     if (needs.model) {
       const auto encodeStart = Clock::now();
-      s.model = encodePoints(data, encode);
+      s.model = encodeScattered(data, encode);
       s.encodeSeconds = since(encodeStart);
       takeModelFacts(s);
     } else {
@@ -127,12 +132,13 @@ LoadedScene loadScene(const std::string& input, const SceneNeeds& needs,
     return s;
   }
   s.grid = loadStructuredVolume(input, options.volume);
+  printReaderNotes(*s.grid);
   if (isBuiltinSpec(input)) s.truth = makeBuiltin(parseBuiltinSpec(input).name);
   takeGridFacts(s);
   s.loadSeconds = since(start);
   if (needs.model) {
     const auto encodeStart = Clock::now();
-    s.model = encodeGrid(*s.grid, encode);
+    s.model = encodeStructured(*s.grid, encode);
     s.encodeSeconds = since(encodeStart);
   }
   return s;

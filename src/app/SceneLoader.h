@@ -48,6 +48,9 @@ struct SceneLoadOptions {
 LoadedScene loadScene(const std::string& input, const SceneNeeds& needs,
                       const SceneLoadOptions& options);
 
+// Prints what a volume reader applied or could not represent (StructuredGrid::notes) to stderr.
+void printReaderNotes(const StructuredGrid& grid);
+
 bool isModelFile(const std::string& path);
 
 }  // namespace mfadvr::app

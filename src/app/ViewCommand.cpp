@@ -261,7 +261,7 @@ Command addViewCommand(CLI::App& app) {
     // The scene as the render command would draw it, set up in VTK.
     const RenderSettings settings = o->render.settingsFor(scene);
     viewer->data->SetModel(std::make_shared<const Model>(*scene.model));
-    viewer->mapper->SetMFAInputData(viewer->data);
+    viewer->mapper->SetInputData(viewer->data.GetPointer());
     viewer->mapper->SetEarlyRayTerminationOpacity(settings.earlyTerminationOpacity);
     viewer->mapper->SetNumberOfThreads(settings.threads);
     viewer->property->SetScalarOpacityUnitDistance(settings.opacityUnitDistance);

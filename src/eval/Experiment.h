@@ -1,6 +1,7 @@
 #pragma once
-// One experiment of the paper's evaluation (DESIGN.md section 4): it renders, measures, writes
-// its CSV and images under the output folder, and returns its section of report.md.
+// One experiment of the paper's evaluation (docs/architecture.md, Evaluation protocol): it renders,
+// measures, writes its CSV and images under the output folder, and returns its section of
+// report.md.
 #include <string>
 #include <vector>
 

@@ -1,7 +1,7 @@
 #pragma once
-// `mfadvr eval paper`: runs the experiments of the paper's results section (DESIGN.md section 4),
-// writes a CSV per table and figure, the images and image grids, the plot script and its PNG
-// plots, and report.md, which sets our numbers beside the paper's.
+// `mfadvr eval paper`: runs the experiments of the paper's results section (docs/architecture.md,
+// Evaluation protocol), writes a CSV per table and figure, the images and image grids, the plot
+// script and its PNG plots, and report.md, which sets our numbers beside the paper's.
 #include <string>
 #include <vector>
 

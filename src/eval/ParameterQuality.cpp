@@ -46,7 +46,7 @@ ExperimentReport runParameterQuality(const EvalContext& ctx) {
       fit.degree = {p, p, p};
       fit.controlCounts = {c, c, c};
       FitReport fitReport;
-      const Model model = encodeGrid(grid, fit, &fitReport);
+      const Model model = encodeStructured(grid, fit, &fitReport);
       SceneData scene;
       scene.model = &model;
       MethodSpec spec;

@@ -59,7 +59,7 @@ ExperimentReport runQueryTiming(const EvalContext& ctx) {
       EncodeOptions fit;
       fit.degree = {p, p, p};
       fit.controlCounts = {c, c, c};
-      const Model model = encodeGrid(grid, fit);
+      const Model model = encodeStructured(grid, fit);
       const double value = nsPerQuery(
           points, repeats, [&](const Vec3d& x) { return model.value(x); }, sink);
       const double both = nsPerQuery(
@@ -112,9 +112,10 @@ ExperimentReport runQueryTiming(const EvalContext& ctx) {
           (growDegree > growCtrl ? "." : ", which dominates on this machine."));
   md += paperBullet(false,
                     "Absolute times differ from the paper's: a different machine, and our "
-                    "evaluator's uniform-knot span lookup and fused value-gradient pass; DESIGN.md "
-                    "quotes the original MFA library at about 190 ns per value and 330 ns per "
-                    "value and gradient (degree 3, 64^3), against our " +
+                    "evaluator's uniform-knot span lookup and fused value-gradient pass. The "
+                    "upstream MFA library's fastest serial paths, measured on a machine like "
+                    "this one, take about 200 ns per value and 530 ns per value and gradient "
+                    "(degree 3, 64^3; docs/benchmarks.md), against our " +
                         fixed(ns[{3, 64}].first, 0) + " and " + fixed(ns[{3, 64}].second, 0) +
                         " ns here.");
   return report;

@@ -39,7 +39,7 @@ ExperimentReport runRenderPerformance(const EvalContext& ctx) {
     EncodeOptions fit;
     fit.degree = {2, 2, 2};
     fit.controlCounts = {n, n, n};
-    const Model model = encodeGrid(grid, fit);
+    const Model model = encodeStructured(grid, fit);
     RenderSettings s = sceneSettings(image, image, grid.boxMin(), grid.boxMax(), 30.0, 20.0, "ramp",
                                      "cool-to-warm", 0.0, 255.0, grid.spacing, 0.5, ctx.threads());
     // One physical step and unit distance for every size: the work per ray is the same, so

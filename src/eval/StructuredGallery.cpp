@@ -68,7 +68,7 @@ ExperimentReport runStructuredGallery(const EvalContext& ctx) {
     EncodeOptions fit;
     for (int a = 0; a < 3; ++a)
       fit.controlCounts[a] = static_cast<int>(std::min<std::int64_t>(grid.dims[a], maxCtrl));
-    const Model model = encodeGrid(grid, fit);
+    const Model model = encodeStructured(grid, fit);
     const double vmin = *std::min_element(grid.values.begin(), grid.values.end());
     const double vmax = *std::max_element(grid.values.begin(), grid.values.end());
     RenderSettings s = sceneSettings(image, image, grid.boxMin(), grid.boxMax(), 30.0, 20.0, "ramp",

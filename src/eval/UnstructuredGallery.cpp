@@ -63,7 +63,7 @@ ExperimentReport runUnstructuredGallery(const EvalContext& ctx) {
             "` has no cells (a point cloud): VTK's renderers need cells, skipped.\n\n";
       continue;
     }
-    const Model model = encodePoints(mesh, EncodeOptions{});
+    const Model model = encodeScattered(mesh, EncodeOptions{});
     const auto [lo, hi] = std::minmax_element(mesh.values.begin(), mesh.values.end());
     RenderSettings s = sceneSettings(image, image, model.domain().min, model.domain().max, 30.0,
                                      20.0, "ramp", "cool-to-warm", *lo, std::max(*hi, *lo + 1e-12),

@@ -102,7 +102,7 @@ ExperimentReport runValueAccuracy(const EvalContext& ctx) {
   FitReport gridReport;
   ctx.log("value accuracy: encoding the grid (degree 3, " + std::to_string(n) +
           "^3 control points)");
-  const Model gridModel = encodeGrid(grid, gridFit, &gridReport);
+  const Model gridModel = encodeStructured(grid, gridFit, &gridReport);
 
   ctx.log("value accuracy: encoding " + std::to_string(cfg.scatteredPoints) +
           " random points (degree 3, " + std::to_string(cfg.scatteredCtrl) + "^3 control points)");
@@ -112,7 +112,7 @@ ExperimentReport runValueAccuracy(const EvalContext& ctx) {
   pointFit.controlCounts = {cfg.scatteredCtrl, cfg.scatteredCtrl, cfg.scatteredCtrl};
   pointFit.mask.enabled = false;  // the points fill the box
   FitReport pointReport;
-  const Model pointModel = encodePoints(points, pointFit, &pointReport);
+  const Model pointModel = encodeScattered(points, pointFit, &pointReport);
 
   std::vector<Method> methods = {
       {"truth", "truth", ReconstructionMethod::Truth, {}, nullptr},

@@ -1,5 +1,9 @@
 #include "io/VolumeLoader.h"
 
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+
 #include "core/analytic/BuiltinFunction.h"
 #include "core/util/Error.h"
 #include "io/InputFile.h"
@@ -9,8 +13,23 @@
 namespace mfadvr {
 namespace {
 
+bool endsWith(const std::string& text, const std::string& tail) {
+  return text.size() >= tail.size() &&
+         text.compare(text.size() - tail.size(), tail.size(), tail) == 0;
+}
+
 StructuredGrid readFile(const std::string& path, const std::string& field) {
   const std::string ext = lowerExtension(path);
+  std::string lower = path;
+  std::transform(lower.begin(), lower.end(), lower.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (ext == ".nii" || endsWith(lower, ".nii.gz") || ext == ".hdr" || ext == ".img")
+    return readVtkVolume(path, VtkVolumeFormat::kNifti, field);
+  if (ext == ".dcm") {
+    throw Error(path +
+                ": a DICOM file holds one slice; pass the directory that holds the series' "
+                "slices (and nothing else) to read them as a volume");
+  }
   if (ext == ".raw") {
     if (!field.empty())
       throw Error(path + ": a raw file holds one unnamed field, so a field name ('" + field +
@@ -45,8 +64,14 @@ StructuredGrid loadStructuredVolume(const std::string& input, const VolumeLoadOp
     return sampleBuiltinSpec(input);
   }
 
-  requireReadableFile(input, "a volume file");
-  StructuredGrid grid = readFile(input, options.field);
+  std::error_code ec;
+  StructuredGrid grid;
+  if (std::filesystem::is_directory(input, ec)) {
+    grid = readVtkVolume(input, VtkVolumeFormat::kDicomSeries, options.field);
+  } else {
+    requireReadableFile(input, "a volume file or a directory of DICOM slices");
+    grid = readFile(input, options.field);
+  }
   if (options.spacing) grid.spacing = *options.spacing;
   if (options.origin) grid.origin = *options.origin;
   grid.source = input;
@@ -62,6 +87,8 @@ std::string supportedVolumeFormats() {
          "  .vti                 VTK XML image data\n"
          "  .vtk                 legacy VTK, DATASET STRUCTURED_POINTS only\n"
          "  .mha, .mhd           MetaImage\n"
+         "  .nii, .nii.gz        NIfTI-1/-2 (also Analyze .hdr + .img); sform/qform placement\n"
+         "  DIRECTORY            a DICOM series: uncompressed single-frame slices\n"
          "  builtin:NAME[:N|:NXxNYxNZ]  analytic field sampled on [-1,1]^3\n";
 }
 

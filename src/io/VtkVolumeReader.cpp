@@ -1,17 +1,24 @@
 #include "io/VtkVolumeReader.h"
 
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <utility>
 
 #include <vtkAlgorithm.h>
 #include <vtkCellData.h>
+#include <vtkDICOMImageReader.h>
 #include <vtkDataArray.h>
 #include <vtkDataObjectTypes.h>
 #include <vtkDataSetReader.h>
 #include <vtkErrorCode.h>
 #include <vtkImageData.h>
 #include <vtkMatrix3x3.h>
+#include <vtkMatrix4x4.h>
 #include <vtkMetaImageReader.h>
+#include <vtkNIFTIImageHeader.h>
+#include <vtkNIFTIImageReader.h>
 #include <vtkNew.h>
 #include <vtkNrrdReader.h>
 #include <vtkPointData.h>
@@ -21,6 +28,7 @@
 #include <vtkType.h>
 #include <vtkXMLImageDataReader.h>
 
+#include "core/grid/GridOrientation.h"
 #include "core/util/Error.h"
 #include "io/VtkDataConversion.h"
 #include "io/VtkSupport.h"
@@ -38,6 +46,10 @@ const char* formatName(VtkVolumeFormat format) {
       return "legacy VTK structured points";
     case VtkVolumeFormat::kMetaImage:
       return "MetaImage";
+    case VtkVolumeFormat::kNifti:
+      return "NIfTI";
+    case VtkVolumeFormat::kDicomSeries:
+      return "a DICOM series";
   }
   return "volume";
 }
@@ -55,6 +67,10 @@ const char* formatExpectation(VtkVolumeFormat format) {
     case VtkVolumeFormat::kMetaImage:
       return "a MetaImage header (ObjectType = Image, NDims, DimSize, ElementType, "
              "ElementDataFile) and its data";
+    case VtkVolumeFormat::kNifti:
+      return "a NIfTI-1/-2 or Analyze 7.5 image (.nii, .nii.gz, or .hdr with its .img)";
+    case VtkVolumeFormat::kDicomSeries:
+      return "a directory of uncompressed single-frame DICOM slices of one series";
   }
   return "a volume file";
 }
@@ -118,9 +134,30 @@ void requireMetaImageDataFile(const std::string& path) {
   }
 }
 
+// VTK's reader says little (and twice) about a directory without DICOM files: look first.
+// Part-10 files carry "DICM" after a 128-byte preamble.
+void requireDicomFiles(const std::string& dir) {
+  int files = 0, dicom = 0;
+  std::error_code ec;
+  for (const auto& entry : std::filesystem::directory_iterator(dir, ec)) {
+    if (!entry.is_regular_file(ec)) continue;
+    ++files;
+    std::ifstream in(entry.path(), std::ios::binary);
+    char magic[132] = {};
+    if (in.read(magic, sizeof magic) && std::string(magic + 128, 4) == "DICM") ++dicom;
+  }
+  if (ec) throw Error("cannot read " + dir + " as a DICOM series: " + ec.message());
+  if (dicom == 0) {
+    throw Error("cannot read " + dir + " as a DICOM series: none of its " +
+                std::to_string(files) +
+                " files is a DICOM file ('DICM' after a 128-byte preamble); a volume input "
+                "that is a directory must hold the slices of one DICOM series");
+  }
+}
+
 vtkSmartPointer<vtkImageData> runReader(const std::string& path, VtkVolumeFormat format,
-                                        const VtkMessageCapture& capture) {
-  vtkSmartPointer<vtkAlgorithm> reader;
+                                        const VtkMessageCapture& capture,
+                                        vtkSmartPointer<vtkAlgorithm>& reader) {
   switch (format) {
     case VtkVolumeFormat::kNrrd: {
       auto r = vtkSmartPointer<vtkNrrdReader>::New();
@@ -146,6 +183,19 @@ vtkSmartPointer<vtkImageData> runReader(const std::string& path, VtkVolumeFormat
       requireMetaImageDataFile(path);
       auto r = vtkSmartPointer<vtkMetaImageReader>::New();
       r->SetFileName(path.c_str());
+      reader = r;
+      break;
+    }
+    case VtkVolumeFormat::kNifti: {
+      auto r = vtkSmartPointer<vtkNIFTIImageReader>::New();
+      r->SetFileName(path.c_str());
+      reader = r;
+      break;
+    }
+    case VtkVolumeFormat::kDicomSeries: {
+      requireDicomFiles(path);
+      auto r = vtkSmartPointer<vtkDICOMImageReader>::New();
+      r->SetDirectoryName(path.c_str());
       reader = r;
       break;
     }
@@ -252,16 +302,81 @@ StructuredGrid toGrid(const std::string& path, VtkVolumeFormat format, vtkImageD
   return grid;
 }
 
+std::string formatNumber(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g", v);
+  return text;
+}
+
+// Calibration (scl_slope, scl_inter) and placement (sform, else qform) of a NIfTI image.
+void applyNiftiHeader(vtkNIFTIImageReader& reader, StructuredGrid& grid) {
+  const double slope = reader.GetRescaleSlope();
+  const double intercept = reader.GetRescaleIntercept();
+  // scl_slope 0 means "no calibration" in NIfTI.
+  if (slope != 0.0 && std::isfinite(slope) && std::isfinite(intercept) &&
+      (slope != 1.0 || intercept != 0.0)) {
+    for (double& v : grid.values) v = v * slope + intercept;
+    grid.notes.push_back("values calibrated as stored * " + formatNumber(slope) + " + " +
+                         formatNumber(intercept) + " (the header's scl_slope, scl_inter)");
+  }
+  if (vtkNIFTIImageHeader* header = reader.GetNIFTIHeader();
+      header && header->GetDim(0) > 3 && header->GetDim(4) > 1) {
+    grid.notes.push_back("the file holds " + std::to_string(header->GetDim(4)) +
+                         " time points (4th dimension); only the first is read");
+  }
+  vtkMatrix4x4* matrix = reader.GetSFormMatrix();
+  const char* which = "sform";
+  if (!matrix) {
+    matrix = reader.GetQFormMatrix();
+    which = "qform";
+  }
+  if (!matrix) {
+    grid.notes.push_back(
+        "no qform or sform orientation in the header: the volume is placed in its voxel axes "
+        "with the header's spacing and its first voxel at the origin");
+    return;
+  }
+  GridToWorld toWorld;
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) toWorld.linear[r][c] = matrix->GetElement(r, c);
+    toWorld.offset[r] = matrix->GetElement(r, 3);
+  }
+  const OrientationResult placed = orientToWorld(grid, toWorld);
+  if (placed.applied) {
+    grid.notes.push_back(std::string("placed in world (RAS) coordinates by the header's ") + which +
+                         " matrix; voxel axes run along " + placed.axes);
+  } else {
+    grid.notes.push_back(std::string("the header's ") + which + ": " + placed.note);
+  }
+}
+
+// VTK's DICOM reader gives no placement in patient coordinates: say what the grid is. It also
+// takes Pixel Spacing's first value (the distance between rows) for x; DICOM defines the pair
+// as (row spacing, column spacing), so x, along a row, gets the second.
+void fixDicomSeries(StructuredGrid& grid) {
+  std::swap(grid.spacing[0], grid.spacing[1]);
+  grid.notes.push_back(
+      "DICOM series of " + std::to_string(grid.dims[2]) +
+      " slices: the volume is in voxel axes (x along the rows, y from the image's last row "
+      "up, z from the slice farthest along the slice normal back), spaced by Pixel Spacing "
+      "and the slice distance, first voxel at the origin; the patient position and "
+      "orientation are not applied");
+}
+
 }  // namespace
 
 StructuredGrid readVtkVolume(const std::string& path, VtkVolumeFormat format,
                              const std::string& field) {
   vtkSmartPointer<vtkImageData> image;
+  vtkSmartPointer<vtkAlgorithm> reader;
   {
     VtkMessageCapture capture;
-    image = runReader(path, format, capture);
+    image = runReader(path, format, capture, reader);
   }
-  return toGrid(path, format, image, field);
+  StructuredGrid grid = toGrid(path, format, image, field);
+  if (auto* nifti = vtkNIFTIImageReader::SafeDownCast(reader)) applyNiftiHeader(*nifti, grid);
+  if (format == VtkVolumeFormat::kDicomSeries) fixDicomSeries(grid);
+  return grid;
 }
 
 StructuredGrid gridFromVtkImage(vtkImageData* image, const std::string& field,

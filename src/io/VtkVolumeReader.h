@@ -12,6 +12,8 @@ enum class VtkVolumeFormat {
   kXmlImageData,            // .vti (vtkXMLImageDataReader)
   kLegacyStructuredPoints,  // .vtk with DATASET STRUCTURED_POINTS (vtkStructuredPointsReader)
   kMetaImage,               // .mha / .mhd (vtkMetaImageReader)
+  kNifti,                   // .nii / .nii.gz / .hdr+.img (vtkNIFTIImageReader)
+  kDicomSeries,             // a directory of DICOM slices (vtkDICOMImageReader)
 };
 
 // Reads the point-data array named `field` (empty: the active scalars, else the first
@@ -20,6 +22,15 @@ enum class VtkVolumeFormat {
 // is missing (listing the arrays there are) or has more than one component, and when a legacy
 // file holds another dataset type. The grid is not validated (the caller overrides and
 // validates).
+//
+// NIfTI: the scl_slope / scl_inter calibration is applied; the sform (else the qform) matrix
+// places the grid in world (RAS) coordinates when its axes are parallel to the world axes
+// (samples reordered, GridOrientation.h), else the grid keeps its voxel axes and grid.notes
+// says so. DICOM: `path` is the series' directory; VTK's reader sorts the slices along their
+// normal (largest position first), applies the rescale slope and intercept and puts the
+// image's last row first (VTK's lower-left convention); the grid keeps those voxel axes with
+// the first voxel at the origin, x spacing from Pixel Spacing's column spacing, and
+// grid.notes says so.
 StructuredGrid readVtkVolume(const std::string& path, VtkVolumeFormat format,
                              const std::string& field);
 

@@ -1,6 +1,6 @@
 #pragma once
 // Renders a scene with one of VTK 9.1's volume mappers, off screen, and times its frames: the
-// baselines our ray caster is compared with (DESIGN.md section 1, item 4). The scene is the one
+// baselines our ray caster is compared with (docs/architecture.md, Baselines). The scene is the one
 // our ray caster renders from the same RenderSettings: camera, transfer function, opacity unit
 // distance, shading, lights, background, image size and (for the fixed-point ray caster) the
 // sample distance. docs/rendering.md ("VTK baselines") says what each mapper does with them.

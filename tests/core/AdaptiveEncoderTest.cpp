@@ -52,7 +52,7 @@ TEST(AdaptiveEncoder, BoundHoldsOnMarschnerLobbAndTighterBoundsNeedMoreControlPo
     std::vector<AdaptiveRound> rounds;
     AdaptiveOptions o = bound(e);
     o.onRound = [&](const AdaptiveRound& round) { rounds.push_back(round); };
-    const Model m = encodeStructuredAdaptive(g, StructuredFitOptions{}, o, &r);
+    const Model m = fitStructuredAdaptive(g, StructuredFitOptions{}, o, &r);
     EXPECT_TRUE(r.reachedTarget) << "E=" << e << ": " << r.stopReason;
     EXPECT_LE(maxErrorOverGrid(m, g), e * r.valueRange() * (1 + 1e-9)) << "E=" << e;
     EXPECT_LE(r.maxRelativeError(), e);
@@ -80,7 +80,7 @@ TEST(AdaptiveEncoder, KnotsConcentrateWhereTheDataVary) {
     for (std::int64_t j = 0; j < 9; ++j)
       for (std::int64_t i = 0; i < 65; ++i) g.at(i, j, k) = std::tanh((i / 64.0 - 0.8) * 40.0);
   FitReport r;
-  const Model m = encodeStructuredAdaptive(g, StructuredFitOptions{}, bound(1e-3), &r);
+  const Model m = fitStructuredAdaptive(g, StructuredFitOptions{}, bound(1e-3), &r);
   EXPECT_TRUE(r.reachedTarget) << r.stopReason;
   const auto& u = m.spline().knots(0).knots();
   const auto near = std::count_if(u.begin(), u.end(), [](double x) { return x > 0.6 && x < 1.0; });
@@ -94,7 +94,7 @@ TEST(AdaptiveEncoder, LimitsStopRefinementAndReturnTheBestModel) {
   AdaptiveOptions o = bound(1e-4);
   o.maxControlCounts = {12, 12, 12};
   FitReport r;
-  const Model m = encodeStructuredAdaptive(g, StructuredFitOptions{}, o, &r);
+  const Model m = fitStructuredAdaptive(g, StructuredFitOptions{}, o, &r);
   EXPECT_FALSE(r.reachedTarget);
   EXPECT_NE(r.stopReason.find("limit"), std::string::npos) << r.stopReason;
   for (int a = 0; a < 3; ++a) EXPECT_LE(m.spline().counts()[a], 12);
@@ -103,20 +103,20 @@ TEST(AdaptiveEncoder, LimitsStopRefinementAndReturnTheBestModel) {
   AdaptiveOptions two = bound(1e-4);
   two.maxRounds = 2;
   FitReport r2;
-  encodeStructuredAdaptive(g, StructuredFitOptions{}, two, &r2);
+  fitStructuredAdaptive(g, StructuredFitOptions{}, two, &r2);
   EXPECT_EQ(r2.rounds, 2);
   EXPECT_NE(r2.stopReason.find("round limit"), std::string::npos) << r2.stopReason;
 }
 
 TEST(AdaptiveEncoder, RejectsBadOptions) {
   const StructuredGrid g = sampleBuiltinSpec("builtin:gaussian-beam:16");
-  test::expectError([&] { encodeStructuredAdaptive(g, StructuredFitOptions{}, bound(0.0)); },
+  test::expectError([&] { fitStructuredAdaptive(g, StructuredFitOptions{}, bound(0.0)); },
                     {"bound"});
-  test::expectError([&] { encodeStructuredAdaptive(g, StructuredFitOptions{}, bound(NAN)); },
+  test::expectError([&] { fitStructuredAdaptive(g, StructuredFitOptions{}, bound(NAN)); },
                     {"bound"});
   AdaptiveOptions o = bound(1e-2);
   o.maxRounds = 0;
-  test::expectError([&] { encodeStructuredAdaptive(g, StructuredFitOptions{}, o); }, {"round"});
+  test::expectError([&] { fitStructuredAdaptive(g, StructuredFitOptions{}, o); }, {"round"});
 }
 
 TEST(AdaptiveEncoder, ScatteredBoundHolds) {
@@ -130,7 +130,7 @@ TEST(AdaptiveEncoder, ScatteredBoundHolds) {
     d.values.push_back(beam->value(x));
   }
   FitReport r;
-  const Model m = encodeScatteredAdaptive(d, ScatteredFitOptions{}, bound(1e-2), &r);
+  const Model m = fitScatteredAdaptive(d, ScatteredFitOptions{}, bound(1e-2), &r);
   EXPECT_TRUE(r.reachedTarget) << r.stopReason;
   EXPECT_GT(r.rounds, 1);
   double worst = 0.0;

@@ -23,7 +23,7 @@ const Model& marschnerLobb() {
     const auto f = makeBuiltin("marschner-lobb");
     StructuredFitOptions o;
     o.controlCounts = {24, 24, 24};
-    return encodeStructured(sampleBuiltin(*f, {33, 33, 33}), o);
+    return fitStructured(sampleBuiltin(*f, {33, 33, 33}), o);
   }();
   return m;
 }
@@ -155,7 +155,7 @@ TEST(EmptySpaceSkipping, SkipsMostOfASparseScene) {
   const auto f = makeBuiltin("gaussian-beam");
   StructuredFitOptions o;
   o.degree = {2, 2, 2};
-  const Model m = encodeStructured(sampleBuiltin(*f, {32, 32, 32}), o);
+  const Model m = fitStructured(sampleBuiltin(*f, {32, 32, 32}), o);
   const double mid = 0.5 * (m.valueMin() + m.valueMax());
   TransferFunction tf = tfWith({{mid, 0.0f}, {mid, 0.8f}, {m.valueMax(), 0.8f}});
   tf.color = {{m.valueMin(), Vec3f(1, 1, 1)}, {m.valueMax(), Vec3f(1, 0, 0)}};

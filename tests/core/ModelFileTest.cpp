@@ -20,7 +20,7 @@ Model smallModel() {
   StructuredFitOptions o;
   o.degree = {3, 2, 2};
   o.controlCounts = {6, 5, 4};
-  return encodeStructured(g, o);
+  return fitStructured(g, o);
 }
 
 // smallModel with a 5 x 6 x 7 point-coverage mask (210 nodes: the last byte has padding bits)

@@ -65,7 +65,7 @@ TEST_P(PolynomialReproduction, ValuesGradientsHessians) {
   o.degree = c.degree;
   o.controlCounts = c.ctrl;
   FitReport report;
-  const Model m = encodeStructured(g, o, &report);
+  const Model m = fitStructured(g, o, &report);
   EXPECT_LT(report.maxError, 2e-6) << "fit error at the samples";
 
   std::mt19937 rng(5);

@@ -222,7 +222,7 @@ TEST(RayCaster, MfaBeatsTrilinearAgainstTheTruth) {
   // filtering of the same samples, both rendered exactly like the analytic truth.
   const auto ml = makeBuiltin("marschner-lobb");
   const StructuredGrid grid = sampleBuiltin(*ml, {41, 41, 41});
-  const Model model = encodeStructured(grid, StructuredFitOptions{});
+  const Model model = fitStructured(grid, StructuredFitOptions{});
   SceneData scene;
   scene.model = &model;
   scene.grid = &grid;

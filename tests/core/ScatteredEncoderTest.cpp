@@ -48,7 +48,7 @@ TEST(ScatteredEncoder, RecoversSmoothFunctionFromRandomPoints) {
   const ScatteredData d =
       sample(randomPoints(20000, -1, 1, 1), [&](const Vec3d& x) { return beam->value(x); });
   FitReport r;
-  const Model m = encodeScattered(d, options(3, 16), &r);
+  const Model m = fitScattered(d, options(3, 16), &r);
   EXPECT_EQ(m.spline().counts(), (Index3{16, 16, 16}));
   EXPECT_EQ(r.points, d.pointCount());
   EXPECT_GT(r.solverIterations, 0);
@@ -79,8 +79,8 @@ TEST(ScatteredEncoder, ReproducesTensorPolynomials) {
   const ScatteredData d = sample(randomPoints(6000, -1, 1, 3), poly);
   ScatteredFitOptions exactOptions = options(3, 6, 0.0);
   exactOptions.tolerance = 1e-12;
-  const Model exact = encodeScattered(d, exactOptions);
-  const Model smooth = encodeScattered(d, options(3, 6, 1e-6));
+  const Model exact = fitScattered(d, exactOptions);
+  const Model smooth = fitScattered(d, options(3, 6, 1e-6));
   double worstExact = 0.0, worstSmooth = 0.0;
   for (const Vec3d& x : randomPoints(2000, -1, 1, 4)) {
     worstExact = std::max(worstExact, std::abs(exact.value(x) - poly(x)));
@@ -92,7 +92,7 @@ TEST(ScatteredEncoder, ReproducesTensorPolynomials) {
   // Multilinear functions carry no smoothing penalty: reproduced even with heavy smoothing.
   const auto bilinear = [](const Vec3d& x) { return 3.0 - x[0] + 2.0 * x[1] * x[2]; };
   const Model heavy =
-      encodeScattered(sample(randomPoints(3000, -1, 1, 5), bilinear), options(3, 8, 1.0));
+      fitScattered(sample(randomPoints(3000, -1, 1, 5), bilinear), options(3, 8, 1.0));
   for (const Vec3d& x : randomPoints(500, -1, 1, 6)) EXPECT_NEAR(heavy.value(x), bilinear(x), 1e-4);
 }
 
@@ -105,7 +105,7 @@ TEST(ScatteredEncoder, SmoothingKeepsEmptyRegionsBounded) {
   pts.emplace_back(1.0, 1.0, 1.0);  // one point at the top keeps the box the full cube
   const ScatteredData d = sample(pts, [&](const Vec3d& x) { return beam->value(x); });
   FitReport r;
-  const Model m = encodeScattered(d, options(3, 20), &r);
+  const Model m = fitScattered(d, options(3, 20), &r);
   const double lo = r.valueMin - r.valueRange(), hi = r.valueMax + r.valueRange();
   for (const Vec3d& x : randomPoints(4000, -1, 1, 8)) {
     const float v = m.value(x);
@@ -123,29 +123,29 @@ TEST(ScatteredEncoder, CascadeMatchesDirectSolve) {
   ScatteredFitOptions o = options(2, 12);
   o.tolerance = 1e-10;
   o.maxIterations = 20000;
-  const Model cascade = encodeScattered(d, o);
+  const Model cascade = fitScattered(d, o);
   std::array<KnotVector, 3> knots;
   for (auto& k : knots) k = KnotVector::clampedUniform(2, 12);
-  const Model direct = encodeScatteredWithKnots(d, knots, o, nullptr);
+  const Model direct = fitScatteredWithKnots(d, knots, o, nullptr);
   for (const Vec3d& x : randomPoints(500, -1, 1, 10))
     EXPECT_NEAR(cascade.value(x), direct.value(x), 1e-3 * 255);
 }
 
 TEST(ScatteredEncoder, RejectsBadInput) {
   ScatteredData d = sample(randomPoints(100, 0, 1, 11), [](const Vec3d& x) { return x[0]; });
-  test::expectError([&] { encodeScattered(d, options(0, 8)); }, {"degree 0"});
-  test::expectError([&] { encodeScattered(d, options(3, 3)); }, {"too few", "at least 4"});
-  test::expectError([&] { encodeScattered(d, options(3, 8, -1.0)); }, {"smoothing"});
+  test::expectError([&] { fitScattered(d, options(0, 8)); }, {"degree 0"});
+  test::expectError([&] { fitScattered(d, options(3, 3)); }, {"too few", "at least 4"});
+  test::expectError([&] { fitScattered(d, options(3, 8, -1.0)); }, {"smoothing"});
   ScatteredData flat = d;
   for (Vec3d& p : flat.points) p[2] = 0.5;
-  test::expectError([&] { encodeScattered(flat, options(3, 8)); }, {"no extent", "z"});
+  test::expectError([&] { fitScattered(flat, options(3, 8)); }, {"no extent", "z"});
   ScatteredData nan = d;
   nan.values[17] = std::nan("");
-  test::expectError([&] { encodeScattered(nan, options(3, 8)); }, {"point 17"});
-  test::expectError([&] { encodeScattered(ScatteredData{}, options(3, 8)); }, {"no points"});
+  test::expectError([&] { fitScattered(nan, options(3, 8)); }, {"point 17"});
+  test::expectError([&] { fitScattered(ScatteredData{}, options(3, 8)); }, {"no points"});
   // Without smoothing, control points that no point touches leave the system singular.
   ScatteredData few = sample(randomPoints(20, 0, 1, 12), [](const Vec3d& x) { return x[0]; });
-  test::expectError([&] { encodeScattered(few, options(3, 20, 0.0)); }, {"--smooth"});
+  test::expectError([&] { fitScattered(few, options(3, 20, 0.0)); }, {"--smooth"});
 }
 
 }  // namespace

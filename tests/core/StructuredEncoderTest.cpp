@@ -25,7 +25,7 @@ TEST(StructuredEncoder, InterpolatesWhenCountsEqualSamples) {
   const StructuredGrid g = sampleBuiltinSpec("builtin:marschner-lobb:21x17x13");
   for (int p = 1; p <= 4; ++p) {
     FitReport r;
-    const Model m = encodeStructured(g, fitOptions({p, p, p}), &r);
+    const Model m = fitStructured(g, fitOptions({p, p, p}), &r);
     EXPECT_EQ(r.controlCounts, g.dims);
     EXPECT_LT(r.maxRelativeError(), 1e-5) << "p=" << p;
     for (std::int64_t k = 0; k < g.dims[2]; k += 3)
@@ -38,7 +38,7 @@ TEST(StructuredEncoder, InterpolatesWhenCountsEqualSamples) {
 TEST(StructuredEncoder, ReportIsConsistent) {
   const StructuredGrid g = sampleBuiltinSpec("builtin:gaussian-beam:32x24x16");
   FitReport r;
-  const Model m = encodeStructured(g, fitOptions({3, 2, 3}, {16, 12, 8}), &r);
+  const Model m = fitStructured(g, fitOptions({3, 2, 3}, {16, 12, 8}), &r);
   EXPECT_EQ(r.samples, (Index3{32, 24, 16}));
   EXPECT_EQ(r.degree, (Degree3{3, 2, 3}));
   EXPECT_EQ(m.spline().counts(), (Index3{16, 12, 8}));
@@ -67,7 +67,7 @@ TEST(StructuredEncoder, MoreControlPointsFitBetter) {
   double last = std::numeric_limits<double>::infinity();
   for (std::int64_t n : {6, 10, 20, 40}) {
     FitReport r;
-    encodeStructured(g, fitOptions({3, 3, 3}, {n, n, n}), &r);
+    fitStructured(g, fitOptions({3, 3, 3}, {n, n, n}), &r);
     EXPECT_LT(r.rmsError, last) << "n=" << n;
     last = r.rmsError;
   }
@@ -77,7 +77,7 @@ TEST(StructuredEncoder, ClearErrorsForBadOptions) {
   const StructuredGrid g = sampleBuiltinSpec("builtin:gaussian-beam:8x8x5");
   auto message = [&](StructuredFitOptions o) {
     try {
-      encodeStructured(g, o);
+      fitStructured(g, o);
     } catch (const Error& e) {
       return std::string(e.what());
     }
@@ -95,7 +95,7 @@ TEST(StructuredEncoder, ClearErrorsForBadOptions) {
   EXPECT_NE(
       [&] {
         try {
-          encodeStructured(flat, fitOptions({1, 1, 1}));
+          fitStructured(flat, fitOptions({1, 1, 1}));
         } catch (const Error& e) {
           return std::string(e.what());
         }
@@ -106,10 +106,10 @@ TEST(StructuredEncoder, ClearErrorsForBadOptions) {
 
   StructuredGrid nan = g;
   nan.values[17] = std::numeric_limits<double>::quiet_NaN();
-  EXPECT_THROW(encodeStructured(nan, fitOptions({2, 2, 2})), Error);
+  EXPECT_THROW(fitStructured(nan, fitOptions({2, 2, 2})), Error);
   StructuredGrid inf = g;
   inf.values[3] = std::numeric_limits<double>::infinity();
-  EXPECT_THROW(encodeStructured(inf, fitOptions({2, 2, 2})), Error);
+  EXPECT_THROW(fitStructured(inf, fitOptions({2, 2, 2})), Error);
 }
 
 TEST(StructuredEncoder, ConstantDataFitsExactly) {
@@ -117,7 +117,7 @@ TEST(StructuredEncoder, ConstantDataFitsExactly) {
   g.dims = {6, 5, 4};
   g.values.assign(120, 42.0);
   FitReport r;
-  const Model m = encodeStructured(g, fitOptions({2, 2, 2}, {4, 3, 3}), &r);
+  const Model m = fitStructured(g, fitOptions({2, 2, 2}, {4, 3, 3}), &r);
   EXPECT_LT(r.maxError, 1e-9);
   EXPECT_EQ(r.maxRelativeError(), r.maxError);  // zero range: relative falls back to absolute
   EXPECT_NEAR(m.value(Vec3d(2.5, 1.5, 1.0)), 42.0f, 1e-5);
@@ -128,7 +128,7 @@ TEST(StructuredEncoder, ConstantDataFitsExactly) {
 double maxGradientError(const std::string& name, int n, double* maxNorm) {
   const StructuredGrid g = sampleBuiltinSpec("builtin:" + name + ":" + std::to_string(n));
   const auto f = makeBuiltin(name);
-  const Model m = encodeStructured(g, fitOptions({3, 3, 3}));
+  const Model m = fitStructured(g, fitOptions({3, 3, 3}));
   std::mt19937 rng(1);
   std::uniform_real_distribution<double> uni(-0.9, 0.9);
   double maxDiff = 0.0;
@@ -160,8 +160,8 @@ TEST(StructuredEncoder, PhysicalDerivativesScaleWithExtent) {
   StructuredGrid h = g;
   h.spacing = Vec3d(g.spacing[0] * 2.0, g.spacing[1], g.spacing[2] * 0.5);
   h.origin = Vec3d(g.origin[0] * 2.0, g.origin[1], g.origin[2] * 0.5);
-  const Model a = encodeStructured(g, fitOptions({3, 3, 3}));
-  const Model b = encodeStructured(h, fitOptions({3, 3, 3}));
+  const Model a = fitStructured(g, fitOptions({3, 3, 3}));
+  const Model b = fitStructured(h, fitOptions({3, 3, 3}));
   const Vec3d x(0.3, -0.2, 0.1);
   const Vec3d y(0.6, -0.2, 0.05);
   const ValueGradient ga = a.valueGradient(x), gb = b.valueGradient(y);

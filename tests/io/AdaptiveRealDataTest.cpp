@@ -19,7 +19,7 @@ TEST(AdaptiveRealData, BoundHoldsOnFuel) {
     AdaptiveOptions o;
     o.maxRelativeError = e;
     FitReport r;
-    const Model m = encodeStructuredAdaptive(grid, StructuredFitOptions{}, o, &r);
+    const Model m = fitStructuredAdaptive(grid, StructuredFitOptions{}, o, &r);
     EXPECT_TRUE(r.reachedTarget) << r.stopReason;
     // Checked here at every sample, independently of the encoder's own report.
     double worst = 0.0;

@@ -113,7 +113,7 @@ void checkMesh(const std::string& file, const std::string& field, Index3 ctrl) {
   options.controlCounts = ctrl;
   options.mask.longestAxisNodes = 96;  // the default 128 works too; this keeps the test quick
   FitReport report;
-  Model model = encodePoints(mesh, options, &report);
+  Model model = encodeScattered(mesh, options, &report);
   ASSERT_FALSE(model.mask().empty());
   EXPECT_EQ(model.mask().kind(), MaskKind::MeshOccupancy);
   EXPECT_GT(report.maskInsideFraction, 0.0);

@@ -41,19 +41,6 @@ struct ErrorLog {
   }
 };
 
-vtkSmartPointer<vtkImageData> imageOf(const StructuredGrid& grid, const char* name = "value") {
-  auto image = vtkSmartPointer<vtkImageData>::New();
-  image->SetDimensions(int(grid.dims[0]), int(grid.dims[1]), int(grid.dims[2]));
-  image->SetOrigin(grid.origin.data());
-  image->SetSpacing(grid.spacing.data());
-  vtkNew<vtkDoubleArray> values;
-  values->SetName(name);
-  values->SetNumberOfTuples(static_cast<vtkIdType>(grid.values.size()));
-  std::copy(grid.values.begin(), grid.values.end(), values->GetPointer(0));
-  image->GetPointData()->SetScalars(values);
-  return image;
-}
-
 StructuredGrid mlGrid(std::int64_t n) {
   return sampleBuiltin(*makeBuiltin("marschner-lobb"), {n, n, n});
 }

@@ -1,9 +1,11 @@
 // vtkMFAVolumeMapper inside real VTK scenes (off screen, under xvfb-run): its image against the
 // core renderer's image of the same scene, written out independently; blending with opaque
-// geometry; volume transforms; image sample distance; image data on the standard port.
+// geometry; volume transforms; image sample distance; models and data sets on the standard
+// input port.
 #include <gtest/gtest.h>
 
 #include <vtkActor.h>
+#include <vtkDataSetTriangleFilter.h>
 #include <vtkPolyDataMapper.h>
 #include <vtkProperty.h>
 #include <vtkSphereSource.h>
@@ -12,11 +14,15 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "TestSupport.h"
 #include "VtkSceneFixture.h"
 #include "core/field/ModelField.h"
 #include "core/image/ImageMetrics.h"
 #include "core/image/PngFile.h"
+#include "core/model/ModelFile.h"
 #include "core/render/RayCaster.h"
+#include "vtkMFAEncoder.h"
+#include "vtkMFAReader.h"
 
 namespace mfadvr::test {
 namespace {
@@ -191,17 +197,10 @@ TEST(VolumeMapper, ImageSampleDistanceRendersFewerRays) {
 TEST(VolumeMapper, EncodesImageDataOnTheStandardPort) {
   const auto ml = makeBuiltin("marschner-lobb");
   const StructuredGrid grid = sampleBuiltin(*ml, {41, 41, 41});
-  vtkNew<vtkImageData> image;
-  image->SetDimensions(41, 41, 41);
-  image->SetOrigin(grid.origin.data());
-  image->SetSpacing(grid.spacing.data());
-  image->AllocateScalars(VTK_DOUBLE, 1);
-  std::copy(grid.values.begin(), grid.values.end(),
-            static_cast<double*>(image->GetScalarPointer()));
+  const vtkSmartPointer<vtkImageData> image = imageOf(grid);
 
   VtkVolumeScene scene(marschnerLobbModel(), true);
   const Image8 viaModel = scene.render();
-  scene.mapper->RemoveAllInputConnections(1);
   scene.mapper->SetInputData(image);
   const Image8 viaImage = scene.render();
   ASSERT_NE(scene.mapper->GetMFAInput(), nullptr);
@@ -215,9 +214,48 @@ TEST(VolumeMapper, EncodesImageDataOnTheStandardPort) {
   EXPECT_DOUBLE_EQ(b[3], 1.0);
 }
 
+// The idiom of every VTK program: a producer's output port on the mapper's standard port, for
+// a reader's model, an encoder's model and a data set to encode; the old MFA-port names alias it.
+TEST(VolumeMapper, TakesModelsOnTheStandardInputPort) {
+  const auto path = scratchDir() / "mapper-port.mfa";
+  saveModel(*marschnerLobbModel(), path);
+  VtkVolumeScene scene(marschnerLobbModel(), true);
+  const Image8 reference = scene.render();
+
+  vtkNew<vtkMFAReader> reader;
+  reader->SetFileName(path.c_str());
+  scene.mapper->SetInputConnection(reader->GetOutputPort());
+  EXPECT_EQ(scene.mapper->GetNumberOfInputPorts(), 1);
+  const Image8 viaReader = scene.render();
+  EXPECT_EQ(compareImages(reference, viaReader).mse, 0.0);
+  EXPECT_EQ(scene.mapper->GetDataObjectInput(), reader->GetOutput());
+
+  vtkNew<vtkMFAEncoder> encoder;
+  encoder->SetInputData(imageOf(sampleBuiltin(*makeBuiltin("marschner-lobb"), {41, 41, 41})));
+  scene.mapper->SetInputConnection(encoder->GetOutputPort());
+  EXPECT_GT(compareImages(reference, scene.render()).psnr, 45.0);
+
+  scene.mapper->SetMFAInputConnection(reader->GetOutputPort());
+  EXPECT_EQ(compareImages(reference, scene.render()).mse, 0.0);
+  EXPECT_EQ(scene.mapper->GetNumberOfInputConnections(0), 1);
+}
+
+// Any data set goes to the encoder: here a tetrahedral mesh, fitted with a domain mask.
+TEST(VolumeMapper, EncodesAMeshOnTheStandardPort) {
+  vtkNew<vtkDataSetTriangleFilter> tets;
+  tets->SetInputData(imageOf(sampleBuiltin(*makeBuiltin("marschner-lobb"), {15, 15, 15})));
+  VtkVolumeScene scene(marschnerLobbModel(), true);
+  scene.mapper->GetEncoder()->SetNumberOfControlPoints(12, 12, 12);
+  scene.mapper->SetInputConnection(tets->GetOutputPort());
+  const Image8 image = scene.render();
+  ASSERT_NE(scene.mapper->GetMFAInput(), nullptr);
+  EXPECT_TRUE(scene.mapper->GetMFAInput()->HasDomainMask());
+  EXPECT_GT(coverage(image, scene.coreSettings().background), 0.2);
+}
+
 TEST(VolumeMapper, RendersNothingWithoutInput) {
   VtkVolumeScene scene(marschnerLobbModel(), true);
-  scene.mapper->RemoveAllInputConnections(1);
+  scene.mapper->RemoveAllInputConnections(0);
   const Image8 empty = scene.render();
   EXPECT_EQ(coverage(empty, scene.coreSettings().background), 0.0);
 }

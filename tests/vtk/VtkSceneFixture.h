@@ -5,6 +5,7 @@
 #include <vtkActor.h>
 #include <vtkCamera.h>
 #include <vtkColorTransferFunction.h>
+#include <vtkDoubleArray.h>
 #include <vtkImageData.h>
 #include <vtkLight.h>
 #include <vtkNew.h>
@@ -35,9 +36,23 @@ inline std::shared_ptr<const Model> marschnerLobbModel() {
   static const auto model = [] {
     const auto ml = makeBuiltin("marschner-lobb");
     return std::make_shared<const Model>(
-        encodeStructured(sampleBuiltin(*ml, {41, 41, 41}), StructuredFitOptions{}));
+        fitStructured(sampleBuiltin(*ml, {41, 41, 41}), StructuredFitOptions{}));
   }();
   return model;
+}
+
+inline vtkSmartPointer<vtkImageData> imageOf(const StructuredGrid& grid,
+                                             const char* name = "value") {
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetDimensions(int(grid.dims[0]), int(grid.dims[1]), int(grid.dims[2]));
+  image->SetOrigin(grid.origin.data());
+  image->SetSpacing(grid.spacing.data());
+  vtkNew<vtkDoubleArray> values;
+  values->SetName(name);
+  values->SetNumberOfTuples(static_cast<vtkIdType>(grid.values.size()));
+  std::copy(grid.values.begin(), grid.values.end(), values->GetPointer(0));
+  image->GetPointData()->SetScalars(values);
+  return image;
 }
 
 struct VtkVolumeScene {
@@ -53,7 +68,7 @@ struct VtkVolumeScene {
 
   explicit VtkVolumeScene(std::shared_ptr<const Model> model, bool shade = true) {
     data->SetModel(std::move(model));
-    mapper->SetMFAInputData(data);
+    mapper->SetInputData(data.GetPointer());
     mapper->SetSampleDistance(0.02);
     color->AddRGBPoint(0.0, 0.23, 0.30, 0.75);
     color->AddRGBPoint(0.5, 0.87, 0.87, 0.87);

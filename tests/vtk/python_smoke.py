@@ -1,7 +1,12 @@
 """The Python bindings from Debian's /usr/bin/python3: import, encode, render off screen next to
-an opaque sphere, read the window back and check what is on it. Run by ctest under xvfb-run with
-the build's python folder on PYTHONPATH."""
+an opaque sphere, read the window back and check what is on it; then the reader's output port on
+the mapper's standard port, as every VTK program connects a pipeline. Run by ctest under xvfb-run
+with the build's python folder on PYTHONPATH; the argument is the mfadvr executable (it writes the
+model file the reader reads)."""
+import os
+import subprocess
 import sys
+import tempfile
 
 import mfadvr
 from vtkmodules.vtkCommonDataModel import vtkPiecewiseFunction
@@ -38,7 +43,7 @@ check(abs(value - sample) <= encoder.GetLastMaxRelativeError() * (high - low) + 
       "model %g vs sample %g" % (value, sample))
 
 mapper = mfadvr.vtkMFAVolumeMapper()
-mapper.SetMFAInputConnection(encoder.GetOutputPort())
+mapper.SetInputConnection(encoder.GetOutputPort())
 color = vtkColorTransferFunction()
 color.AddRGBPoint(40.0, 0.2, 0.3, 0.8)
 color.AddRGBPoint(280.0, 0.9, 0.1, 0.1)
@@ -87,5 +92,38 @@ centre = scalars.GetTuple(48 * 96 + 48)
 # The sphere (pure green) sits inside the volume: the volume in front tints it, so the centre
 # is neither the bare sphere nor without it.
 check(centre[1] > 40 and centre[0] > 10, "sphere seen through the volume: %s" % (centre,))
+# A model file through vtkMFAReader, connected the standard way; the alias of the old MFA port
+# gives the same picture.
+def rendered_pixels():
+    window.Render()
+    grab.Modified()
+    grab.Update()
+    out = grab.GetOutput().GetPointData().GetScalars()
+    return [out.GetTuple(i) for i in range(out.GetNumberOfTuples())]
+
+
+with tempfile.TemporaryDirectory() as scratch:
+    path = os.path.join(scratch, "wavelet.mfa")
+    subprocess.run([sys.argv[1], "encode", "builtin:marschner-lobb:24", "--ctrl", "12", "-o", path,
+                    "-q"], check=True)
+    reader = mfadvr.vtkMFAReader()
+    reader.SetFileName(path)
+    mapper.SetInputConnection(reader.GetOutputPort())
+    color.RemoveAllPoints()
+    color.AddRGBPoint(0.0, 0.9, 0.9, 0.9)
+    color.AddRGBPoint(1.0, 0.9, 0.4, 0.1)
+    opacity.RemoveAllPoints()
+    opacity.AddPoint(0.0, 0.0)
+    opacity.AddPoint(1.0, 0.8)
+    volume.SetScale(10, 10, 10)  # the model's box is [-1,1]^3
+    renderer.ResetCamera()
+    via_reader = rendered_pixels()
+    check(mapper.GetMFAInput() is not None and mapper.GetMFAInput().HasModel(),
+          "the mapper renders the reader's model")
+    lit = sum(1 for p in via_reader if max(p[:3]) > 8)
+    check(lit > 0.3 * len(via_reader), "the reader's model is drawn (%d pixels)" % lit)
+    mapper.SetMFAInputConnection(reader.GetOutputPort())
+    check(rendered_pixels() == via_reader, "SetMFAInputConnection is an alias")
+
 print("python smoke test passed: %d of %d pixels covered, centre %s" %
       (covered, scalars.GetNumberOfTuples(), centre))

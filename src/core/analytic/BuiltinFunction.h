@@ -1,6 +1,6 @@
 #pragma once
 // Analytic scalar fields on [-1,1]^3 with exact value and gradient: the ground truth of the
-// evaluation (DESIGN.md section 4) and inputs that need no files.
+// evaluation (docs/architecture.md, Evaluation protocol) and inputs that need no files.
 //
 // Spec syntax: builtin:NAME, builtin:NAME:N (N^3 samples) or builtin:NAME:NXxNYxNZ.
 // Names: marschner-lobb (default 41^3), gaussian-beam (default 64^3),

@@ -170,8 +170,8 @@ Model adapt(std::array<KnotVector, 3> knots, const Index3& caps, const AdaptiveO
 
 }  // namespace
 
-Model encodeStructuredAdaptive(const StructuredGrid& grid, const StructuredFitOptions& fit,
-                               const AdaptiveOptions& adaptive, FitReport* report) {
+Model fitStructuredAdaptive(const StructuredGrid& grid, const StructuredFitOptions& fit,
+                            const AdaptiveOptions& adaptive, FitReport* report) {
   validate(adaptive);
   grid.validate();
   StructuredFitOptions start = fit;
@@ -232,13 +232,13 @@ Model encodeStructuredAdaptive(const StructuredGrid& grid, const StructuredFitOp
       std::move(knots), caps, adaptive, rules,
       [&](const std::array<KnotVector, 3>& k, const Model*, FitReport& r,
           std::array<std::vector<double>, 3>& spanErrors) {
-        return encodeStructuredWithKnots(grid, k, round, &r, &spanErrors);
+        return fitStructuredWithKnots(grid, k, round, &r, &spanErrors);
       },
       report);
 }
 
-Model encodeScatteredAdaptive(const ScatteredData& data, const ScatteredFitOptions& fit,
-                              const AdaptiveOptions& adaptive, FitReport* report) {
+Model fitScatteredAdaptive(const ScatteredData& data, const ScatteredFitOptions& fit,
+                           const AdaptiveOptions& adaptive, FitReport* report) {
   validate(adaptive);
   data.validate();
   ScatteredFitOptions start = fit;
@@ -266,7 +266,7 @@ Model encodeScatteredAdaptive(const ScatteredData& data, const ScatteredFitOptio
       std::move(knots), caps, adaptive, rules,
       [&](const std::array<KnotVector, 3>& k, const Model* previous, FitReport& r,
           std::array<std::vector<double>, 3>& spanErrors) {
-        return encodeScatteredWithKnots(data, k, round, previous, &r, &spanErrors);
+        return fitScatteredWithKnots(data, k, round, previous, &r, &spanErrors);
       },
       report);
 }

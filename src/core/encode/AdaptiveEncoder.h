@@ -42,9 +42,9 @@ struct AdaptiveOptions {
 // Returns the model with the smallest max error seen; report->reachedTarget says whether it is
 // within the bound and report->stopReason why refinement stopped. Throws mfadvr::Error for
 // invalid options or data.
-Model encodeStructuredAdaptive(const StructuredGrid& grid, const StructuredFitOptions& fit,
-                               const AdaptiveOptions& adaptive, FitReport* report = nullptr);
-Model encodeScatteredAdaptive(const ScatteredData& data, const ScatteredFitOptions& fit,
-                              const AdaptiveOptions& adaptive, FitReport* report = nullptr);
+Model fitStructuredAdaptive(const StructuredGrid& grid, const StructuredFitOptions& fit,
+                            const AdaptiveOptions& adaptive, FitReport* report = nullptr);
+Model fitScatteredAdaptive(const ScatteredData& data, const ScatteredFitOptions& fit,
+                           const AdaptiveOptions& adaptive, FitReport* report = nullptr);
 
 }  // namespace mfadvr

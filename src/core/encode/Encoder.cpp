@@ -6,13 +6,14 @@
 
 namespace mfadvr {
 
-Model encodeGrid(const StructuredGrid& grid, const EncodeOptions& options, FitReport* report) {
+Model encodeStructured(const StructuredGrid& grid, const EncodeOptions& options,
+                       FitReport* report) {
   StructuredFitOptions fit;
   fit.degree = options.degree;
   fit.controlCounts = options.controlCounts;
   fit.progress = options.progress;
-  if (options.adaptive) return encodeStructuredAdaptive(grid, fit, *options.adaptive, report);
-  return encodeStructured(grid, fit, report);
+  if (options.adaptive) return fitStructuredAdaptive(grid, fit, *options.adaptive, report);
+  return fitStructured(grid, fit, report);
 }
 
 Index3 maskDimsFor(const ScatteredData& data, const MaskOptions& options) {
@@ -24,7 +25,7 @@ Index3 maskDimsFor(const ScatteredData& data, const MaskOptions& options) {
   return defaultMaskDims(box, longest);
 }
 
-Model encodePoints(const ScatteredData& data, const EncodeOptions& options, FitReport* report) {
+Model encodeScattered(const ScatteredData& data, const EncodeOptions& options, FitReport* report) {
   ScatteredFitOptions fit;
   fit.degree = options.degree;
   fit.controlCounts = options.controlCounts;
@@ -32,8 +33,8 @@ Model encodePoints(const ScatteredData& data, const EncodeOptions& options, FitR
   fit.progress = options.progress;
   FitReport local;
   FitReport& r = report ? *report : local;
-  Model model = options.adaptive ? encodeScatteredAdaptive(data, fit, *options.adaptive, &r)
-                                 : encodeScattered(data, fit, &r);
+  Model model = options.adaptive ? fitScatteredAdaptive(data, fit, *options.adaptive, &r)
+                                 : fitScattered(data, fit, &r);
   if (options.mask.enabled) {
     const Index3 dims = maskDimsFor(data, options.mask);
     DomainMask mask = data.hasCells()

@@ -1,6 +1,10 @@
 #pragma once
 // One entry point per kind of input for everything `mfadvr encode` can do: a fixed-size or
 // adaptive fit, and for scattered data the domain mask that goes with the model.
+//
+// The names follow one scheme: encode<Kind> is the whole job (options -> finished model);
+// fit<Kind>, fit<Kind>WithKnots and fit<Kind>Adaptive are the fitting algorithms it chooses
+// between. Kind is Structured (a StructuredGrid) or Scattered (ScatteredData: meshes and points).
 #include <functional>
 #include <optional>
 #include <string>
@@ -30,16 +34,16 @@ struct EncodeOptions {
   std::function<void(double fraction, const std::string& stage)> progress;
 };
 
-Model encodeGrid(const StructuredGrid& grid, const EncodeOptions& options,
-                 FitReport* report = nullptr);
+Model encodeStructured(const StructuredGrid& grid, const EncodeOptions& options,
+                       FitReport* report = nullptr);
 
 // Fits the points, then voxelizes the mask: mesh occupancy when the data have cells (default
 // 128 nodes along the longest box axis), point coverage otherwise (default resolution from the
 // point count, see defaultCoverageResolution).
-Model encodePoints(const ScatteredData& data, const EncodeOptions& options,
-                   FitReport* report = nullptr);
+Model encodeScattered(const ScatteredData& data, const EncodeOptions& options,
+                      FitReport* report = nullptr);
 
-// The mask dims encodePoints uses for `data` with `options`.
+// The mask dims encodeScattered uses for `data` with `options`.
 Index3 maskDimsFor(const ScatteredData& data, const MaskOptions& options);
 
 }  // namespace mfadvr

@@ -335,9 +335,9 @@ Index3 resolveScatteredControlCounts(const ScatteredData& data,
   return n;
 }
 
-Model encodeScatteredWithKnots(const ScatteredData& data, std::array<KnotVector, 3> knots,
-                               const ScatteredFitOptions& options, const Model* initial,
-                               FitReport* report, std::array<std::vector<double>, 3>* spanErrors) {
+Model fitScatteredWithKnots(const ScatteredData& data, std::array<KnotVector, 3> knots,
+                            const ScatteredFitOptions& options, const Model* initial,
+                            FitReport* report, std::array<std::vector<double>, 3>* spanErrors) {
   const auto start = Clock::now();
   validateOptions(options);
   data.validate();
@@ -462,8 +462,8 @@ Model encodeScatteredWithKnots(const ScatteredData& data, std::array<KnotVector,
   return model;
 }
 
-Model encodeScattered(const ScatteredData& data, const ScatteredFitOptions& options,
-                      FitReport* report) {
+Model fitScattered(const ScatteredData& data, const ScatteredFitOptions& options,
+                   FitReport* report) {
   const auto start = Clock::now();
   data.validate();
   const Index3 n = resolveScatteredControlCounts(data, options);
@@ -501,8 +501,8 @@ Model encodeScattered(const ScatteredData& data, const ScatteredFitOptions& opti
       if (options.progress) options.progress(lo + (hi - lo) * f, name + ": " + stage);
     };
     FitReport levelReport;
-    Model m = encodeScatteredWithKnots(data, std::move(knots), levelOptions,
-                                       previous ? &*previous : nullptr, &levelReport);
+    Model m = fitScatteredWithKnots(data, std::move(knots), levelOptions,
+                                    previous ? &*previous : nullptr, &levelReport);
     iterations += levelReport.solverIterations;
     if (l + 1 == levels.size() && report) {
       *report = levelReport;

@@ -51,15 +51,15 @@ std::int64_t defaultScatteredControlCount(std::int64_t pointCount, int degree);
 Index3 resolveScatteredControlCounts(const ScatteredData& data, const ScatteredFitOptions& options);
 
 // Throws mfadvr::Error for invalid data (ScatteredData::validate) or options. The model's box is
-// the points' bounding box; it has no mask (the caller adds one, see encodeScatteredData).
-Model encodeScattered(const ScatteredData& data, const ScatteredFitOptions& options,
-                      FitReport* report = nullptr);
+// the points' bounding box; it has no mask (the caller adds one, see encodeScattered).
+Model fitScattered(const ScatteredData& data, const ScatteredFitOptions& options,
+                   FitReport* report = nullptr);
 
 // One solve with the given knot vectors, starting from `initial` (sampled at the Greville
-// abscissae; null: the mean value). spanErrors as in encodeStructuredWithKnots.
-Model encodeScatteredWithKnots(const ScatteredData& data, std::array<KnotVector, 3> knots,
-                               const ScatteredFitOptions& options, const Model* initial,
-                               FitReport* report = nullptr,
-                               std::array<std::vector<double>, 3>* spanErrors = nullptr);
+// abscissae; null: the mean value). spanErrors as in fitStructuredWithKnots.
+Model fitScatteredWithKnots(const ScatteredData& data, std::array<KnotVector, 3> knots,
+                            const ScatteredFitOptions& options, const Model* initial,
+                            FitReport* report = nullptr,
+                            std::array<std::vector<double>, 3>* spanErrors = nullptr);
 
 }  // namespace mfadvr

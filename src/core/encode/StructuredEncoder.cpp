@@ -224,19 +224,19 @@ Index3 resolveControlCounts(const StructuredGrid& grid, const StructuredFitOptio
   return n;
 }
 
-Model encodeStructured(const StructuredGrid& grid, const StructuredFitOptions& options,
-                       FitReport* report) {
+Model fitStructured(const StructuredGrid& grid, const StructuredFitOptions& options,
+                    FitReport* report) {
   grid.validate();
   const Index3 n = resolveControlCounts(grid, options);
   std::array<KnotVector, 3> knots;
   for (int a = 0; a < 3; ++a)
     knots[a] = knotsForSamples(options.degree[a], static_cast<int>(n[a]), grid.dims[a]);
-  return encodeStructuredWithKnots(grid, std::move(knots), options, report);
+  return fitStructuredWithKnots(grid, std::move(knots), options, report);
 }
 
-Model encodeStructuredWithKnots(const StructuredGrid& grid, std::array<KnotVector, 3> knots,
-                                const StructuredFitOptions& options, FitReport* report,
-                                std::array<std::vector<double>, 3>* spanErrors) {
+Model fitStructuredWithKnots(const StructuredGrid& grid, std::array<KnotVector, 3> knots,
+                             const StructuredFitOptions& options, FitReport* report,
+                             std::array<std::vector<double>, 3>* spanErrors) {
   const auto start = std::chrono::steady_clock::now();
   grid.validate();
   Index3 n{};

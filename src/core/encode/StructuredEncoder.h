@@ -25,15 +25,15 @@ struct StructuredFitOptions {
 
 // Throws mfadvr::Error for degrees outside 1..7, counts below degree + 1 or above the sample
 // count, grids with fewer than two samples on an axis, and non-finite samples.
-Model encodeStructured(const StructuredGrid& grid, const StructuredFitOptions& options,
-                       FitReport* report = nullptr);
+Model fitStructured(const StructuredGrid& grid, const StructuredFitOptions& options,
+                    FitReport* report = nullptr);
 
 // The same fit with the given knot vectors (any clamped vectors, e.g. refined by the adaptive
 // encoder; n <= samples on every axis). With spanErrors, (*spanErrors)[a][s - p] receives the
 // largest absolute error of the samples whose axis-a parameter lies in knot span s.
-Model encodeStructuredWithKnots(const StructuredGrid& grid, std::array<KnotVector, 3> knots,
-                                const StructuredFitOptions& options, FitReport* report = nullptr,
-                                std::array<std::vector<double>, 3>* spanErrors = nullptr);
+Model fitStructuredWithKnots(const StructuredGrid& grid, std::array<KnotVector, 3> knots,
+                             const StructuredFitOptions& options, FitReport* report = nullptr,
+                             std::array<std::vector<double>, 3>* spanErrors = nullptr);
 
 // For each axis a, the largest absolute error, per knot span of knots[a], of 1-D least-squares
 // fits of every grid line along a with knots[a] alone: where axis a needs knots, whatever the

@@ -18,6 +18,9 @@ struct StructuredGrid {
   std::string fieldName;        // scalar array name, when the format has one
   std::string sampleType;       // storage type of the source: uint8, int16, float32, ...
   std::int64_t inputBytes = 0;  // bytes of the samples in their source type
+  // What the reader applied or could not represent (orientation, calibration); the command
+  // line prints them as warnings.
+  std::vector<std::string> notes;
 
   std::int64_t sampleCount() const { return dims[0] * dims[1] * dims[2]; }
   double& at(std::int64_t i, std::int64_t j, std::int64_t k) {

@@ -1,7 +1,7 @@
 #pragma once
-// Image quality metrics for comparing renderings with a reference (DESIGN.md section 4).
-// Everything is computed on 8-bit RGB values (0..255), alpha ignored, in double precision;
-// docs/images-and-metrics.md states the definitions.
+// Image quality metrics for comparing renderings with a reference (docs/architecture.md, Evaluation
+// protocol). Everything is computed on 8-bit RGB values (0..255), alpha ignored, in double
+// precision; docs/images-and-metrics.md states the definitions.
 #include <array>
 
 #include "core/image/Image.h"

@@ -2,10 +2,10 @@
 // Where a model is defined: an occupancy grid over the model's box.
 //
 // A spline fitted to a curved mesh or a point cloud is defined on the whole box and extrapolates
-// outside the data (DESIGN.md section 3). The mask records which part of the box the data cover:
-// 0/1 values at the nodes of a regular grid spanning the box (node (i,j,k) at parameter
-// (i/(mx-1), j/(my-1), k/(mz-1))). A point is inside where the trilinear interpolation of the
-// node values is at least 1/2, so the boundary is a smooth-ish surface within half a node
+// outside the data (docs/architecture.md, Domains and masks). The mask records which part of the
+// box the data cover: 0/1 values at the nodes of a regular grid spanning the box (node (i,j,k) at
+// parameter (i/(mx-1), j/(my-1), k/(mz-1))). A point is inside where the trilinear interpolation of
+// the node values is at least 1/2, so the boundary is a smooth-ish surface within half a node
 // spacing of the data's boundary rather than a staircase of voxels.
 // An empty mask (the default) means "everything inside": structured grids need none.
 #include <cstdint>

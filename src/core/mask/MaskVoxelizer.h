@@ -1,5 +1,5 @@
 #pragma once
-// Building a DomainMask from scattered input (DESIGN.md section 3: scattered data has a domain).
+// Building a DomainMask from scattered input (docs/architecture.md, Domains and masks).
 //
 // Both builders set node values on the mask grid over `box` (node (i,j,k) at
 // box.min + (i/(mx-1), j/(my-1), k/(mz-1)) * extent). The mask then counts a point as inside

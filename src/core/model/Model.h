@@ -4,7 +4,8 @@
 //
 // Queries take physical coordinates. The box maps affinely onto the spline's [0,1]^3, so a
 // physical derivative is the parametric one divided by the box extent of that axis
-// (DESIGN.md section 3). Points outside the box are clamped onto it.
+// (docs/architecture.md, Parameter space and gradients). Points outside the box are clamped onto
+// it.
 #include <cstdint>
 #include <span>
 #include <string>

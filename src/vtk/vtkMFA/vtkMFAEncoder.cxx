@@ -95,10 +95,10 @@ int vtkMFAEncoder::RequestData(vtkInformation*, vtkInformationVector** inInfo,
     if (auto* image = vtkImageData::SafeDownCast(input)) {
       mfadvr::StructuredGrid grid = mfadvr::gridFromVtkImage(image, field, source);
       grid.validate();
-      model = mfadvr::encodeGrid(grid, options, &report);
+      model = mfadvr::encodeStructured(grid, options, &report);
     } else {
-      model = mfadvr::encodePoints(mfadvr::scatteredFromVtkDataSet(input, field, source), options,
-                                   &report);
+      model = mfadvr::encodeScattered(mfadvr::scatteredFromVtkDataSet(input, field, source),
+                                      options, &report);
     }
     const double range =
         report.valueMax > report.valueMin ? report.valueMax - report.valueMin : 1.0;

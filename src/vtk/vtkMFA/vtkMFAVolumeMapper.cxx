@@ -2,7 +2,7 @@
 
 #include "vtkAlgorithmOutput.h"
 #include "vtkCamera.h"
-#include "vtkImageData.h"
+#include "vtkDataSet.h"
 #include "vtkInformation.h"
 #include "vtkMFAEncoder.h"
 #include "vtkMFAModelData.h"
@@ -49,9 +49,7 @@ struct vtkMFAVolumeMapper::Internals {
   mfadvr::EmptySpaceCache EmptySpace;
 };
 
-vtkMFAVolumeMapper::vtkMFAVolumeMapper() : Internal(new Internals) {
-  this->SetNumberOfInputPorts(2);
-}
+vtkMFAVolumeMapper::vtkMFAVolumeMapper() : Internal(new Internals) {}
 
 vtkMFAVolumeMapper::~vtkMFAVolumeMapper() = default;
 
@@ -66,22 +64,24 @@ void vtkMFAVolumeMapper::PrintSelf(ostream& os, vtkIndent indent) {
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
 }
 
-int vtkMFAVolumeMapper::FillInputPortInformation(int port, vtkInformation* info) {
-  if (port == 0) {
-    info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
-  } else {
-    info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkMFAModelData");
-  }
+int vtkMFAVolumeMapper::FillInputPortInformation(int, vtkInformation* info) {
+  // Either type passes the executive's check; UpdateModel tells them apart.
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkMFAModelData");
+  info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkDataSet");
   info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);
   return 1;
 }
 
+void vtkMFAVolumeMapper::SetInputData(vtkMFAModelData* model) {
+  this->SetInputDataInternal(0, model);
+}
+
 void vtkMFAVolumeMapper::SetMFAInputConnection(vtkAlgorithmOutput* output) {
-  this->SetInputConnection(1, output);
+  this->SetInputConnection(0, output);
 }
 
 void vtkMFAVolumeMapper::SetMFAInputData(vtkMFAModelData* model) {
-  this->SetInputDataInternal(1, model);
+  this->SetInputData(model);
 }
 
 vtkMFAEncoder* vtkMFAVolumeMapper::GetEncoder() {
@@ -95,10 +95,7 @@ void vtkMFAVolumeMapper::SetFieldRenderer(
 }
 
 vtkDataObject* vtkMFAVolumeMapper::GetDataObjectInput() {
-  if (this->GetNumberOfInputConnections(1) > 0) {
-    return this->GetInputDataObject(1, 0);
-  }
-  return this->Superclass::GetDataObjectInput();
+  return this->GetNumberOfInputConnections(0) > 0 ? this->GetInputDataObject(0, 0) : nullptr;
 }
 
 vtkMFAModelData* vtkMFAVolumeMapper::GetMFAInput() {
@@ -107,16 +104,14 @@ vtkMFAModelData* vtkMFAVolumeMapper::GetMFAInput() {
 
 vtkMFAModelData* vtkMFAVolumeMapper::UpdateModel() {
   vtkSmartPointer<vtkMFAModelData> model;
-  if (this->GetNumberOfInputConnections(1) > 0) {
-    vtkAlgorithmOutput* connection = this->GetInputConnection(1, 0);
-    connection->GetProducer()->Update(connection->GetIndex());
-    model = vtkMFAModelData::SafeDownCast(this->GetInputDataObject(1, 0));
-  } else if (this->GetNumberOfInputConnections(0) > 0) {
+  if (this->GetNumberOfInputConnections(0) > 0) {
     vtkAlgorithmOutput* connection = this->GetInputConnection(0, 0);
     connection->GetProducer()->Update(connection->GetIndex());
-    if (auto* image = vtkImageData::SafeDownCast(this->GetInputDataObject(0, 0))) {
-      // The encoder's pipeline re-fits only when the image or the options change.
-      this->Internal->Encoder->SetInputData(image);
+    vtkDataObject* input = this->GetInputDataObject(0, 0);
+    model = vtkMFAModelData::SafeDownCast(input);
+    if (auto* dataSet = vtkDataSet::SafeDownCast(input)) {
+      // The encoder's pipeline re-fits only when the data set or the options change.
+      this->Internal->Encoder->SetInputData(dataSet);
       this->Internal->Encoder->Update();
       model = this->Internal->Encoder->GetOutput();
     }

@@ -9,10 +9,11 @@
  * depth buffer), so the volume blends correctly with surfaces in the scene. The image is drawn
  * pixel for pixel over the viewport as premultiplied colour (OpenGL render windows).
  *
- * Inputs: an MFA model on the MFA port (SetMFAInputConnection / SetMFAInputData, from
- * vtkMFAReader or vtkMFAEncoder), or vtkImageData on the standard input port, which is encoded
- * with GetEncoder()'s options (by default an interpolating cubic fit) when it changes. The MFA
- * port wins when both are connected.
+ * Input (one port, connected the usual way: SetInputConnection / SetInputData): an MFA model
+ * (vtkMFAModelData, from vtkMFAReader or vtkMFAEncoder), or any vtkDataSet (image data, a
+ * mesh, a point cloud), which is encoded with GetEncoder()'s options (by default, for image
+ * data, an interpolating cubic fit) and re-encoded only when it or the options change.
+ * SetMFAInputConnection / SetMFAInputData are the same port under older names.
  *
  * Not supported (a warning says so once): blend modes other than composite, cropping, clipping
  * planes, gradient opacity, multi-component data.
@@ -45,7 +46,17 @@ class VTKMFA_EXPORT vtkMFAVolumeMapper : public vtkVolumeMapper {
 
   //@{
   /**
-   * The model to render (input port 1).
+   * The data to render without a pipeline: a model, or a data set to encode. The overloads of
+   * vtkVolumeMapper (vtkImageData, vtkDataSet) stay available.
+   */
+  using Superclass::SetInputData;
+  void SetInputData(vtkMFAModelData* model);
+  //@}
+
+  //@{
+  /**
+   * Aliases of SetInputConnection / SetInputData (port 0), kept for programs written when the
+   * model had a port of its own.
    */
   void SetMFAInputConnection(vtkAlgorithmOutput* output);
   void SetMFAInputData(vtkMFAModelData* model);
@@ -58,8 +69,8 @@ class VTKMFA_EXPORT vtkMFAVolumeMapper : public vtkVolumeMapper {
   vtkMFAModelData* GetMFAInput();
 
   /**
-   * The encoder used for vtkImageData on the standard input port; set its options before the
-   * first render.
+   * The encoder used when the input is a data set rather than a model; set its options before
+   * the first render.
    */
   vtkMFAEncoder* GetEncoder();
 
