@@ -121,8 +121,20 @@ TEST(CliDemo, WritesImagesMontageAndMetrics) {
   for (const char* f :
        {"truth.png", "mfa.png", "trilinear.png", "montage.png", "model.mfa", "summary.json"})
     EXPECT_TRUE(std::filesystem::exists(dir / f)) << f;
+  // Each panel has a caption band below it (method, PSNR, SSIM): dark text on white. Panels
+  // narrower than their caption are widened, so only the first one's place is known.
   const Image8 montage = readPng((dir / "montage.png").string());
-  EXPECT_EQ(montage.width, 3 * 96 + 2 * 8);
+  EXPECT_GE(montage.width, 3 * 96 + 2 * 8);
+  ASSERT_GT(montage.height, 96 + 3 * 8);
+  int dark = 0;
+  for (int y = 96; y < montage.height; ++y)
+    for (int x = 0; x < montage.width; ++x)
+      if (montage.data[3 * (static_cast<size_t>(y) * montage.width + x)] < 64) ++dark;
+  EXPECT_GT(dark, 3 * 100);  // about 200 text pixels per caption at scale 1
+  const Image8 truth = readPng((dir / "truth.png").string());
+  for (int x = 0; x < 96; ++x)
+    EXPECT_EQ(montage.data[3 * (static_cast<size_t>(50) * montage.width + x)],
+              truth.data[3 * (static_cast<size_t>(50) * 96 + x)]);
   ASSERT_EQ(j["methods"].size(), 3u);
   EXPECT_EQ(j["methods"][0]["method"], "truth");
   EXPECT_TRUE(j["methods"][0]["psnr"].is_null());  // identical to itself
