@@ -123,13 +123,15 @@ void RenderOptions::addTo(CLI::App* sub) {
 
   const char* tfGroup = "Transfer function (docs/transfer-functions.md)";
   sub->add_option("--tf", tf,
-                  "Opacity: ramp, step:ISO, ... (normalized to the value range), inline "
-                  "'x:a,x:a,...', or a JSON file (ours or a ParaView preset) [default: ramp]")
+                  "Opacity: ramp, step:ISO, ... (normalized to the value range), a medical preset "
+                  "with its colours (ct-bone, ct-skin, ct-soft-tissue, ct-vessels in Hounsfield "
+                  "units; mr-tissue, mr-vessels), inline 'x:a,x:a,...', or a JSON file (ours or "
+                  "a ParaView preset) [default: ramp]")
       ->group(tfGroup);
   sub->add_option("--colormap", colormap,
                   "Colour: grayscale, cool-to-warm, viridis, red, white, ..., inline "
-                  "'x:r:g:b,...', or a JSON file [default: the TF file's colours, else "
-                  "cool-to-warm]")
+                  "'x:r:g:b,...', or a JSON file [default: the colours of the --tf file or "
+                  "preset, else cool-to-warm]")
       ->group(tfGroup);
   sub->add_option("--range", range,
                   "Value range MIN,MAX that normalized TF points map onto (default: the data's)")

@@ -166,6 +166,42 @@ TEST(TransferFunction, PresetDefinitions) {
   EXPECT_TRUE(g.colorAt(0.5).isApprox(Vec3f(0.5f, 0.5f, 0.5f)));
 }
 
+// The medical presets pick the materials they are named for, at the values those materials
+// have: CT in Hounsfield units (air -1000, fat -100, soft tissue 40, contrast 350, bone 1000).
+TEST(TransferFunction, MedicalPresetsShowTheirMaterials) {
+  for (const auto& name : transferFunctionPresetNames()) {
+    SCOPED_TRACE(name);
+    const auto tf = parseTransferFunction(name, "");
+    EXPECT_EQ(tf.space, name.rfind("ct-", 0) == 0 ? TfSpace::Data : TfSpace::Normalized);
+    EXPECT_FALSE(tf.colorSpace.has_value());
+    EXPECT_EQ(tf.opacityAt(tf.space == TfSpace::Data ? -1000.0 : 0.0), 0.0f);  // air, background
+    EXPECT_EQ(parseTransferFunction("", name).color.size(), tf.color.size());  // as a colour map
+  }
+  const auto bone = parseTransferFunction("CT-Bone", "");
+  EXPECT_EQ(bone.opacityAt(40), 0.0f);
+  EXPECT_GT(bone.opacityAt(1000), 0.5f);
+  const auto skin = parseTransferFunction("ct-skin", "");
+  EXPECT_EQ(skin.opacityAt(-700), 0.0f);
+  EXPECT_GT(skin.opacityAt(40), 0.5f);
+  const auto soft = parseTransferFunction("ct-soft-tissue", "");
+  EXPECT_GT(soft.opacityAt(40), 0.05f);
+  EXPECT_LT(soft.opacityAt(40), 0.3f);
+  EXPECT_GT(soft.opacityAt(1000), 0.5f);
+  const auto vessels = parseTransferFunction("ct-vessels", "");
+  EXPECT_EQ(vessels.opacityAt(40), 0.0f);
+  EXPECT_GT(vessels.opacityAt(350), 2.0f * vessels.opacityAt(1000));
+  EXPECT_GT(vessels.colorAt(350).x(), 2.0f * vessels.colorAt(350).y());  // red
+  const auto mra = parseTransferFunction("mr-vessels", "");
+  EXPECT_EQ(mra.opacityAt(0.3), 0.0f);
+  EXPECT_GT(mra.opacityAt(0.9), 0.5f);
+  // A colour map replaces the preset's colours and keeps its opacities (in their own space).
+  const auto recoloured = parseTransferFunction("ct-bone", "viridis");
+  EXPECT_EQ(recoloured.space, TfSpace::Data);
+  EXPECT_EQ(recoloured.colorSpace, TfSpace::Normalized);
+  EXPECT_GT(recoloured.opacityAt(1000), 0.5f);
+  EXPECT_FALSE(findTransferFunctionPreset("ct-lung"));
+}
+
 TEST(TransferFunction, CoolToWarmIsMorelandsMsh) {
   // Our diverging interpolation (used for ParaView presets) reproduces the sampled map.
   const auto tf = parseTransferFunction("", "cool-to-warm");

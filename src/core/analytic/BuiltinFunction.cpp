@@ -104,12 +104,111 @@ class GaussianBeams final : public BuiltinFunction {
   Beam beams_[kGaussianBeamCount];
 };
 
+// A CT-like head phantom in Hounsfield units, for trying the CT transfer-function presets on
+// data with the value ranges of a real scan: air (-1000) around a head of soft tissue (40), a
+// skull cap of bone (1000) over its upper part, brain (30), and contrast-filled vessels (350):
+// two horizontal rings below the cap and a vertical vessel joining them. Each structure is a
+// smooth indicator S(t) = 1 / (1 + exp(-t / w)) of an implicit function t that is smooth
+// everywhere (squared distances, planes), so that the value and its gradient are analytic.
+class CtHead final : public BuiltinFunction {
+ public:
+  std::string name() const override { return "ct-head"; }
+  Index3 defaultDims() const override { return {128, 128, 128}; }
+  double value(const Vec3d& x) const override {
+    Vec3d g;
+    return valueGradient(x, g);
+  }
+  double valueGradient(const Vec3d& x, Vec3d& g) const override {
+    Vec3d gHead, gOuter, gInner;
+    const double head = ellipsoid(x, 1.0, gHead);
+    const double outer = ellipsoid(x, 0.93, gOuter);
+    const double inner = ellipsoid(x, 0.84, gInner);
+    // Smooth union of the vessels, U = 1 - prod(1 - T_i), confined to the brain.
+    Vec3d gTubes[3];
+    const double tubes[3] = {ring(x, -0.05, gTubes[0]), ring(x, -0.4, gTubes[1]),
+                             column(x, gTubes[2])};
+    double rest = 1.0;
+    for (double t : tubes) rest *= 1.0 - t;
+    Vec3d gUnion = Vec3d::Zero();
+    for (int i = 0; i < 3; ++i) {
+      double others = 1.0;
+      for (int j = 0; j < 3; ++j)
+        if (j != i) others *= 1.0 - tubes[j];
+      gUnion += others * gTubes[i];
+    }
+    const double vessels = (1.0 - rest) * inner;
+    const Vec3d gVessels = inner * gUnion + (1.0 - rest) * gInner;
+    // The skull: the shell between the outer and inner ellipsoids, above z = 0.15.
+    double capSlope = 0.0;
+    const double cap = smoothStep(x[2] - 0.15, capSlope);
+    const double shell = outer - inner;
+    const Vec3d gSkull = cap * (gOuter - gInner) + Vec3d(0.0, 0.0, capSlope * shell);
+    g = kTissue * gHead + kBone * gSkull + kBrain * gInner + kContrast * gVessels;
+    return kAir + kTissue * head + kBone * cap * shell + kBrain * inner + kContrast * vessels;
+  }
+
+ private:
+  // Steps of the value from one material to the next.
+  static constexpr double kAir = -1000.0, kTissue = 1040.0, kBone = 960.0, kBrain = -10.0,
+                          kContrast = 320.0;
+  static constexpr double kWidth = 0.012;  // of the transitions, in domain units
+  static constexpr double kRadii[3] = {0.72, 0.86, 0.9};
+
+  // S(t) and dS/dt.
+  static double smoothStep(double t, double& slope) {
+    const double s = 1.0 / (1.0 + std::exp(-t / kWidth));
+    slope = s * (1.0 - s) / kWidth;
+    return s;
+  }
+  // Inside the head's ellipsoid scaled by `scale`: t = (1 - q^2) / 2 * 0.8, with q the
+  // ellipsoidal radius (about the distance to the surface near it, for radii near 0.8).
+  static double ellipsoid(const Vec3d& x, double scale, Vec3d& g) {
+    double q2 = 0.0;
+    Vec3d dq2;
+    for (int a = 0; a < 3; ++a) {
+      const double r = kRadii[a] * scale;
+      q2 += x[a] * x[a] / (r * r);
+      dq2[a] = 2.0 * x[a] / (r * r);
+    }
+    double slope = 0.0;
+    const double s = smoothStep(0.4 * (1.0 - q2), slope);
+    g = -0.4 * slope * dq2;
+    return s;
+  }
+  // A tube of radius r around a curve, from the squared distance d2 to it:
+  // t = (r^2 - d2) / (2 r), about r - d near the wall.
+  static double tube(double d2, const Vec3d& dd2, Vec3d& g) {
+    constexpr double r = 0.045;
+    double slope = 0.0;
+    const double s = smoothStep((r * r - d2) / (2.0 * r), slope);
+    g = -slope / (2.0 * r) * dd2;
+    return s;
+  }
+  // A horizontal ring of radius 0.35 around the z axis at height h.
+  static double ring(const Vec3d& x, double h, Vec3d& g) {
+    constexpr double R = 0.35;
+    const double rho = std::sqrt(x[0] * x[0] + x[1] * x[1]);
+    const double d2 = (rho - R) * (rho - R) + (x[2] - h) * (x[2] - h);
+    Vec3d dd2(0.0, 0.0, 2.0 * (x[2] - h));
+    if (rho > 1e-12) {  // on the axis the ring is far away and d2 is flat in x and y
+      dd2[0] = 2.0 * (rho - R) * x[0] / rho;
+      dd2[1] = 2.0 * (rho - R) * x[1] / rho;
+    }
+    return tube(d2, dd2, g);
+  }
+  // A vertical vessel through (0.35, 0) joining the rings.
+  static double column(const Vec3d& x, Vec3d& g) {
+    const double dx = x[0] - 0.35, dy = x[1];
+    return tube(dx * dx + dy * dy, Vec3d(2.0 * dx, 2.0 * dy, 0.0), g);
+  }
+};
+
 }  // namespace
 
 BeamBox gaussianBeamsBox(int k) {
   if (k < 0 || k >= kGaussianBeamCount)
-    throw Error("gaussian-beams has beams 0.." + std::to_string(kGaussianBeamCount - 1) +
-                ", not " + std::to_string(k));
+    throw Error("gaussian-beams has beams 0.." + std::to_string(kGaussianBeamCount - 1) + ", not " +
+                std::to_string(k));
   double start = -1.0;
   for (int i = 0; i < k; ++i) start += std::ldexp(1.0, -i);
   const double side = std::ldexp(1.0, -k);
@@ -118,13 +217,14 @@ BeamBox gaussianBeamsBox(int k) {
 }
 
 std::vector<std::string> builtinNames() {
-  return {"marschner-lobb", "gaussian-beam", "gaussian-beams"};
+  return {"marschner-lobb", "gaussian-beam", "gaussian-beams", "ct-head"};
 }
 
 std::unique_ptr<BuiltinFunction> makeBuiltin(const std::string& name) {
   if (name == "marschner-lobb") return std::make_unique<MarschnerLobb>();
   if (name == "gaussian-beam") return std::make_unique<GaussianBeam>();
   if (name == "gaussian-beams") return std::make_unique<GaussianBeams>();
+  if (name == "ct-head") return std::make_unique<CtHead>();
   std::string known;
   for (const auto& n : builtinNames()) known += (known.empty() ? "" : ", ") + n;
   throw Error("unknown built-in function '" + name + "' (known: " + known + ")");

@@ -33,12 +33,14 @@ std::string join(const std::vector<std::string>& v) {
 
 std::string opacityForms() {
   return "expected an opacity preset (" + join(opacityPresetNames()) +
+         "), a whole transfer-function preset (" + join(transferFunctionPresetNames()) +
          "), inline points 'x:a,x:a,...' (x normalized: 0 = data min, 1 = data max), or a JSON "
          "file (ours or a ParaView preset export)";
 }
 
 std::string colorForms() {
   return "expected a colour-map preset (" + join(colorMapPresetNames()) +
+         "), the colours of a transfer-function preset (" + join(transferFunctionPresetNames()) +
          "), inline points 'x:r:g:b,...' (x normalized, r, g, b in [0,1]), or a JSON file (ours "
          "or a ParaView preset export, 'file.json#Name' to pick one preset)";
 }
@@ -197,6 +199,14 @@ Part<OpacityPoint> parseOpacity(const std::string& spec) {
   Part<OpacityPoint> part;
   const std::string s = spec.empty() ? "ramp" : trim(spec);
   if (!looksLikeJsonFile(s)) {
+    // A whole preset acts as a file with both lists: its colours apply unless a colour map
+    // is given.
+    if (auto whole = findTransferFunctionPreset(s)) {
+      part.file = *whole;
+      part.points = whole->opacity;
+      part.space = whole->space;
+      return part;
+    }
     if (auto preset = findOpacityPreset(s)) {
       part.points = *preset;
       return part;
@@ -227,6 +237,11 @@ Part<ColorPoint> parseColor(const std::string& spec) {
   Part<ColorPoint> part;
   const std::string s = trim(spec);
   if (!looksLikeJsonFile(s)) {
+    if (auto whole = findTransferFunctionPreset(s)) {
+      part.points = whole->color;
+      part.space = whole->colorPointSpace();
+      return part;
+    }
     if (auto preset = findColorMapPreset(s)) {
       part.points = *preset;
       return part;

@@ -184,3 +184,70 @@ std::optional<std::vector<OpacityPoint>> findOpacityPreset(std::string_view spec
 }
 
 }  // namespace mfadvr
+
+namespace mfadvr {
+
+// Medical presets. The CT values follow the standard Hounsfield scale (air -1000, fat about
+// -100, water 0, soft tissue 20..80, contrast-filled vessels 150..500, bone 300..2000); the
+// opacities are per the renderer's unit distance, so thin structures stay visible and large
+// ones translucent at the default.
+std::optional<TransferFunction> findTransferFunctionPreset(std::string_view name) {
+  const std::string n = lower(name);
+  TransferFunction tf;
+  tf.space = TfSpace::Data;
+  if (n == "ct-bone") {
+    // Bone only: cortical bone nearly opaque, trabecular bone translucent, all else clear.
+    tf.opacity = {{-1024, 0.0f}, {150, 0.0f},   {300, 0.15f},
+                  {700, 0.55f},  {1500, 0.85f}, {3071, 0.9f}};
+    tf.color = {{150, {0.55f, 0.25f, 0.15f}},
+                {300, {0.85f, 0.70f, 0.50f}},
+                {700, {0.95f, 0.90f, 0.80f}},
+                {1500, {1.0f, 1.0f, 0.97f}}};
+  } else if (n == "ct-skin") {
+    // The skin surface: an opaque boundary where air turns into tissue (about -500 HU).
+    tf.opacity = {{-1024, 0.0f}, {-600, 0.0f}, {-400, 0.6f}, {3071, 0.6f}};
+    tf.color = {{-600, {0.75f, 0.50f, 0.40f}},
+                {-200, {0.93f, 0.72f, 0.60f}},
+                {200, {0.95f, 0.80f, 0.70f}},
+                {600, {1.0f, 1.0f, 0.95f}}};
+  } else if (n == "ct-soft-tissue") {
+    // Fat faint yellow, muscle and organs translucent red, bone opaque ivory.
+    tf.opacity = {{-1024, 0.0f}, {-150, 0.0f}, {-60, 0.03f}, {40, 0.12f},
+                  {120, 0.05f},  {250, 0.05f}, {400, 0.6f},  {3071, 0.8f}};
+    tf.color = {{-150, {0.90f, 0.80f, 0.45f}},
+                {-60, {0.90f, 0.80f, 0.45f}},
+                {40, {0.80f, 0.30f, 0.25f}},
+                {120, {0.90f, 0.50f, 0.40f}},
+                {400, {1.0f, 0.95f, 0.85f}}};
+  } else if (n == "ct-vessels") {
+    // CT angiography: contrast-filled vessels (about 200..500 HU) red, bone dim for context.
+    tf.opacity = {{-1024, 0.0f}, {100, 0.0f},  {180, 0.3f}, {350, 0.6f},
+                  {500, 0.45f},  {800, 0.15f}, {3071, 0.2f}};
+    tf.color = {{100, {0.50f, 0.05f, 0.05f}},
+                {200, {0.85f, 0.15f, 0.10f}},
+                {350, {1.0f, 0.35f, 0.25f}},
+                {600, {1.0f, 0.90f, 0.80f}},
+                {3071, {1.0f, 1.0f, 1.0f}}};
+  } else if (n == "mr-tissue") {
+    // T1/T2 anatomy: the dark background and noise clear, brighter tissue increasingly opaque.
+    tf.space = TfSpace::Normalized;
+    tf.opacity = {{0.0, 0.0f}, {0.08, 0.0f}, {0.2, 0.05f}, {0.5, 0.3f}, {1.0, 0.6f}};
+    tf.color = {
+        {0.08, {0.30f, 0.20f, 0.15f}}, {0.4, {0.80f, 0.60f, 0.50f}}, {1.0, {1.0f, 0.95f, 0.90f}}};
+  } else if (n == "mr-vessels") {
+    // MR angiography (time of flight, contrast): vessels are the brightest third of the range.
+    tf.space = TfSpace::Normalized;
+    tf.opacity = {{0.0, 0.0f}, {0.35, 0.0f}, {0.6, 0.4f}, {1.0, 0.9f}};
+    tf.color = {
+        {0.35, {0.60f, 0.10f, 0.10f}}, {0.6, {1.0f, 0.30f, 0.20f}}, {1.0, {1.0f, 0.90f, 0.80f}}};
+  } else {
+    return std::nullopt;
+  }
+  return tf;
+}
+
+std::vector<std::string> transferFunctionPresetNames() {
+  return {"ct-bone", "ct-skin", "ct-soft-tissue", "ct-vessels", "mr-tissue", "mr-vessels"};
+}
+
+}  // namespace mfadvr
