@@ -31,6 +31,7 @@
 
 #include "core/util/Error.h"
 #include "core/util/PointList.h"
+#include "io/DeclaredSizeCheck.h"
 #include "io/InputFile.h"
 #include "io/VtkDataConversion.h"
 #include "io/VtkSupport.h"
@@ -92,6 +93,10 @@ MeshFormat meshFormat(const std::string& ext) {
 vtkSmartPointer<vtkDataSet> readMesh(const std::string& path, const std::string& ext) {
   const MeshFormat format = meshFormat(ext);
   vtkSmartPointer<vtkAlgorithm> reader;
+  if (ext == ".vtu" || ext == ".vts" || ext == ".vtp")
+    checkXmlVtkDeclaredSize(path);
+  else
+    checkLegacyVtkDeclaredSize(path);
   if (ext == ".vtu") {
     auto r = vtkSmartPointer<vtkXMLUnstructuredGridReader>::New();
     r->SetFileName(path.c_str());

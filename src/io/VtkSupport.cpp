@@ -1,5 +1,6 @@
 #include "io/VtkSupport.h"
 
+#include <cctype>
 #include <iostream>
 #include <mutex>
 #include <regex>
@@ -20,6 +21,18 @@
 namespace mfadvr {
 namespace {
 
+// Whether a message (a VTK warning, or text MetaIO writes to std::cerr) says that data could
+// not be read: such reads leave zeros where the data should be.
+bool reportsUnreadData(const std::string& text) {
+  std::string lower = text;
+  for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  for (const char* sign :
+       {"error reading", "not read completely", "unexpected end", "premature", "truncated",
+        "cannot read", "unable to read", "could not read", "failed to read", "read error"})
+    if (lower.find(sign) != std::string::npos) return true;
+  return false;
+}
+
 // Keeps the text of VTK's error messages so that it ends up in an mfadvr::Error instead of on
 // the user's terminal.
 class CollectingOutputWindow : public vtkOutputWindow {
@@ -29,9 +42,12 @@ class CollectingOutputWindow : public vtkOutputWindow {
 
   void DisplayText(const char* text) override {
     if (!text) return;
-    // Warnings (e.g. NRRD fields VTK ignores) do not stop a read; dropping them keeps the
-    // terminal quiet.
-    if (GetCurrentMessageType() == MESSAGE_TYPE_ERROR) addCleaned(errors, text);
+    // Most warnings (e.g. NRRD fields VTK ignores) do not stop a read and are dropped, which
+    // keeps the terminal quiet. But VTK's readers also report data they could not read as a
+    // warning (the legacy reader's "Error reading binary data!" on a truncated file) and then
+    // return zeros: those are errors here.
+    const MessageTypes type = GetCurrentMessageType();
+    if (type == MESSAGE_TYPE_ERROR || reportsUnreadData(text)) addCleaned(errors, text);
   }
 
   std::vector<std::string> errors;
@@ -101,7 +117,7 @@ VtkMessageCapture::~VtkMessageCapture() {
 }
 
 bool VtkMessageCapture::hasErrors() const {
-  return !state_->window->errors.empty();
+  return !state_->window->errors.empty() || reportsUnreadData(state_->cerrText.str());
 }
 
 std::string VtkMessageCapture::errorText() const {

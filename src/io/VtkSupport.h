@@ -13,7 +13,8 @@ namespace mfadvr {
 // VTK readers report failure by printing, not by throwing. While one of these lives, VTK's
 // error messages (and std::cerr, which MetaIO writes to directly) are collected instead of
 // printed, with VTK's source-location lines and object addresses removed; warnings are
-// dropped. VTK's output window and logger are process-wide, so captures (and the reads inside
+// dropped, except those that say data could not be read (a truncated legacy file), which
+// count as errors, as does MetaIO's "data not read completely". VTK's output window and logger are process-wide, so captures (and the reads inside
 // them) are serialised.
 class VtkMessageCapture {
  public:

@@ -30,6 +30,7 @@
 
 #include "core/grid/GridOrientation.h"
 #include "core/util/Error.h"
+#include "io/DeclaredSizeCheck.h"
 #include "io/VtkDataConversion.h"
 #include "io/VtkSupport.h"
 
@@ -148,8 +149,7 @@ void requireDicomFiles(const std::string& dir) {
   }
   if (ec) throw Error("cannot read " + dir + " as a DICOM series: " + ec.message());
   if (dicom == 0) {
-    throw Error("cannot read " + dir + " as a DICOM series: none of its " +
-                std::to_string(files) +
+    throw Error("cannot read " + dir + " as a DICOM series: none of its " + std::to_string(files) +
                 " files is a DICOM file ('DICM' after a 128-byte preamble); a volume input "
                 "that is a directory must hold the slices of one DICOM series");
   }
@@ -160,12 +160,14 @@ vtkSmartPointer<vtkImageData> runReader(const std::string& path, VtkVolumeFormat
                                         vtkSmartPointer<vtkAlgorithm>& reader) {
   switch (format) {
     case VtkVolumeFormat::kNrrd: {
+      checkNrrdDeclaredSize(path);
       auto r = vtkSmartPointer<vtkNrrdReader>::New();
       r->SetFileName(path.c_str());
       reader = r;
       break;
     }
     case VtkVolumeFormat::kXmlImageData: {
+      checkXmlVtkDeclaredSize(path);
       auto r = vtkSmartPointer<vtkXMLImageDataReader>::New();
       r->SetFileName(path.c_str());
       reader = r;
@@ -173,6 +175,7 @@ vtkSmartPointer<vtkImageData> runReader(const std::string& path, VtkVolumeFormat
     }
     case VtkVolumeFormat::kLegacyStructuredPoints: {
       requireStructuredPoints(path, capture);
+      checkLegacyVtkDeclaredSize(path);
       auto r = vtkSmartPointer<vtkStructuredPointsReader>::New();
       r->SetFileName(path.c_str());
       readAllLegacyArrays(r);
@@ -181,12 +184,14 @@ vtkSmartPointer<vtkImageData> runReader(const std::string& path, VtkVolumeFormat
     }
     case VtkVolumeFormat::kMetaImage: {
       requireMetaImageDataFile(path);
+      checkMetaImageDeclaredSize(path);
       auto r = vtkSmartPointer<vtkMetaImageReader>::New();
       r->SetFileName(path.c_str());
       reader = r;
       break;
     }
     case VtkVolumeFormat::kNifti: {
+      checkNiftiDeclaredSize(path);
       auto r = vtkSmartPointer<vtkNIFTIImageReader>::New();
       r->SetFileName(path.c_str());
       reader = r;

@@ -481,12 +481,15 @@ TEST(ScatteredLoader, CsvWithHeader) {
 
 TEST(ScatteredLoader, TextWithoutHeader) {
   const auto dir = test::scratchDir();
-  const auto txt = writeFile(dir / "p.txt", "0 0 0 1\n1\t0 0 2\r\n0 1 0 3\n0 0 1 4");
+  const auto txt = writeFile(dir / "p.txt", "0 0 0 1\n1\t0 0 2\r\n0 1 0 3\n0 0 1 4\n");
   const ScatteredData d = loadScatteredData(txt);
   EXPECT_EQ(d.fieldName, "value");
   EXPECT_EQ(d.values, (std::vector<double>{1, 2, 3, 4}));
   const auto xyz = writeFile(dir / "p.xyz", "x y z\n0 0 0 1\n1 0 0 2\n0 1 0 3\n0 0 1 4\n");
   EXPECT_EQ(loadScatteredData(xyz).fieldName, "value");  // a header of three names
+  // A last line without its line break may be cut off ("0 0 1 4" from "0 0 1 45.5").
+  const auto cut = writeFile(dir / "cut.txt", "0 0 0 1\n1 0 0 2\n0 1 0 3\n0 0 1 4");
+  test::expectError([&] { loadScatteredData(cut); }, {cut, "line 4", "line break"});
 }
 
 TEST(ScatteredLoader, TextErrorsNameTheLine) {

@@ -39,6 +39,9 @@ struct TableShape {
   const char* expected;   // "three numbers 'x y z'"
   const char* notFinite;  // "coordinates must be finite"
   const char* empty;      // "no points"
+  // Data to encode: a last line without its line break is taken for a cut-off file (a text
+  // list declares no count, so this is the one sign of truncation it can give).
+  bool requireFinalLineBreak = false;
 };
 
 struct Table {
@@ -81,6 +84,11 @@ Table parseTable(std::string_view text, std::string_view name, const TableShape&
     table.numbers.insert(table.numbers.end(), row.begin(), row.end());
   }
   if (table.numbers.empty()) throw Error(std::string(name) + ": " + shape.empty);
+  if (shape.requireFinalLineBreak && !text.empty() && text.back() != '\n') {
+    throw Error(std::string(name) + " line " + std::to_string(lineNo) +
+                ": the last line does not end with a line break, so the file may be cut off "
+                "inside it; if the file is complete, end it with a line break");
+  }
   return table;
 }
 
@@ -99,7 +107,8 @@ std::vector<Vec3d> parsePointList(std::string_view text, std::string_view name) 
 ScatteredData parsePointValueList(std::string_view text, std::string_view name) {
   const Table t = parseTable(text, name,
                              {4, "four numbers 'x y z value'",
-                              "coordinates and values must be finite", "no points with values"});
+                              "coordinates and values must be finite", "no points with values",
+                              true});
   ScatteredData data;
   const size_t n = t.numbers.size() / 4;
   data.points.reserve(n);

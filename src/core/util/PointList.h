@@ -17,7 +17,8 @@ std::vector<Vec3d> parsePointList(std::string_view text, std::string_view name =
 // Scattered values: four columns "x y z v" per line (CSV or whitespace). A header with four
 // names gives the field its name (the fourth); otherwise the field is called "value". Returns
 // a point cloud (no cells) with source = `name`, fieldAssociation "point data", sampleType
-// "text" and inputBytes 8 per value; it is not validated (the caller does that).
+// "text" and inputBytes 8 per value; it is not validated (the caller does that). The text must
+// end with a line break: a last line without one is taken for a cut-off file (an error).
 ScatteredData parsePointValueList(std::string_view text, std::string_view name = "points");
 
 }  // namespace mfadvr

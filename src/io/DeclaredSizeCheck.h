@@ -1,0 +1,61 @@
+#pragma once
+// Checks that a file holds the data its header declares, before any reader allocates for it.
+//
+// VTK's readers trust headers: a truncated file is read with zeros where the data is missing,
+// and a header that declares 100000^3 samples makes them try to allocate it. Each check here
+// reads only the header (a few KB; for gzip files, the start of the stream), computes how many
+// bytes the declared samples need in the declared encoding, and compares that with what the
+// file (or its detached data file) holds after the header:
+//   - uncompressed binary data: exactly enough bytes (more is allowed: trailing data);
+//   - ASCII data: at least 2 bytes per value (a digit and a separator);
+//   - compressed data: at most 1032 bytes per compressed byte (the deflate limit).
+// A mismatch throws mfadvr::Error naming the file, what the header declares and what the file
+// holds. Headers the check cannot interpret (exotic encodings, file lists) are left to the
+// reader, which reports its own errors.
+#include <cstdint>
+#include <functional>
+#include <string>
+
+namespace mfadvr {
+
+// NRRD, attached (.nrrd) or detached (.nhdr + data file): sizes, type, encoding.
+void checkNrrdDeclaredSize(const std::string& path);
+
+// MetaImage (.mha, or .mhd + data file): DimSize, ElementType, channels, compression; also
+// that a detached data file exists.
+void checkMetaImageDeclaredSize(const std::string& path);
+
+// Legacy VTK: DIMENSIONS / POINT_DATA and the first SCALARS block of structured points, or the
+// POINTS block of other datasets.
+void checkLegacyVtkDeclaredSize(const std::string& path);
+
+// VTK XML (.vti, .vtu, .vts, .vtp, .vtr): that the file ends with </VTKFile> (a cut file does
+// not), and that WholeExtent / NumberOfPoints / NumberOfCells are possible for its size.
+void checkXmlVtkDeclaredSize(const std::string& path);
+
+// NIfTI-1 / NIfTI-2 (.nii, .nii.gz, .hdr + .img): dim, bitpix, vox_offset.
+void checkNiftiDeclaredSize(const std::string& path);
+
+// The same checks on a header already in memory (the fuzzers' entry points): `fileBytes` is
+// the size of the whole file; `dataFileBytes` gives the size of a detached data file named in
+// the header (relative names are relative to the header's folder), or -1 when it is missing.
+using DataFileSize = std::function<std::int64_t(const std::string& name)>;
+// For ASCII NRRD data, where the values are (their count is checked by reading them).
+struct NrrdAsciiData {
+  std::string dataFile;     // empty: the header's own file
+  std::int64_t offset = 0;  // of the data in that file
+  std::int64_t values = 0;  // declared; 0: not ASCII (nothing more to check)
+  std::string declared;     // "40 x 40 x 40 uint8 samples"
+};
+NrrdAsciiData checkNrrdHeaderText(const std::string& header, const std::string& path,
+                                  std::int64_t fileBytes, const DataFileSize& dataFileBytes);
+void checkMetaImageHeaderText(const std::string& header, const std::string& path,
+                              std::int64_t fileBytes, const DataFileSize& dataFileBytes);
+void checkLegacyVtkHeaderText(const std::string& header, const std::string& path,
+                              std::int64_t fileBytes);
+void checkXmlVtkText(const std::string& head, const std::string& tail, const std::string& path,
+                     std::int64_t fileBytes);
+void checkNiftiHeaderBytes(const std::string& header, const std::string& path,
+                           std::int64_t fileBytes, bool compressed);
+
+}  // namespace mfadvr
