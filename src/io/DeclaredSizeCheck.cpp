@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cctype>
 #include <charconv>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -106,6 +107,64 @@ std::string readTail(const std::string& path, std::int64_t size, size_t bytes) {
   return out;
 }
 
+// Whether the gzip data of `path` from byte `offset` on is complete and inflates to at least
+// `expected` bytes. The last 4 bytes of a gzip stream hold the uncompressed size (mod 2^32):
+// when they match, the stream ends where it should (the common, cheap case). Otherwise, e.g.
+// for several concatenated gzip members, the data is inflated to find out; zlib checks each
+// member's CRC on the way.
+void requireCompleteGzip(const std::string& path, const std::string& format,
+                         const std::string& file, std::int64_t offset, std::int64_t expected) {
+  const std::int64_t size = fileSize(file);
+  if (size < 0) return;
+  if (size - offset >= 18) {
+    const std::string tail = readTail(file, size, 4);
+    const std::uint32_t isize =
+        std::uint32_t(std::uint8_t(tail[0])) | std::uint32_t(std::uint8_t(tail[1])) << 8 |
+        std::uint32_t(std::uint8_t(tail[2])) << 16 | std::uint32_t(std::uint8_t(tail[3])) << 24;
+    if (isize == static_cast<std::uint32_t>(expected)) return;
+  }
+  std::ifstream in(file, std::ios::binary);
+  in.seekg(offset);
+  z_stream z{};
+  if (inflateInit2(&z, 15 + 32) != Z_OK) return;  // gzip or zlib header
+  std::vector<char> input(1 << 16);
+  std::vector<unsigned char> output(1 << 16);
+  const auto refill = [&] {
+    in.read(input.data(), static_cast<std::streamsize>(input.size()));
+    z.next_in = reinterpret_cast<Bytef*>(input.data());
+    z.avail_in = static_cast<uInt>(in.gcount());
+  };
+  std::int64_t total = 0;
+  int status = Z_OK;
+  for (;;) {
+    if (z.avail_in == 0) refill();
+    if (z.avail_in == 0) break;  // out of input before the stream's end: cut off
+    z.next_out = output.data();
+    z.avail_out = static_cast<uInt>(output.size());
+    status = inflate(&z, Z_NO_FLUSH);
+    total += static_cast<std::int64_t>(output.size() - z.avail_out);
+    if (status == Z_STREAM_END) {
+      if (z.avail_in == 0) refill();
+      if (z.avail_in == 0) break;  // the clean end
+      inflateReset(&z);            // another gzip member follows
+      status = Z_OK;
+    } else if (status != Z_OK && status != Z_BUF_ERROR) {
+      break;
+    }
+  }
+  const std::string message = z.msg ? z.msg : "the stream ends early";
+  inflateEnd(&z);
+  if (status != Z_STREAM_END) {
+    throw Error("cannot read " + path + " as " + format +
+                ": its gzip data is cut off or corrupt (" + message + " after " + grouped(total) +
+                " bytes)");
+  }
+  if (total < expected) {
+    throw Error("cannot read " + path + " as " + format + ": its gzip data inflates to " +
+                grouped(total) + " bytes, but the header declares " + grouped(expected));
+  }
+}
+
 DataFileSize dataFilesBeside(const std::string& path) {
   return [dir = fs::path(path).parent_path()](const std::string& name) {
     const fs::path p(name);
@@ -113,7 +172,9 @@ DataFileSize dataFilesBeside(const std::string& path) {
   };
 }
 
-enum class Encoding { Binary, Ascii, Hex, Deflate, Unknown };
+// Binary: at least the declared bytes (more data may follow); ExactBinary: exactly them (a
+// header then its raw data, nothing else: a different size means a wrong header).
+enum class Encoding { Binary, ExactBinary, Ascii, Hex, Deflate, Unknown };
 
 // What the declared samples need, against what the file holds: throws when they cannot fit.
 void requireData(const std::string& path, const std::string& format, const std::string& declared,
@@ -126,6 +187,10 @@ void requireData(const std::string& path, const std::string& format, const std::
   switch (encoding) {
     case Encoding::Binary:
       fits = bytes <= available;
+      need = grouped(bytes) + " bytes";
+      break;
+    case Encoding::ExactBinary:
+      fits = bytes == available;
       need = grouped(bytes) + " bytes";
       break;
     case Encoding::Hex:
@@ -147,9 +212,11 @@ void requireData(const std::string& path, const std::string& format, const std::
       return;
   }
   if (fits) return;
-  throw Error(path + ": the " + format + " header declares " + declared + " (" + need + "), but " +
-              where + " holds only " + grouped(available) +
-              " bytes; the file is truncated or its header is wrong");
+  throw Error("cannot read " + path + " as " + format + ": the header declares " + declared + " (" +
+              need + "), but " + where + " holds " + (available < bytes ? "only " : "") +
+              grouped(available) + " bytes; the file is " +
+              (available < bytes ? "truncated" : "longer than declared") +
+              " or its header is wrong");
 }
 
 // ---- NRRD -------------------------------------------------------------------------------------
@@ -202,16 +269,26 @@ std::int64_t nrrdTypeBytes(const std::string& type) {
 
 }  // namespace
 
-NrrdAsciiData checkNrrdHeaderText(const std::string& header, const std::string& path,
-                                  std::int64_t fileBytes, const DataFileSize& dataFileBytes) {
-  if (header.rfind("NRRD", 0) != 0) return {};  // the reader says what is wrong
+NrrdDataLocation checkNrrdHeaderText(const std::string& header, const std::string& path,
+                                     std::int64_t fileBytes, const DataFileSize& dataFileBytes) {
+  // VTK's reader loops forever on a magic line without its line break and crashes on headers
+  // without the basic fields, so the header is checked here in full before it runs.
+  const auto fail = [&](const std::string& why) {
+    throw Error("cannot read " + path + " as NRRD: " + why);
+  };
+  const auto firstBreak = header.find('\n');
+  if (header.compare(0, 7, "NRRD000") != 0 || header.size() < 9 || header[7] < '1' ||
+      header[7] > '5' || firstBreak == std::string::npos ||
+      trim(header.substr(0, firstBreak)).size() != 8)
+    fail("the first line is not a NRRD magic line (NRRD0001 .. NRRD0005, then a line break)");
   std::istringstream in(header);
   std::string line;
   std::getline(in, line);
   std::int64_t headerBytes = static_cast<std::int64_t>(line.size()) + 1;
   bool ended = false;
-  std::string type, encoding = "raw", dataFile;
+  std::string type, encoding, dataFile, dimension;
   std::vector<std::int64_t> sizes;
+  bool sizesGiven = false;
   std::int64_t byteSkip = 0;
   bool skipped = false;
   while (std::getline(in, line)) {
@@ -222,12 +299,15 @@ NrrdAsciiData checkNrrdHeaderText(const std::string& header, const std::string& 
     }
     if (line[0] == '#') continue;
     const auto colon = line.find(": ");
-    if (colon == std::string::npos) continue;  // key:=value pairs and oddities
+    if (colon == std::string::npos) continue;  // key:=value pairs
     const std::string key = lower(trim(line.substr(0, colon)));
     const std::string value = trim(line.substr(colon + 2));
     if (key == "type") {
       type = lower(value);
+    } else if (key == "dimension") {
+      dimension = value;
     } else if (key == "sizes") {
+      sizesGiven = true;
       sizes.clear();
       for (const auto& w : words(value)) sizes.push_back(parseCount(w));
     } else if (key == "encoding") {
@@ -235,22 +315,38 @@ NrrdAsciiData checkNrrdHeaderText(const std::string& header, const std::string& 
     } else if (key == "data file" || key == "datafile") {
       dataFile = value;
     } else if (key == "byte skip" || key == "byteskip") {
-      byteSkip = parseCount(value);
+      byteSkip = value == "-1" ? -1 : parseCount(value);
+      if (byteSkip < -1) fail("byte skip '" + value + "' is not a count (or -1)");
       skipped = true;
     } else if (key == "line skip" || key == "lineskip") {
+      if (parseCount(value) < 0) fail("line skip '" + value + "' is not a count");
       skipped = true;
     }
   }
+  std::string missing;
+  for (const auto& [name, value] :
+       {std::pair{"type", type}, {"dimension", dimension}, {"encoding", encoding}})
+    if (value.empty()) missing += std::string(missing.empty() ? "" : ", ") + name;
+  if (!sizesGiven) missing += std::string(missing.empty() ? "" : ", ") + "sizes";
+  if (!missing.empty()) fail("the header lacks the required field(s) " + missing);
   const std::int64_t typeBytes = nrrdTypeBytes(type);
-  if (sizes.empty() || typeBytes == 0) return {};
-  if (std::any_of(sizes.begin(), sizes.end(), [](std::int64_t s) { return s < 0; })) return {};
+  if (typeBytes == 0) fail("type '" + type + "' is not a scalar type VTK's NRRD reader reads");
+  const std::int64_t dims = parseCount(dimension);
+  if (dims < 1 || dims > 16) fail("dimension '" + dimension + "' is not between 1 and 16");
+  if (static_cast<std::int64_t>(sizes.size()) != dims ||
+      std::any_of(sizes.begin(), sizes.end(), [](std::int64_t v) { return v < 1; }))
+    fail("sizes must be " + std::to_string(dims) + " positive integers (dimension: " + dimension +
+         ")");
   Encoding enc = Encoding::Unknown;
-  if (encoding == "raw") enc = Encoding::Binary;
+  if (encoding == "raw") enc = Encoding::ExactBinary;
   if (encoding == "gzip" || encoding == "gz") enc = Encoding::Deflate;
   if (encoding == "ascii" || encoding == "txt" || encoding == "text") enc = Encoding::Ascii;
-  if (encoding == "hex") enc = Encoding::Hex;
+  if (enc == Encoding::Unknown)
+    fail("encoding '" + encoding + "' is not one VTK's NRRD reader reads (raw, gzip, ascii)");
+  if (!ended && dataFile.empty())
+    fail("the header does not end with the blank line that separates it from the data");
   // Skips make the data start somewhere the header does not say exactly (-1: at the end).
-  if (skipped && (byteSkip < 0 || enc != Encoding::Binary)) return {};
+  if (skipped && (byteSkip < 0 || enc != Encoding::ExactBinary)) return {};
 
   std::int64_t available = -1;
   std::string where;
@@ -259,19 +355,21 @@ NrrdAsciiData checkNrrdHeaderText(const std::string& header, const std::string& 
     if (dataFile.rfind("LIST", 0) == 0 || dataFile.find(' ') != std::string::npos) return {};
     const std::int64_t size = dataFileBytes(dataFile);
     if (size < 0)
-      throw Error("cannot read " + path + " as NRRD: its data file '" + dataFile +
-                  "' (\"data file:\" in the header) does not exist");
+      fail("its data file '" + dataFile + "' (\"data file:\" in the header) does not exist");
     available = size - byteSkip;
     where = "its data file '" + dataFile + "'";
   } else {
-    if (!ended) return {};  // the reader reports a header without data
     available = fileBytes - headerBytes - byteSkip;
     where = "the file after its header";
   }
   requireData(path, "NRRD", dimsText(sizes) + " " + type + " samples in " + encoding + " encoding",
               product(sizes), typeBytes, enc, std::max<std::int64_t>(0, available), where);
-  if (enc != Encoding::Ascii) return {};
-  return {dataFile, dataFile.empty() ? headerBytes : 0, product(sizes),
+  if (enc != Encoding::Ascii && enc != Encoding::Deflate) return {};
+  return {dataFile,
+          dataFile.empty() ? headerBytes : 0,
+          product(sizes),
+          times(product(sizes), typeBytes),
+          enc == Encoding::Deflate,
           dimsText(sizes) + " " + type + " samples"};
 }
 
@@ -301,19 +399,33 @@ std::int64_t countValues(const std::string& path, std::int64_t offset, std::int6
 }  // namespace
 
 void checkNrrdDeclaredSize(const std::string& path) {
-  const NrrdAsciiData ascii = checkNrrdHeaderText(readHead(path, kMaxHeaderBytes), path,
-                                                  fileSize(path), dataFilesBeside(path));
-  if (ascii.values <= 0) return;
-  // VTK's reader fills values missing from ASCII data with zeros: count them first.
-  fs::path data(path);
-  if (!ascii.dataFile.empty()) {
-    data = fs::path(ascii.dataFile);
-    if (!data.is_absolute()) data = fs::path(path).parent_path() / data;
+  const NrrdDataLocation data = checkNrrdHeaderText(readHead(path, kMaxHeaderBytes), path,
+                                                    fileSize(path), dataFilesBeside(path));
+  if (data.values <= 0) return;
+  fs::path file(path);
+  if (!data.dataFile.empty()) {
+    file = fs::path(data.dataFile);
+    if (!file.is_absolute()) file = fs::path(path).parent_path() / file;
   }
-  const std::int64_t found = countValues(data.string(), ascii.offset, ascii.values);
-  if (found < ascii.values) {
-    throw Error("cannot read " + path + " as NRRD: the header declares " + ascii.declared + " (" +
-                grouped(ascii.values) + " values in ascii encoding), but the data holds " +
+  if (data.gzip) {
+    // VTK's reader stops at the end of the deflate data and never looks at the gzip trailer.
+    requireCompleteGzip(path, "NRRD", file.string(), data.offset, data.bytes);
+    return;
+  }
+  // VTK's reader fills values missing from ASCII data with zeros: count them first. A cut
+  // inside the last value leaves the count right, so the data must also end with white space
+  // (every writer ends it with a line break).
+  const std::int64_t size = fileSize(file.string());
+  const std::string last = size > 0 ? readTail(file.string(), size, 1) : std::string();
+  if (last.empty() || !std::isspace(static_cast<unsigned char>(last[0]))) {
+    throw Error("cannot read " + path +
+                " as NRRD: its ascii data does not end with a line break, so it may be cut off "
+                "inside its last value; if the file is complete, end it with a line break");
+  }
+  const std::int64_t found = countValues(file.string(), data.offset, data.values);
+  if (found < data.values) {
+    throw Error("cannot read " + path + " as NRRD: the header declares " + data.declared + " (" +
+                grouped(data.values) + " values in ascii encoding), but the data holds " +
                 grouped(found) + "; the file is truncated or its header is wrong");
   }
 }
@@ -388,7 +500,9 @@ void checkMetaImageHeaderText(const std::string& header, const std::string& path
     available = size - headerSize;
     where = "its data file '" + dataFile + "'";
   }
-  const Encoding enc = compressed ? Encoding::Deflate : binary ? Encoding::Binary : Encoding::Ascii;
+  const Encoding enc = compressed ? Encoding::Deflate
+                       : binary   ? Encoding::ExactBinary
+                                  : Encoding::Ascii;
   requireData(path, "MetaImage",
               dimsText(dims) + " " + type + " samples" +
                   (channels > 1 ? " of " + std::to_string(channels) + " channels" : "") +
@@ -556,9 +670,9 @@ T readAt(const std::string& bytes, size_t at, bool swap) {
 
 }  // namespace
 
-void checkNiftiHeaderBytes(const std::string& header, const std::string& path,
-                           std::int64_t fileBytes, bool compressed) {
-  if (header.size() < 348) return;  // the reader reports short headers
+std::int64_t checkNiftiHeaderBytes(const std::string& header, const std::string& path,
+                                   std::int64_t fileBytes, bool compressed) {
+  if (header.size() < 348) return -1;  // the reader reports short headers
   bool swap = false;
   int version = 0;
   for (bool s : {false, true}) {
@@ -570,30 +684,31 @@ void checkNiftiHeaderBytes(const std::string& header, const std::string& path,
       break;
     }
   }
-  if (version == 0 || (version == 2 && header.size() < 540)) return;
+  if (version == 0 || (version == 2 && header.size() < 540)) return -1;
   std::vector<std::int64_t> dims;
   std::int64_t bitpix = 0, voxOffset = 0;
   if (version == 1) {
     const int n = readAt<std::int16_t>(header, 40, swap);
-    for (int d = 1; d <= std::min(n, 3); ++d)
+    for (int d = 1; d <= std::min(n, 7); ++d)
       dims.push_back(readAt<std::int16_t>(header, 40 + 2 * d, swap));
     bitpix = readAt<std::int16_t>(header, 72, swap);
     const float offset = readAt<float>(header, 108, swap);
     voxOffset = offset >= 0.0f && offset < 1e12f ? static_cast<std::int64_t>(offset) : 0;
   } else {
     const std::int64_t n = readAt<std::int64_t>(header, 16, swap);
-    for (std::int64_t d = 1; d <= std::min<std::int64_t>(n, 3); ++d)
+    for (std::int64_t d = 1; d <= std::min<std::int64_t>(n, 7); ++d)
       dims.push_back(readAt<std::int64_t>(header, 16 + 8 * static_cast<size_t>(d), swap));
     bitpix = readAt<std::int16_t>(header, 14, swap);
     voxOffset = std::max<std::int64_t>(0, readAt<std::int64_t>(header, 168, swap));
   }
-  if (dims.empty() || bitpix <= 0 || bitpix % 8 != 0) return;
-  if (std::any_of(dims.begin(), dims.end(), [](std::int64_t d) { return d <= 0; })) return;
+  if (dims.empty() || bitpix <= 0 || bitpix % 8 != 0) return -1;
+  if (std::any_of(dims.begin(), dims.end(), [](std::int64_t d) { return d <= 0; })) return -1;
   // For a .hdr/.img pair, fileBytes is the .img's size (vox_offset is an offset into it).
   requireData(path, "NIfTI", dimsText(dims) + " samples of " + std::to_string(bitpix) + " bits",
               product(dims), bitpix / 8, compressed ? Encoding::Deflate : Encoding::Binary,
               fileBytes - (compressed ? 0 : voxOffset),
               compressed ? "the compressed file" : "the file after vox_offset");
+  return voxOffset + times(product(dims), bitpix / 8);
 }
 
 void checkNiftiDeclaredSize(const std::string& path) {
@@ -627,7 +742,148 @@ void checkNiftiDeclaredSize(const std::string& path) {
     checkNiftiHeaderBytes(header, img.string(), size, false);
     return;
   }
-  checkNiftiHeaderBytes(header, path, size, gz);
+  const std::int64_t expected = checkNiftiHeaderBytes(header, path, size, gz);
+  // VTK's reader stops at the end of the deflate data and never looks at the gzip trailer.
+  if (gz && expected > 0) requireCompleteGzip(path, "NIfTI", path, 0, expected);
+}
+
+// ---- DICOM ------------------------------------------------------------------------------------
+
+namespace {
+
+// The elements of one DICOM Part-10 file, walked without reading the pixel data.
+struct DicomWalk {
+  std::int64_t rows = -1, columns = -1, bitsAllocated = -1, samplesPerPixel = 1;
+  std::int64_t pixelBytes = -1;  // length of (7FE0,0010); -1: not reached
+  std::string problem;           // why the walk stopped early ("" when it did not)
+};
+
+DicomWalk walkDicom(std::istream& in, std::int64_t size) {
+  DicomWalk w;
+  std::int64_t pos = 132;
+  bool explicitVr = true, littleEndian = true, inMeta = true;
+  auto readBytes = [&](std::int64_t at, size_t n, unsigned char* out) {
+    in.clear();
+    in.seekg(at);
+    in.read(reinterpret_cast<char*>(out), static_cast<std::streamsize>(n));
+    return static_cast<size_t>(in.gcount()) == n;
+  };
+  bool le = true;  // of the element being read: the meta group is always little endian
+  auto u16 = [&](const unsigned char* b) {
+    return le ? std::uint32_t(b[0] | b[1] << 8) : std::uint32_t(b[1] | b[0] << 8);
+  };
+  auto u32 = [&](const unsigned char* b) {
+    return le ? std::uint32_t(b[0]) | std::uint32_t(b[1]) << 8 | std::uint32_t(b[2]) << 16 |
+                    std::uint32_t(b[3]) << 24
+              : std::uint32_t(b[3]) | std::uint32_t(b[2]) << 8 | std::uint32_t(b[1]) << 16 |
+                    std::uint32_t(b[0]) << 24;
+  };
+  for (int guard = 0; pos < size && guard < 100000; ++guard) {
+    unsigned char tag[12];
+    if (pos + 8 > size || !readBytes(pos, 8, tag)) {
+      w.problem = "an element header is cut off at byte " + grouped(pos);
+      return w;
+    }
+    le = inMeta || littleEndian;
+    const std::uint32_t group = u16(tag);
+    if (inMeta && group != 0x0002) {
+      inMeta = false;
+      continue;  // read this element again, with the data set's encoding
+    }
+    const std::uint32_t element = u16(tag + 2);
+    std::int64_t length = 0, header = 8;
+    const bool explicitHere = inMeta || explicitVr;
+    if (explicitHere && std::isupper(tag[4]) && std::isupper(tag[5])) {
+      const std::string vr(reinterpret_cast<char*>(tag + 4), 2);
+      static const char* kLong[] = {"OB", "OW", "OF", "SQ", "UT", "UN", "OD",
+                                    "OL", "UC", "UR", "OV", "SV", "UV"};
+      if (std::any_of(std::begin(kLong), std::end(kLong), [&](const char* v) { return vr == v; })) {
+        if (!readBytes(pos, 12, tag)) {
+          w.problem = "an element header is cut off at byte " + grouped(pos);
+          return w;
+        }
+        length = u32(tag + 8);
+        header = 12;
+      } else {
+        length = u16(tag + 6);
+      }
+    } else {
+      length = u32(tag + 4);
+    }
+    if (length == 0xFFFFFFFFll) return w;  // undefined length (sequences, encapsulated data)
+    const std::int64_t valueAt = pos + header;
+    if (group == 0x7FE0 && element == 0x0010) {
+      w.pixelBytes = length;
+      if (valueAt + length > size)
+        w.problem = "its pixel data declares " + grouped(length) + " bytes, but " +
+                    grouped(std::max<std::int64_t>(0, size - valueAt)) + " follow";
+      return w;
+    }
+    if (valueAt + length > size) {
+      char name[16];
+      std::snprintf(name, sizeof name, "(%04X,%04X)", group, element);
+      w.problem = std::string("element ") + name + " declares " + grouped(length) +
+                  " bytes, past the end of the file";
+      return w;
+    }
+    unsigned char value[64] = {};
+    const size_t small = static_cast<size_t>(std::min<std::int64_t>(length, 64));
+    if (small > 0 && !readBytes(valueAt, small, value)) return w;
+    if (group == 0x0002 && element == 0x0010) {
+      std::string ts(reinterpret_cast<char*>(value), small);
+      ts = ts.substr(0, ts.find_first_of(std::string("\0 ", 2)));
+      explicitVr = ts != "1.2.840.10008.1.2";
+      littleEndian = ts != "1.2.840.10008.1.2.2";
+    } else if (group == 0x0028 && length == 2) {
+      if (element == 0x0010) w.rows = u16(value);
+      if (element == 0x0011) w.columns = u16(value);
+      if (element == 0x0100) w.bitsAllocated = u16(value);
+      if (element == 0x0002) w.samplesPerPixel = u16(value);
+    }
+    pos = valueAt + length;
+  }
+  return w;
+}
+
+}  // namespace
+
+void checkDicomFile(std::istream& in, std::int64_t size, const std::string& path) {
+  const DicomWalk w = walkDicom(in, size);
+  if (!w.problem.empty())
+    throw Error("cannot read " + path + " as DICOM: " + w.problem +
+                "; the file is truncated or corrupt");
+  if (w.pixelBytes < 0) {
+    throw Error("cannot read " + path +
+                " as DICOM: no pixel data (7FE0,0010) before the end of "
+                "the file; it is truncated or holds no image");
+  }
+  if (w.rows > 0 && w.columns > 0 && w.bitsAllocated > 0) {
+    const std::int64_t need =
+        times(times(w.rows, w.columns), times(w.samplesPerPixel, (w.bitsAllocated + 7) / 8));
+    if (w.pixelBytes < need) {
+      throw Error("cannot read " + path + " as DICOM: " + std::to_string(w.rows) + " x " +
+                  std::to_string(w.columns) + " pixels of " + std::to_string(w.bitsAllocated) +
+                  " bits need " + grouped(need) + " bytes, but its pixel data has " +
+                  grouped(w.pixelBytes));
+    }
+  }
+}
+
+int checkDicomSeries(const std::string& directory) {
+  int files = 0;
+  std::error_code ec;
+  std::vector<fs::path> paths;
+  for (const auto& entry : fs::directory_iterator(directory, ec))
+    if (entry.is_regular_file(ec)) paths.push_back(entry.path());
+  std::sort(paths.begin(), paths.end());
+  for (const fs::path& p : paths) {
+    std::ifstream in(p, std::ios::binary);
+    char magic[132] = {};
+    if (!in.read(magic, sizeof magic) || std::string(magic + 128, 4) != "DICM") continue;
+    ++files;
+    checkDicomFile(in, fileSize(p.string()), p.string());
+  }
+  return files;
 }
 
 }  // namespace mfadvr

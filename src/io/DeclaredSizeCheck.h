@@ -14,6 +14,7 @@
 // reader, which reports its own errors.
 #include <cstdint>
 #include <functional>
+#include <istream>
 #include <string>
 
 namespace mfadvr {
@@ -36,26 +37,38 @@ void checkXmlVtkDeclaredSize(const std::string& path);
 // NIfTI-1 / NIfTI-2 (.nii, .nii.gz, .hdr + .img): dim, bitpix, vox_offset.
 void checkNiftiDeclaredSize(const std::string& path);
 
+// DICOM Part-10 files ('DICM' after the 128-byte preamble): walks the elements up to the pixel
+// data and checks that every element fits in the file and that the pixel data holds rows x
+// columns x samples x bytes. checkDicomSeries checks every such file of a directory (in name
+// order) and returns how many there are.
+void checkDicomFile(std::istream& in, std::int64_t size, const std::string& path);
+int checkDicomSeries(const std::string& directory);
+
 // The same checks on a header already in memory (the fuzzers' entry points): `fileBytes` is
 // the size of the whole file; `dataFileBytes` gives the size of a detached data file named in
 // the header (relative names are relative to the header's folder), or -1 when it is missing.
 using DataFileSize = std::function<std::int64_t(const std::string& name)>;
-// For ASCII NRRD data, where the values are (their count is checked by reading them).
-struct NrrdAsciiData {
+// Where NRRD data lies that needs a look beyond its size (ASCII values are counted, gzip data
+// checked for a complete stream).
+struct NrrdDataLocation {
   std::string dataFile;     // empty: the header's own file
   std::int64_t offset = 0;  // of the data in that file
-  std::int64_t values = 0;  // declared; 0: not ASCII (nothing more to check)
+  std::int64_t values = 0;  // declared; 0: nothing more to check
+  std::int64_t bytes = 0;   // of the values in binary
+  bool gzip = false;        // else ASCII
   std::string declared;     // "40 x 40 x 40 uint8 samples"
 };
-NrrdAsciiData checkNrrdHeaderText(const std::string& header, const std::string& path,
-                                  std::int64_t fileBytes, const DataFileSize& dataFileBytes);
+NrrdDataLocation checkNrrdHeaderText(const std::string& header, const std::string& path,
+                                     std::int64_t fileBytes, const DataFileSize& dataFileBytes);
 void checkMetaImageHeaderText(const std::string& header, const std::string& path,
                               std::int64_t fileBytes, const DataFileSize& dataFileBytes);
 void checkLegacyVtkHeaderText(const std::string& header, const std::string& path,
                               std::int64_t fileBytes);
 void checkXmlVtkText(const std::string& head, const std::string& tail, const std::string& path,
                      std::int64_t fileBytes);
-void checkNiftiHeaderBytes(const std::string& header, const std::string& path,
-                           std::int64_t fileBytes, bool compressed);
+// Returns the bytes the declared image needs from the start of the file (-1: not a header it
+// understands).
+std::int64_t checkNiftiHeaderBytes(const std::string& header, const std::string& path,
+                                   std::int64_t fileBytes, bool compressed);
 
 }  // namespace mfadvr

@@ -158,6 +158,7 @@ void requireDicomFiles(const std::string& dir) {
 vtkSmartPointer<vtkImageData> runReader(const std::string& path, VtkVolumeFormat format,
                                         const VtkMessageCapture& capture,
                                         vtkSmartPointer<vtkAlgorithm>& reader) {
+  int dicomFiles = 0;
   switch (format) {
     case VtkVolumeFormat::kNrrd: {
       checkNrrdDeclaredSize(path);
@@ -199,6 +200,7 @@ vtkSmartPointer<vtkImageData> runReader(const std::string& path, VtkVolumeFormat
     }
     case VtkVolumeFormat::kDicomSeries: {
       requireDicomFiles(path);
+      dicomFiles = checkDicomSeries(path);
       auto r = vtkSmartPointer<vtkDICOMImageReader>::New();
       r->SetDirectoryName(path.c_str());
       reader = r;
@@ -211,6 +213,13 @@ vtkSmartPointer<vtkImageData> runReader(const std::string& path, VtkVolumeFormat
     throwReadFailure(path, format, capture, reader, "the reader produced no image");
   if (image->GetNumberOfPoints() == 0)
     throwReadFailure(path, format, capture, reader, "the file holds no samples");
+  // VTK's DICOM reader leaves out files it cannot parse, without a word.
+  if (format == VtkVolumeFormat::kDicomSeries && image->GetDimensions()[2] != dicomFiles) {
+    throw Error("cannot read " + path + " as a DICOM series: it holds " +
+                std::to_string(dicomFiles) + " DICOM files, but VTK's reader assembled " +
+                std::to_string(image->GetDimensions()[2]) +
+                " slices from them (files it cannot parse are left out)");
+  }
   return image;
 }
 
