@@ -713,7 +713,9 @@ std::int64_t checkNiftiHeaderBytes(const std::string& header, const std::string&
 
 void checkNiftiDeclaredSize(const std::string& path) {
   std::string lowerPath = lower(path);
-  const bool gz = lowerPath.size() > 3 && lowerPath.compare(lowerPath.size() - 3, 3, ".gz") == 0;
+  // zlib reads plain files through gzopen too: the magic bytes, not the name, say which.
+  const std::string magic = readHead(path, 2);
+  const bool gz = magic.size() == 2 && magic[0] == '\x1f' && magic[1] == '\x8b';
   std::string header;
   if (gz) {
     gzFile in = gzopen(path.c_str(), "rb");

@@ -32,7 +32,7 @@ bool containsNote(const StructuredGrid& g, const std::string& part) {
 std::string writeNifti(const std::string& name, const NiftiHeader& h) {
   const fs::path path = test::scratchDir() / name;
   const std::string bytes = niftiBytes(h);
-  if (name.ends_with(".gz")) {
+  if (name.ends_with(".gz") || name.ends_with(".GZ")) {
     gzFile out = gzopen(path.c_str(), "wb");
     gzwrite(out, bytes.data(), static_cast<unsigned>(bytes.size()));
     gzclose(out);
