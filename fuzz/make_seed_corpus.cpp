@@ -19,7 +19,7 @@ int main(int argc, char** argv) {
     o.degree = p;
     o.controlCounts = {4, 3, 3};
     const auto m =
-        mfadvr::encodeStructured(mfadvr::sampleBuiltinSpec("builtin:marschner-lobb:6x5x4"), o);
+        mfadvr::fitStructured(mfadvr::sampleBuiltinSpec("builtin:marschner-lobb:6x5x4"), o);
     mfadvr::saveModel(m, models / ("seed" + std::to_string(i++) + ".mfa"));
   }
   {
@@ -27,7 +27,7 @@ int main(int argc, char** argv) {
     mfadvr::StructuredFitOptions o;
     o.degree = {2, 2, 2};
     o.controlCounts = {3, 3, 3};
-    auto m = mfadvr::encodeStructured(mfadvr::sampleBuiltinSpec("builtin:marschner-lobb:5x5x5"), o);
+    auto m = mfadvr::fitStructured(mfadvr::sampleBuiltinSpec("builtin:marschner-lobb:5x5x5"), o);
     std::vector<std::uint8_t> nodes(60);
     for (size_t n = 0; n < nodes.size(); ++n) nodes[n] = (n * 7 % 5) < 3;
     m.setMask(mfadvr::DomainMask(mfadvr::MaskKind::PointCoverage, {3, 4, 5}, nodes));

@@ -142,3 +142,33 @@ TEST(EncodeCli, MeshFromSharedData) {
 
 }  // namespace
 }  // namespace mfadvr
+
+namespace mfadvr {
+namespace {
+
+// A cut volume, an absurd header and a model from NaN samples: exit 1, the reason, no model.
+TEST(EncodeCli, RefusesCutAndAbsurdInputsWithoutOutput) {
+  const auto dir = test::scratchDir();
+  const std::string header =
+      "NRRD0004\ntype: uint8\ndimension: 3\nsizes: 40 40 40\nencoding: raw\n\n";
+  std::ofstream(dir / "cut.nrrd", std::ios::binary) << header << std::string(30000, '\1');
+  std::ofstream(dir / "absurd.nrrd", std::ios::binary)
+      << "NRRD0004\ntype: float\ndimension: 3\nsizes: 100000 100000 100000\nencoding: raw\n\n"
+      << "abcd";
+  std::ofstream(dir / "nan_2x2x2_float32.raw", std::ios::binary)
+      << std::string(7 * 4, '\0') << std::string("\x00\x00\xc0\x7f", 4);  // the last is NaN
+  for (const auto& [file, reason] : std::vector<std::pair<std::string, std::string>>{
+           {"cut.nrrd", "holds only 30,000 bytes"},
+           {"absurd.nrrd", "4,000,000,000,000,000 bytes"},
+           {"nan_2x2x2_float32.raw", "nan"}}) {
+    const auto model = dir / (file + ".mfa");
+    const auto r =
+        test::runMfadvr("encode " + (dir / file).string() + " --degree 1 -o " + model.string());
+    EXPECT_EQ(r.status, 1) << file;
+    EXPECT_NE(r.err.find(reason), std::string::npos) << file << ": " << r.err;
+    EXPECT_FALSE(std::filesystem::exists(model)) << file;
+  }
+}
+
+}  // namespace
+}  // namespace mfadvr

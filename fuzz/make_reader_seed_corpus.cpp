@@ -1,0 +1,123 @@
+// Writes seed inputs for the reader fuzzers: a small valid file of every kind, prefixed with
+// the byte that selects its kind (fuzz_file_loaders.cpp, fuzz_declared_size.cpp).
+// Usage: make_reader_seed_corpus LOADERS_DIR HEADERS_DIR
+#include <zlib.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "MedicalTestFiles.h"
+
+namespace {
+
+std::string values(int count, const char* separator) {
+  std::ostringstream s;
+  for (int n = 0; n < count; ++n) s << (n * 37 % 101) * 0.5 << separator;
+  return s.str();
+}
+
+std::string floats(int count) {
+  std::string out;
+  for (int n = 0; n < count; ++n) {
+    const float v = float(n % 13) - 4.0f;
+    out.append(reinterpret_cast<const char*>(&v), 4);
+  }
+  return out;
+}
+
+std::string gzip(const std::string& raw) {
+  std::string out(compressBound(raw.size()) + 64, '\0');
+  z_stream z{};
+  deflateInit2(&z, 6, Z_DEFLATED, 15 + 16, 8, Z_DEFAULT_STRATEGY);
+  z.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(raw.data()));
+  z.avail_in = static_cast<uInt>(raw.size());
+  z.next_out = reinterpret_cast<Bytef*>(out.data());
+  z.avail_out = static_cast<uInt>(out.size());
+  deflate(&z, Z_FINISH);
+  out.resize(z.total_out);
+  deflateEnd(&z);
+  return out;
+}
+
+void write(const std::filesystem::path& dir, const std::string& name, char kind,
+           const std::string& bytes) {
+  std::ofstream(dir / name, std::ios::binary) << kind << bytes;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc != 3) return 2;
+  const std::filesystem::path loaders = argv[1], headers = argv[2];
+  std::filesystem::create_directories(loaders);
+  std::filesystem::create_directories(headers);
+  const int n = 10 * 4 * 3;  // NRRD and VTK volumes: 10 x 4 x 3 samples
+  const std::string nrrd =
+      "NRRD0004\ntype: float\ndimension: 3\nsizes: 10 4 3\nencoding: raw\nendian: little\n"
+      "spacings: 1 0.5 2\n\n" +
+      floats(n);
+  const std::string nrrdGzip =
+      "NRRD0005\ntype: float\ndimension: 3\nsizes: 10 4 3\nencoding: gzip\nendian: little\n\n" +
+      gzip(floats(n));
+  const std::string nrrdAscii =
+      "NRRD0004\ntype: double\ndimension: 3\nsizes: 10 4 3\nencoding: ascii\n\n" + values(n, "\n");
+  const std::string mha =
+      "ObjectType = Image\nNDims = 3\nDimSize = 10 4 3\nElementSpacing = 1 1 1\n"
+      "ElementType = MET_FLOAT\nElementDataFile = LOCAL\n" +
+      floats(n);
+  const std::string vtk =
+      "# vtk DataFile Version 3.0\nseed\nASCII\nDATASET STRUCTURED_POINTS\nDIMENSIONS 10 4 3\n"
+      "SPACING 1 1 1\nORIGIN 0 0 0\nPOINT_DATA 120\nSCALARS density float 1\n"
+      "LOOKUP_TABLE default\n" +
+      values(n, " ") + "\n";
+  const std::string vti =
+      "<?xml version=\"1.0\"?>\n<VTKFile type=\"ImageData\" version=\"1.0\" "
+      "byte_order=\"LittleEndian\">\n<ImageData WholeExtent=\"0 9 0 3 0 2\" Origin=\"0 0 0\" "
+      "Spacing=\"1 1 1\">\n<Piece Extent=\"0 9 0 3 0 2\">\n<PointData Scalars=\"d\">\n"
+      "<DataArray type=\"Float32\" Name=\"d\" format=\"ascii\">" +
+      values(n, " ") + "</DataArray>\n</PointData>\n</Piece>\n</ImageData>\n</VTKFile>\n";
+  const std::string nifti = mfadvr::test::niftiBytes(mfadvr::test::NiftiHeader{});
+  // Two tetrahedra sharing a face.
+  const std::string vtu =
+      "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" "
+      "byte_order=\"LittleEndian\">\n<UnstructuredGrid>\n<Piece NumberOfPoints=\"5\" "
+      "NumberOfCells=\"2\">\n<PointData Scalars=\"f\">\n<DataArray type=\"Float32\" Name=\"f\" "
+      "format=\"ascii\">1 2 3 4 5</DataArray>\n</PointData>\n<Points>\n<DataArray "
+      "type=\"Float32\" NumberOfComponents=\"3\" format=\"ascii\">0 0 0 1 0 0 0 1 0 0 0 1 1 1 1"
+      "</DataArray>\n</Points>\n<Cells>\n<DataArray type=\"Int64\" Name=\"connectivity\" "
+      "format=\"ascii\">0 1 2 3 1 2 3 4</DataArray>\n<DataArray type=\"Int64\" Name=\"offsets\" "
+      "format=\"ascii\">4 8</DataArray>\n<DataArray type=\"UInt8\" Name=\"types\" "
+      "format=\"ascii\">10 10</DataArray>\n</Cells>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n";
+  const std::string legacyMesh =
+      "# vtk DataFile Version 3.0\nseed\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 5 float\n"
+      "0 0 0 1 0 0 0 1 0 0 0 1 1 1 1\nCELLS 2 10\n4 0 1 2 3\n4 1 2 3 4\nCELL_TYPES 2\n10\n10\n"
+      "POINT_DATA 5\nSCALARS f float 1\nLOOKUP_TABLE default\n1 2 3 4 5\n";
+  const std::string csv = "x,y,z,v\n0,0,0,1\n1,0,0,2\n0,1,0,3\n0,0,1,4\n1,1,1,5\n";
+
+  write(loaders, "nrrd-raw", 0, nrrd);
+  write(loaders, "nrrd-gzip", 0, nrrdGzip);
+  write(loaders, "nrrd-ascii", 0, nrrdAscii);
+  write(loaders, "mha", 1, mha);
+  write(loaders, "vtk", 2, vtk);
+  write(loaders, "vti", 3, vti);
+  write(loaders, "nii", 4, nifti);
+  write(loaders, "nii-gz", 5, gzip(nifti));
+  write(loaders, "dicom", 6, mfadvr::test::dicomSlice(0));
+  write(loaders, "raw", 7, std::string(24, '\7'));
+  write(loaders, "vtu", 8, vtu);
+  write(loaders, "legacy-mesh", 9, legacyMesh);
+  write(loaders, "csv", 10, csv);
+
+  write(headers, "nrrd", 0, nrrd);
+  write(headers, "nrrd-ascii", 0, nrrdAscii);
+  write(headers, "mha", 1, mha);
+  write(headers, "vtk", 2, vtk);
+  write(headers, "vtk-mesh", 2, legacyMesh);
+  write(headers, "vti", 3, vti);
+  write(headers, "vtu", 3, vtu);
+  write(headers, "nii", 4, nifti);
+  write(headers, "dicom", 5, mfadvr::test::dicomSlice(1));
+  return 0;
+}
