@@ -26,7 +26,7 @@ run() {
   local t=$1
   mkdir -p "$out/corpus/$t" "$out/crashes/$t"
   local extra=()
-  [ "$t" = fuzz_file_loaders ] && extra=(-timeout=10 -max_len=8192)
+  [ "$t" = fuzz_file_loaders ] && extra=(-timeout=10 -max_len=8192 -detect_leaks=0)
   [ "$t" = fuzz_declared_size ] && extra=(-max_len=4096)
   set +e
   "build/fuzz/fuzz/$t" -max_total_time="$seconds" "${extra[@]}" \

@@ -288,6 +288,7 @@ NrrdDataLocation checkNrrdHeaderText(const std::string& header, const std::strin
   bool ended = false;
   std::string type, encoding, dataFile, dimension;
   std::vector<std::int64_t> sizes;
+  std::vector<std::string> spacings;
   bool sizesGiven = false;
   std::int64_t byteSkip = 0;
   bool skipped = false;
@@ -297,13 +298,21 @@ NrrdDataLocation checkNrrdHeaderText(const std::string& header, const std::strin
       ended = true;
       break;
     }
+    // VTK's reader loops forever on some control characters (a NUL) in the header.
+    if (std::any_of(line.begin(), line.end(), [](char c) {
+          return static_cast<unsigned char>(c) < 0x20 && c != '\t' && c != '\r';
+        }))
+      fail("the header holds control characters: it is not a NRRD text header");
     if (line[0] == '#') continue;
     const auto colon = line.find(": ");
     if (colon == std::string::npos) continue;  // key:=value pairs
-    const std::string key = lower(trim(line.substr(0, colon)));
+    // Field names are case-sensitive (VTK's reader, too, knows only these spellings).
+    const std::string key = trim(line.substr(0, colon));
     const std::string value = trim(line.substr(colon + 2));
     if (key == "type") {
-      type = lower(value);
+      type = value;
+    } else if (key == "spacings") {
+      spacings = words(value);
     } else if (key == "dimension") {
       dimension = value;
     } else if (key == "sizes") {
@@ -311,7 +320,7 @@ NrrdDataLocation checkNrrdHeaderText(const std::string& header, const std::strin
       sizes.clear();
       for (const auto& w : words(value)) sizes.push_back(parseCount(w));
     } else if (key == "encoding") {
-      encoding = lower(value);
+      encoding = value;
     } else if (key == "data file" || key == "datafile") {
       dataFile = value;
     } else if (key == "byte skip" || key == "byteskip") {
@@ -337,6 +346,17 @@ NrrdDataLocation checkNrrdHeaderText(const std::string& header, const std::strin
       std::any_of(sizes.begin(), sizes.end(), [](std::int64_t v) { return v < 1; }))
     fail("sizes must be " + std::to_string(dims) + " positive integers (dimension: " + dimension +
          ")");
+  // VTK's reader crashes on spacings it cannot parse.
+  if (!spacings.empty()) {
+    if (static_cast<std::int64_t>(spacings.size()) != dims)
+      fail("spacings must be " + std::to_string(dims) + " numbers (dimension: " + dimension + ")");
+    for (const std::string& w : spacings) {
+      double v = 0.0;
+      const auto r = std::from_chars(w.data(), w.data() + w.size(), v);
+      if (lower(w) != "nan" && (r.ec != std::errc() || r.ptr != w.data() + w.size()))
+        fail("spacings holds '" + w + "', which is not a number");
+    }
+  }
   Encoding enc = Encoding::Unknown;
   if (encoding == "raw") enc = Encoding::ExactBinary;
   if (encoding == "gzip" || encoding == "gz") enc = Encoding::Deflate;
@@ -685,22 +705,49 @@ std::int64_t checkNiftiHeaderBytes(const std::string& header, const std::string&
     }
   }
   if (version == 0 || (version == 2 && header.size() < 540)) return -1;
+  // VTK's reader indexes its arrays with dim[0] and sizes samples from datatype without
+  // checking them: a damaged header crashes it. So the fields it trusts are checked here.
+  const auto fail = [&](const std::string& why) {
+    throw Error("cannot read " + path + " as NIfTI: " + why +
+                "; the header is damaged or not a NIfTI header");
+  };
   std::vector<std::int64_t> dims;
-  std::int64_t bitpix = 0, voxOffset = 0;
+  std::int64_t bitpix = 0, voxOffset = 0, datatype = 0, rank = 0;
   if (version == 1) {
-    const int n = readAt<std::int16_t>(header, 40, swap);
-    for (int d = 1; d <= std::min(n, 7); ++d)
-      dims.push_back(readAt<std::int16_t>(header, 40 + 2 * d, swap));
+    rank = readAt<std::int16_t>(header, 40, swap);
+    if (rank < 1 || rank > 7) fail("dim[0] is " + std::to_string(rank) + ", not 1..7");
+    for (int d = 1; d <= rank; ++d)
+      dims.push_back(readAt<std::int16_t>(header, 40 + 2 * static_cast<size_t>(d), swap));
+    datatype = readAt<std::int16_t>(header, 70, swap);
     bitpix = readAt<std::int16_t>(header, 72, swap);
     const float offset = readAt<float>(header, 108, swap);
-    voxOffset = offset >= 0.0f && offset < 1e12f ? static_cast<std::int64_t>(offset) : 0;
+    if (!(offset >= 0.0f && offset < 1e12f)) fail("vox_offset is not a valid offset");
+    voxOffset = static_cast<std::int64_t>(offset);
   } else {
-    const std::int64_t n = readAt<std::int64_t>(header, 16, swap);
-    for (std::int64_t d = 1; d <= std::min<std::int64_t>(n, 7); ++d)
+    rank = readAt<std::int64_t>(header, 16, swap);
+    if (rank < 1 || rank > 7) fail("dim[0] is " + std::to_string(rank) + ", not 1..7");
+    for (std::int64_t d = 1; d <= rank; ++d)
       dims.push_back(readAt<std::int64_t>(header, 16 + 8 * static_cast<size_t>(d), swap));
+    datatype = readAt<std::int16_t>(header, 12, swap);
     bitpix = readAt<std::int16_t>(header, 14, swap);
-    voxOffset = std::max<std::int64_t>(0, readAt<std::int64_t>(header, 168, swap));
+    voxOffset = readAt<std::int64_t>(header, 168, swap);
+    if (voxOffset < 0) fail("vox_offset is negative");
   }
+  for (size_t d = 0; d < dims.size(); ++d)
+    if (dims[d] < 1)
+      fail("dim[" + std::to_string(d + 1) + "] is " + std::to_string(dims[d]) + ", not >= 1");
+  // The NIfTI datatype codes and their bits per sample.
+  static const std::pair<int, int> kTypes[] = {{2, 8},      {4, 16},     {8, 32},     {16, 32},
+                                               {32, 64},    {64, 64},    {128, 24},   {256, 8},
+                                               {512, 16},   {768, 32},   {1024, 64},  {1280, 64},
+                                               {1536, 128}, {1792, 128}, {2048, 256}, {2304, 32}};
+  int expectedBits = 0;
+  for (const auto& [code, bits] : kTypes)
+    if (code == datatype) expectedBits = bits;
+  if (expectedBits == 0) fail("datatype " + std::to_string(datatype) + " is not a NIfTI type");
+  if (bitpix != expectedBits)
+    fail("bitpix is " + std::to_string(bitpix) + ", but datatype " + std::to_string(datatype) +
+         " has " + std::to_string(expectedBits) + " bits");
   if (dims.empty() || bitpix <= 0 || bitpix % 8 != 0) return -1;
   if (std::any_of(dims.begin(), dims.end(), [](std::int64_t d) { return d <= 0; })) return -1;
   // For a .hdr/.img pair, fileBytes is the .img's size (vox_offset is an offset into it).
@@ -708,7 +755,10 @@ std::int64_t checkNiftiHeaderBytes(const std::string& header, const std::string&
               product(dims), bitpix / 8, compressed ? Encoding::Deflate : Encoding::Binary,
               fileBytes - (compressed ? 0 : voxOffset),
               compressed ? "the compressed file" : "the file after vox_offset");
-  return voxOffset + times(product(dims), bitpix / 8);
+  const std::int64_t data = times(product(dims), bitpix / 8);
+  return data > std::numeric_limits<std::int64_t>::max() - voxOffset
+             ? std::numeric_limits<std::int64_t>::max()
+             : voxOffset + data;
 }
 
 void checkNiftiDeclaredSize(const std::string& path) {

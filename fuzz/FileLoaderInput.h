@@ -1,0 +1,60 @@
+#pragma once
+// How fuzz_file_loaders turns a fuzz input into a file: the first byte picks the kind, the rest
+// is the file. Shared with the regression test that replays the inputs the fuzzer found
+// (tests/io/FuzzRegressionTest.cpp), so both load them the same way.
+#include <unistd.h>
+
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "core/util/Error.h"
+#include "io/ScatteredLoader.h"
+#include "io/VolumeLoader.h"
+
+namespace mfadvr::fuzzing {
+
+struct FileKind {
+  const char* name;  // file name in the scratch folder ("": a DICOM series folder)
+  bool volume;
+};
+
+inline constexpr FileKind kFileKinds[] = {
+    {"f.nrrd", true}, {"f.mha", true},   {"f.vtk", true},  {"f.vti", true},
+    {"f.nii", true},  {"f.nii.gz", true}, {"", true},      {"v_4x3x2_uint8.raw", true},
+    {"m.vtu", false}, {"m.vtk", false},  {"p.csv", false},
+};
+
+// Writes the input as a file of its kind under `dir` (emptied first) and loads it as the
+// command line would. Returns false when the loader refused it with an mfadvr::Error; traps
+// when a loaded grid or point set is inconsistent.
+inline bool loadFuzzInput(const std::uint8_t* data, size_t size, const std::filesystem::path& dir) {
+  if (size < 1) return false;
+  const FileKind& kind = kFileKinds[data[0] % (sizeof kFileKinds / sizeof kFileKinds[0])];
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  std::filesystem::path input = dir / kind.name;
+  std::filesystem::path file = input;
+  if (std::string(kind.name).empty()) {  // a DICOM series of one slice
+    input = dir / "series";
+    std::filesystem::create_directories(input);
+    file = input / "s.dcm";
+  }
+  std::ofstream(file, std::ios::binary)
+      .write(reinterpret_cast<const char*>(data) + 1, static_cast<std::streamsize>(size - 1));
+  try {
+    if (kind.volume) {
+      const StructuredGrid g = loadStructuredVolume(input.string());
+      if (static_cast<std::int64_t>(g.values.size()) != g.sampleCount()) __builtin_trap();
+    } else {
+      const ScatteredData d = loadScatteredData(input.string());
+      if (d.points.size() != d.values.size()) __builtin_trap();
+    }
+    return true;
+  } catch (const Error&) {
+    return false;
+  }
+}
+
+}  // namespace mfadvr::fuzzing
