@@ -607,8 +607,78 @@ void checkLegacyVtkHeaderText(const std::string& header, const std::string& path
   }
 }
 
+namespace {
+
+// Walks the geometry blocks of a legacy file (POINTS, CELLS / OFFSETS / CONNECTIVITY,
+// CELL_TYPES), skipping their data, and checks the counts VTK's reader trusts: it dereferences
+// null for a CELLS block whose size cannot hold its cells. Stops at the first other keyword.
+void checkLegacyCells(std::istream& in, const std::string& path) {
+  const auto fail = [&](const std::string& why) {
+    throw Error("cannot read " + path + " as legacy VTK: " + why +
+                "; the file is damaged or its header is wrong");
+  };
+  std::string line;
+  std::string version;
+  bool binary = false;
+  for (int n = 1; n <= 4 && std::getline(in, line); ++n) {
+    if (n == 1) version = line.size() > 25 ? trim(line.substr(23)) : "";
+    if (n == 3) binary = lower(trim(line)) == "binary";
+  }
+  const bool newCells = version.rfind("5.", 0) == 0;  // 5.x: offsets + connectivity
+  const auto skip = [&](std::int64_t values, std::int64_t bytes) {
+    if (values < 0 || bytes <= 0) return false;
+    if (binary) {
+      in.ignore(static_cast<std::streamsize>(std::min<std::int64_t>(
+          times(values, bytes), std::numeric_limits<std::streamsize>::max())));
+    } else {
+      std::string token;
+      for (std::int64_t v = 0; v < values && in >> token; ++v) {
+      }
+    }
+    return static_cast<bool>(in);
+  };
+  std::int64_t cells = -1;
+  for (int guard = 0; guard < 16 && std::getline(in, line); ++guard) {
+    const auto w = words(line);
+    if (w.empty()) continue;
+    if (w[0] == "POINTS" && w.size() >= 3) {
+      if (!skip(times(parseCount(w[1]), 3), legacyTypeBytes(w[2]))) return;
+    } else if (w[0] == "CELLS" && w.size() >= 3) {
+      const std::int64_t a = parseCount(w[1]), b = parseCount(w[2]);
+      if (a < 0 || b < 0) fail("CELLS '" + w[1] + " " + w[2] + "' are not counts");
+      if (newCells) {
+        // CELLS offsets connectivity: cells + 1 offsets, at least one point per cell.
+        if (a > 0 && b < a - 1)
+          fail("CELLS declares " + grouped(a) + " offsets but only " + grouped(b) +
+               " connectivity entries");
+        cells = a > 0 ? a - 1 : 0;
+      } else {
+        // CELLS n size: each cell is its point count and at least one point.
+        if (b < times(a, 2))
+          fail("CELLS declares " + grouped(a) + " cells in " + grouped(b) +
+               " integers, fewer than 2 per cell");
+        cells = a;
+        if (!skip(b, 4)) return;
+      }
+    } else if ((w[0] == "OFFSETS" || w[0] == "CONNECTIVITY") && w.size() >= 2) {
+      return;  // their lengths are CELLS' counts; VTK checks the rest
+    } else if (w[0] == "CELL_TYPES" && w.size() >= 2) {
+      const std::int64_t n = parseCount(w[1]);
+      if (cells >= 0 && n != cells)
+        fail("CELL_TYPES declares " + w[1] + " types for " + grouped(cells) + " cells");
+      return;
+    } else {
+      return;
+    }
+  }
+}
+
+}  // namespace
+
 void checkLegacyVtkDeclaredSize(const std::string& path) {
   checkLegacyVtkHeaderText(readHead(path, 4096), path, fileSize(path));
+  std::ifstream in(path, std::ios::binary);
+  checkLegacyCells(in, path);
 }
 
 // ---- VTK XML ----------------------------------------------------------------------------------
