@@ -21,9 +21,9 @@ struct FileKind {
 };
 
 inline constexpr FileKind kFileKinds[] = {
-    {"f.nrrd", true}, {"f.mha", true},   {"f.vtk", true},  {"f.vti", true},
-    {"f.nii", true},  {"f.nii.gz", true}, {"", true},      {"v_4x3x2_uint8.raw", true},
-    {"m.vtu", false}, {"m.vtk", false},  {"p.csv", false},
+    {"f.nrrd", true}, {"f.mha", true},    {"f.vtk", true},  {"f.vti", true},
+    {"f.nii", true},  {"f.nii.gz", true}, {"", true},       {"v_4x3x2_uint8.raw", true},
+    {"m.vtu", false}, {"m.vtk", false},   {"p.csv", false},
 };
 
 // Writes the input as a file of its kind under `dir` (emptied first) and loads it as the

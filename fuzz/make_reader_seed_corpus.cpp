@@ -1,7 +1,6 @@
 // Writes seed inputs for the reader fuzzers: a small valid file of every kind, prefixed with
 // the byte that selects its kind (fuzz_file_loaders.cpp, fuzz_declared_size.cpp).
 // Usage: make_reader_seed_corpus LOADERS_DIR HEADERS_DIR
-#include <zlib.h>
 
 #include <filesystem>
 #include <fstream>
@@ -27,20 +26,6 @@ std::string floats(int count) {
   return out;
 }
 
-std::string gzip(const std::string& raw) {
-  std::string out(compressBound(raw.size()) + 64, '\0');
-  z_stream z{};
-  deflateInit2(&z, 6, Z_DEFLATED, 15 + 16, 8, Z_DEFAULT_STRATEGY);
-  z.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(raw.data()));
-  z.avail_in = static_cast<uInt>(raw.size());
-  z.next_out = reinterpret_cast<Bytef*>(out.data());
-  z.avail_out = static_cast<uInt>(out.size());
-  deflate(&z, Z_FINISH);
-  out.resize(z.total_out);
-  deflateEnd(&z);
-  return out;
-}
-
 void write(const std::filesystem::path& dir, const std::string& name, char kind,
            const std::string& bytes) {
   std::ofstream(dir / name, std::ios::binary) << kind << bytes;
@@ -60,7 +45,7 @@ int main(int argc, char** argv) {
       floats(n);
   const std::string nrrdGzip =
       "NRRD0005\ntype: float\ndimension: 3\nsizes: 10 4 3\nencoding: gzip\nendian: little\n\n" +
-      gzip(floats(n));
+      mfadvr::test::gzipBytes(floats(n));
   const std::string nrrdAscii =
       "NRRD0004\ntype: double\ndimension: 3\nsizes: 10 4 3\nencoding: ascii\n\n" + values(n, "\n");
   const std::string mha =
@@ -103,7 +88,7 @@ int main(int argc, char** argv) {
   write(loaders, "vtk", 2, vtk);
   write(loaders, "vti", 3, vti);
   write(loaders, "nii", 4, nifti);
-  write(loaders, "nii-gz", 5, gzip(nifti));
+  write(loaders, "nii-gz", 5, mfadvr::test::gzipBytes(nifti));
   write(loaders, "dicom", 6, mfadvr::test::dicomSlice(0));
   write(loaders, "raw", 7, std::string(24, '\7'));
   write(loaders, "vtu", 8, vtu);

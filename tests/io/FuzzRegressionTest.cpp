@@ -14,8 +14,8 @@ namespace mfadvr {
 namespace {
 
 TEST(FuzzRegression, FileLoaderFindingsLoadOrFailCleanly) {
-  const std::filesystem::path dir = std::filesystem::path(MFADVR_SOURCE_DIR) / "fuzz" /
-                                    "regressions" / "file_loaders";
+  const std::filesystem::path dir =
+      std::filesystem::path(MFADVR_SOURCE_DIR) / "fuzz" / "regressions" / "file_loaders";
   int replayed = 0;
   for (const auto& entry : std::filesystem::directory_iterator(dir)) {
     std::ifstream in(entry.path(), std::ios::binary);

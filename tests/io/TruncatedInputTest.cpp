@@ -3,7 +3,6 @@
 // grid or point set with zeros or garbage where the data was. The valid files are written by
 // VTK's own writers (the files users have) and, for NRRD, DICOM and NIfTI, byte by byte.
 #include <gtest/gtest.h>
-#include <zlib.h>
 
 #include <vtkDataSetTriangleFilter.h>
 #include <vtkFloatArray.h>
@@ -68,21 +67,6 @@ std::string floatBytes() {
     const float v = float(n % 97) * 0.5f - 7.0f;
     out.append(reinterpret_cast<const char*>(&v), 4);
   }
-  return out;
-}
-
-std::string gzipBytes(const std::string& raw) {
-  uLongf size = compressBound(raw.size()) + 32;
-  std::string out(size, '\0');
-  z_stream z{};
-  deflateInit2(&z, 6, Z_DEFLATED, 15 + 16, 8, Z_DEFAULT_STRATEGY);  // gzip wrapper
-  z.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(raw.data()));
-  z.avail_in = static_cast<uInt>(raw.size());
-  z.next_out = reinterpret_cast<Bytef*>(out.data());
-  z.avail_out = static_cast<uInt>(out.size());
-  deflate(&z, Z_FINISH);
-  out.resize(z.total_out);
-  deflateEnd(&z);
   return out;
 }
 
@@ -173,7 +157,7 @@ std::vector<Sample> writeSamples(const fs::path& dir) {
   }
   {  // NRRD: raw, gzip and ASCII attached, raw detached
     writeBytes(dir / "raw.nrrd", nrrdHeader("raw") + floatBytes());
-    writeBytes(dir / "gzip.nrrd", nrrdHeader("gzip") + gzipBytes(floatBytes()));
+    writeBytes(dir / "gzip.nrrd", nrrdHeader("gzip") + test::gzipBytes(floatBytes()));
     std::ostringstream ascii;
     for (int n = 0; n < kX * kY * kZ; ++n) ascii << float(n % 97) * 0.5f - 7.0f << "\n";
     writeBytes(dir / "ascii.nrrd", nrrdHeader("ascii") + ascii.str());
