@@ -468,26 +468,45 @@ std::int64_t metaTypeBytes(const std::string& type) {
 
 void checkMetaImageHeaderText(const std::string& header, const std::string& path,
                               std::int64_t fileBytes, const DataFileSize& dataFileBytes) {
+  // VTK's MetaIO corrupts its heap on some damaged headers (a missing NDims in a cut header):
+  // the header is checked line by line before it runs.
+  const auto fail = [&](const std::string& why) {
+    throw Error("cannot read " + path + " as MetaImage: " + why +
+                " (expected 'Key = Value' lines with NDims, DimSize, ElementType and, last, "
+                "ElementDataFile)");
+  };
   std::istringstream in(header);
   std::string line;
   std::int64_t headerBytes = 0;
   std::vector<std::int64_t> dims;
-  std::string type, dataFile;
+  std::string type, dataFile, ndims;
   std::int64_t channels = 1, headerSize = 0;
   bool compressed = false, binary = true;
+  int lineNumber = 0;
   while (std::getline(in, line)) {
+    ++lineNumber;
     headerBytes += static_cast<std::int64_t>(line.size()) + 1;
+    if (std::any_of(line.begin(), line.end(), [](char c) {
+          return static_cast<unsigned char>(c) < 0x20 && c != '\t' && c != '\r';
+        }))
+      fail("header line " + std::to_string(lineNumber) + " holds control characters");
+    if (trim(line).empty()) continue;
     const auto eq = line.find('=');
-    if (eq == std::string::npos) continue;
+    if (eq == std::string::npos)
+      fail("header line " + std::to_string(lineNumber) + " is not 'Key = Value'");
     const std::string key = trim(line.substr(0, eq));
     const std::string value = trim(line.substr(eq + 1));
-    if (key == "DimSize") {
+    if (key == "NDims") {
+      ndims = value;
+    } else if (key == "DimSize") {
       dims.clear();
       for (const auto& w : words(value)) dims.push_back(parseCount(w));
     } else if (key == "ElementType") {
       type = value;
     } else if (key == "ElementNumberOfChannels") {
       channels = parseCount(value);
+      if (channels < 1 || channels > 64)
+        fail("ElementNumberOfChannels '" + value + "' is not 1..64");
     } else if (key == "CompressedData") {
       compressed = lower(value) == "true";
     } else if (key == "BinaryData") {
@@ -499,6 +518,13 @@ void checkMetaImageHeaderText(const std::string& header, const std::string& path
       break;  // the last header line
     }
   }
+  if (dataFile.empty()) fail("the header has no ElementDataFile line");
+  const std::int64_t rank = parseCount(ndims);
+  if (rank < 1 || rank > 10) fail("NDims '" + ndims + "' is not 1..10");
+  if (static_cast<std::int64_t>(dims.size()) != rank ||
+      std::any_of(dims.begin(), dims.end(), [](std::int64_t d) { return d < 1; }))
+    fail("DimSize must be " + ndims + " positive integers (NDims = " + ndims + ")");
+  if (metaTypeBytes(type) == 0) fail("ElementType '" + type + "' is not a MET_ scalar type");
   if (dataFile.empty() || dims.empty() || channels <= 0) return;
   const std::int64_t typeBytes = metaTypeBytes(type);
   if (typeBytes == 0 || std::any_of(dims.begin(), dims.end(), [](std::int64_t d) { return d < 0; }))
@@ -642,6 +668,8 @@ void checkLegacyCells(std::istream& in, const std::string& path) {
     const auto w = words(line);
     if (w.empty()) continue;
     if (w[0] == "POINTS" && w.size() >= 3) {
+      if (parseCount(w[1]) < 0 || legacyTypeBytes(w[2]) == 0)
+        fail("POINTS '" + w[1] + " " + w[2] + "' is not a count and a VTK data type");
       if (!skip(times(parseCount(w[1]), 3), legacyTypeBytes(w[2]))) return;
     } else if (w[0] == "CELLS" && w.size() >= 3) {
       const std::int64_t a = parseCount(w[1]), b = parseCount(w[2]);
