@@ -667,6 +667,12 @@ void checkLegacyCells(std::istream& in, const std::string& path) {
   for (int guard = 0; guard < 16 && std::getline(in, line); ++guard) {
     const auto w = words(line);
     if (w.empty()) continue;
+    // VTK reads a keyword's counts across line ends: a short line takes its numbers from the
+    // data that follows.
+    if ((w[0] == "POINTS" || w[0] == "CELLS") && w.size() != 3)
+      fail("the " + w[0] + " line has " + std::to_string(w.size() - 1) + " fields, not 2");
+    if (w[0] == "CELL_TYPES" && w.size() != 2)
+      fail("the CELL_TYPES line has " + std::to_string(w.size() - 1) + " fields, not 1");
     if (w[0] == "POINTS" && w.size() >= 3) {
       if (parseCount(w[1]) < 0 || legacyTypeBytes(w[2]) == 0)
         fail("POINTS '" + w[1] + " " + w[2] + "' is not a count and a VTK data type");
