@@ -81,8 +81,8 @@ Command addDemoCommand(CLI::App& app) {
       results.push_back(std::move(r));
     }
     // Each panel is labelled with its method and its metrics against the truth.
-    const auto degrees0 = scene.model->spline().degrees();
-    const auto counts0 = scene.model->spline().counts();
+    const auto counts = scene.model->spline().counts();
+    const auto degrees = scene.model->spline().degrees();
     std::vector<Image8> row;
     for (auto& r : results) {
       r.metrics = compareImages(results[0].image, r.image);
@@ -92,8 +92,8 @@ Command addDemoCommand(CLI::App& app) {
         caption = {"truth (analytic)", "the reference"};
       } else {
         if (r.method == ReconstructionMethod::Mfa)
-          std::snprintf(line, sizeof line, "MFA (p=%d, %lldx%lldx%lld ctrl)", degrees0[0],
-                        (long long)counts0[0], (long long)counts0[1], (long long)counts0[2]);
+          std::snprintf(line, sizeof line, "MFA (p=%d, %lldx%lldx%lld ctrl)", degrees[0],
+                        (long long)counts[0], (long long)counts[1], (long long)counts[2]);
         else
           std::snprintf(line, sizeof line, "%s", methodName(r.method).c_str());
         caption.push_back(line);
@@ -108,8 +108,6 @@ Command addDemoCommand(CLI::App& app) {
     writePng(montagePath, montageHorizontal(row));
 
     const auto& grid = *scene.grid;
-    const auto counts = scene.model->spline().counts();
-    const auto degrees = scene.model->spline().degrees();
     nlohmann::json j;
     j["input"] = o->input;
     j["samples"] = {grid.dims[0], grid.dims[1], grid.dims[2]};

@@ -36,6 +36,14 @@ std::string trim(const std::string& s) {
   return s.substr(first, last - first + 1);
 }
 
+// Header text holds no control characters but tabs and carriage returns; VTK's readers loop
+// forever or corrupt memory on some of the others.
+bool hasControlCharacters(const std::string& line) {
+  return std::any_of(line.begin(), line.end(), [](char c) {
+    return static_cast<unsigned char>(c) < 0x20 && c != '\t' && c != '\r';
+  });
+}
+
 std::vector<std::string> words(const std::string& s) {
   std::istringstream in(s);
   std::vector<std::string> out;
@@ -299,9 +307,7 @@ NrrdDataLocation checkNrrdHeaderText(const std::string& header, const std::strin
       break;
     }
     // VTK's reader loops forever on some control characters (a NUL) in the header.
-    if (std::any_of(line.begin(), line.end(), [](char c) {
-          return static_cast<unsigned char>(c) < 0x20 && c != '\t' && c != '\r';
-        }))
+    if (hasControlCharacters(line))
       fail("the header holds control characters: it is not a NRRD text header");
     if (line[0] == '#') continue;
     const auto colon = line.find(": ");
@@ -486,9 +492,7 @@ void checkMetaImageHeaderText(const std::string& header, const std::string& path
   while (std::getline(in, line)) {
     ++lineNumber;
     headerBytes += static_cast<std::int64_t>(line.size()) + 1;
-    if (std::any_of(line.begin(), line.end(), [](char c) {
-          return static_cast<unsigned char>(c) < 0x20 && c != '\t' && c != '\r';
-        }))
+    if (hasControlCharacters(line))
       fail("header line " + std::to_string(lineNumber) + " holds control characters");
     if (trim(line).empty()) continue;
     const auto eq = line.find('=');
@@ -866,7 +870,6 @@ std::int64_t checkNiftiHeaderBytes(const std::string& header, const std::string&
 }
 
 void checkNiftiDeclaredSize(const std::string& path) {
-  std::string lowerPath = lower(path);
   // zlib reads plain files through gzopen too: the magic bytes, not the name, say which.
   const std::string magic = readHead(path, 2);
   const bool gz = magic.size() == 2 && magic[0] == '\x1f' && magic[1] == '\x8b';
@@ -1031,6 +1034,7 @@ int checkDicomSeries(const std::string& directory) {
   std::vector<fs::path> paths;
   for (const auto& entry : fs::directory_iterator(directory, ec))
     if (entry.is_regular_file(ec)) paths.push_back(entry.path());
+  if (ec) throw Error("cannot read " + directory + " as a DICOM series: " + ec.message());
   std::sort(paths.begin(), paths.end());
   for (const fs::path& p : paths) {
     std::ifstream in(p, std::ios::binary);
@@ -1038,6 +1042,13 @@ int checkDicomSeries(const std::string& directory) {
     if (!in.read(magic, sizeof magic) || std::string(magic + 128, 4) != "DICM") continue;
     ++files;
     checkDicomFile(in, fileSize(p.string()), p.string());
+  }
+  // VTK's reader says little (and twice) about a folder without DICOM files.
+  if (files == 0) {
+    throw Error("cannot read " + directory + " as a DICOM series: none of its " +
+                std::to_string(paths.size()) +
+                " files is a DICOM file ('DICM' after a 128-byte preamble); a volume input "
+                "that is a directory must hold the slices of one DICOM series");
   }
   return files;
 }

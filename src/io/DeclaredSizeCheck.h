@@ -40,7 +40,7 @@ void checkNiftiDeclaredSize(const std::string& path);
 // DICOM Part-10 files ('DICM' after the 128-byte preamble): walks the elements up to the pixel
 // data and checks that every element fits in the file and that the pixel data holds rows x
 // columns x samples x bytes. checkDicomSeries checks every such file of a directory (in name
-// order) and returns how many there are.
+// order) and returns how many there are; a folder without any is an error.
 void checkDicomFile(std::istream& in, std::int64_t size, const std::string& path);
 int checkDicomSeries(const std::string& directory);
 

@@ -14,8 +14,8 @@ namespace mfadvr {
 // error messages (and std::cerr, which MetaIO writes to directly) are collected instead of
 // printed, with VTK's source-location lines and object addresses removed; warnings are
 // dropped, except those that say data could not be read (a truncated legacy file), which
-// count as errors, as does MetaIO's "data not read completely". VTK's output window and logger are process-wide, so captures (and the reads inside
-// them) are serialised.
+// count as errors, as does MetaIO's "data not read completely". VTK's output window and logger are
+// process-wide, so captures (and the reads inside them) are serialised.
 class VtkMessageCapture {
  public:
   VtkMessageCapture();

@@ -2,8 +2,6 @@
 
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
-#include <fstream>
 #include <utility>
 
 #include <vtkAlgorithm.h>
@@ -107,54 +105,6 @@ void requireStructuredPoints(const std::string& path, const VtkMessageCapture& c
   }
 }
 
-// MetaIO leaks (and says little) when a detached data file is missing, so look for it first.
-// Only the one header line is read; LOCAL, LIST and file patterns are left to VTK.
-void requireMetaImageDataFile(const std::string& path) {
-  std::ifstream header(path, std::ios::binary);
-  std::string line;
-  while (std::getline(header, line)) {
-    const auto eq = line.find('=');
-    if (eq == std::string::npos) continue;
-    const auto trim = [](std::string t) {
-      const auto first = t.find_first_not_of(" \t\r");
-      const auto last = t.find_last_not_of(" \t\r");
-      return first == std::string::npos ? std::string() : t.substr(first, last - first + 1);
-    };
-    if (trim(line.substr(0, eq)) != "ElementDataFile") continue;
-    const std::string dataFile = trim(line.substr(eq + 1));
-    if (dataFile == "LOCAL" || dataFile == "LIST" || dataFile.find(' ') != std::string::npos ||
-        dataFile.find('%') != std::string::npos)
-      return;
-    const auto resolved = std::filesystem::path(path).parent_path() / dataFile;
-    std::error_code ec;
-    if (!std::filesystem::exists(resolved, ec)) {
-      throw Error("cannot read " + path + " as MetaImage: its data file " + resolved.string() +
-                  " (ElementDataFile = " + dataFile + ") does not exist");
-    }
-    return;  // ElementDataFile is the last header line.
-  }
-}
-
-// VTK's reader says little (and twice) about a directory without DICOM files: look first.
-// Part-10 files carry "DICM" after a 128-byte preamble.
-void requireDicomFiles(const std::string& dir) {
-  int files = 0, dicom = 0;
-  std::error_code ec;
-  for (const auto& entry : std::filesystem::directory_iterator(dir, ec)) {
-    if (!entry.is_regular_file(ec)) continue;
-    ++files;
-    std::ifstream in(entry.path(), std::ios::binary);
-    char magic[132] = {};
-    if (in.read(magic, sizeof magic) && std::string(magic + 128, 4) == "DICM") ++dicom;
-  }
-  if (ec) throw Error("cannot read " + dir + " as a DICOM series: " + ec.message());
-  if (dicom == 0) {
-    throw Error("cannot read " + dir + " as a DICOM series: none of its " + std::to_string(files) +
-                " files is a DICOM file ('DICM' after a 128-byte preamble); a volume input "
-                "that is a directory must hold the slices of one DICOM series");
-  }
-}
-
 vtkSmartPointer<vtkImageData> runReader(const std::string& path, VtkVolumeFormat format,
                                         const VtkMessageCapture& capture,
                                         vtkSmartPointer<vtkAlgorithm>& reader) {
@@ -184,7 +134,7 @@ vtkSmartPointer<vtkImageData> runReader(const std::string& path, VtkVolumeFormat
       break;
     }
     case VtkVolumeFormat::kMetaImage: {
-      requireMetaImageDataFile(path);
+      // Also refuses a missing data file, on which MetaIO leaks and says little.
       checkMetaImageDeclaredSize(path);
       auto r = vtkSmartPointer<vtkMetaImageReader>::New();
       r->SetFileName(path.c_str());
@@ -199,7 +149,6 @@ vtkSmartPointer<vtkImageData> runReader(const std::string& path, VtkVolumeFormat
       break;
     }
     case VtkVolumeFormat::kDicomSeries: {
-      requireDicomFiles(path);
       dicomFiles = checkDicomSeries(path);
       auto r = vtkSmartPointer<vtkDICOMImageReader>::New();
       r->SetDirectoryName(path.c_str());
