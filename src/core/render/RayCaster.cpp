@@ -15,11 +15,15 @@ RayParams compileRayParams(const RenderSettings& s, const TransferFunctionTable&
                            const Vec3d& boxMin, const Vec3d& boxMax) {
   RayParams p;
   p.camera = RayGenerator(s.camera, s.width, s.height).rays();
+  const bool clip = s.hasClipBox();
   for (int a = 0; a < 3; ++a) {
-    p.boxMin[a] = boxMin[a];
-    p.boxMax[a] = boxMax[a];
+    p.boxMin[a] = clip ? std::max(boxMin[a], s.clipMin[a]) : boxMin[a];
+    p.boxMax[a] = clip ? std::min(boxMax[a], s.clipMax[a]) : boxMax[a];
+    // A clip box beside the field leaves a box of zero width, which no ray samples.
+    if (p.boxMax[a] < p.boxMin[a]) p.boxMax[a] = p.boxMin[a];
     p.background[a] = s.background[a];
   }
+  p.alignSteps = s.alignSamplesToCamera;
   p.sampleDistance = s.sampleDistance;
   p.correctionExponent = s.sampleDistance / s.opacityUnitDistance;
   p.stopOpacity = static_cast<float>(s.earlyTerminationOpacity);

@@ -1,6 +1,7 @@
 #pragma once
 // Everything about a render except the field: image size, camera, transfer function, shading,
 // sampling and compositing. The same settings render every reconstruction method.
+#include <cmath>
 #include <functional>
 #include <vector>
 
@@ -30,6 +31,16 @@ struct RenderSettings {
   // from their origins (RayGenerator), row 0 at the top; +inf means no limit for that pixel.
   // Nothing beyond is sampled, and the last step is shortened to end there.
   std::vector<float> rayEnd;
+  // Render only inside this box (intersected with the field's box), world units: a piece of a
+  // distributed volume renders its own region and a compositor blends the pieces. Empty (the
+  // default, min > max): the whole field.
+  Vec3d clipMin = Vec3d::Constant(INFINITY), clipMax = Vec3d::Constant(-INFINITY);
+  bool hasClipBox() const { return (clipMin.array() <= clipMax.array()).all(); }
+  // Steps start at multiples of the sample distance along each ray (from its origin) instead of
+  // where the ray enters the box, so that pieces of a partitioned volume sample the same points
+  // as the whole volume; the first and last steps of a ray are shorter. Off by default (the
+  // images of the evaluation protocol sample from the box entry).
+  bool alignSamplesToCamera = false;
   // Worker threads; 0 uses all cores. The image does not depend on it.
   int threads = 0;
   // MFA models: pass over knot-span cells the transfer function makes invisible (exact: the

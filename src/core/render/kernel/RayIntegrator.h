@@ -5,7 +5,10 @@
 //
 // A ray from the camera through the pixel centre is clipped to the box (and to its ray end);
 // the clipped segment is cut into steps of the sample distance (the last one shorter when the
-// length is not a multiple) and the field is sampled at the middle of each step. A sample's
+// length is not a multiple) and the field is sampled at the middle of each step. With
+// rp.alignSteps the steps are instead the multiples of the sample distance along the ray that
+// overlap the segment, the first and last cut to it: pieces of a partitioned volume then sample
+// the same points as the whole. A sample's
 // opacity a from the transfer function is corrected for its step length dt as in VTK,
 // a' = 1 - (1 - a)^(dt / unit distance), so the image converges as the step shrinks and a
 // constant medium composites to exactly its Beer-Lambert transmittance. The value comes first;
@@ -44,8 +47,10 @@ MFADVR_HD MFADVR_INLINE void integrateRay(const RayParams& rp, Sampler& sampler,
     ++counters.hits;
     if (tEnter < 0.0) tEnter = 0.0;
     const double dt = rp.sampleDistance;
+    // Where step 0 starts (before tEnter when aligned: that step is cut to begin at tEnter).
+    const double t0 = rp.alignSteps ? floor(tEnter / dt) * dt : tEnter;
     // The tolerance keeps a rounding error from adding a step of zero length.
-    const std::int64_t steps = static_cast<std::int64_t>(ceil((tExit - tEnter) / dt - 1e-6));
+    const std::int64_t steps = static_cast<std::int64_t>(ceil((tExit - t0) / dt - 1e-6));
     RayShading rayShading;
     if constexpr (Shade) {
       const float df[3] = {float(d[0]), float(d[1]), float(d[2])};
@@ -63,9 +68,16 @@ MFADVR_HD MFADVR_INLINE void integrateRay(const RayParams& rp, Sampler& sampler,
       float pr[K], pg[K], pb[K], pa[K];
       int n = 0;
       while (n < K && k < steps) {
-        const double t = tEnter + static_cast<double>(k) * dt;
-        const double rest = tExit - t;
-        const double length = dt < rest ? dt : rest;
+        double t = t0 + static_cast<double>(k) * dt;
+        double length;
+        if (t < tEnter) {  // the first step of an aligned ray
+          length = t + dt - tEnter;
+          t = tEnter;
+          if (length > tExit - t) length = tExit - t;
+        } else {
+          const double rest = tExit - t;
+          length = dt < rest ? dt : rest;
+        }
         if (!(length > 0.0)) {
           done = true;
           break;
@@ -80,9 +92,9 @@ MFADVR_HD MFADVR_INLINE void integrateRay(const RayParams& rp, Sampler& sampler,
         if constexpr (Sampler::kSkipsEmptySpace) {
           double tLeave;
           if (sampler.emptyAt(p, tLeave)) {
-            // Samples j with midpoints tEnter + (j + 1/2) dt <= tLeave lie in the same empty
+            // Samples j >= k with midpoints t0 + (j + 1/2) dt <= tLeave lie in the same empty
             // region: go on after the last of them.
-            const double last = floor((tLeave - tEnter) / dt - 0.5);
+            const double last = floor((tLeave - t0) / dt - 0.5);
             std::int64_t next = k;
             if (last >= static_cast<double>(k))
               next = last < static_cast<double>(steps - 1) ? static_cast<std::int64_t>(last) + 1

@@ -15,6 +15,7 @@ struct RayParams {
   CameraRays camera;
   double boxMin[3], boxMax[3];
   double sampleDistance = 1.0;
+  bool alignSteps = false;  // steps at multiples of sampleDistance from the ray origin
   // Opacity correction exponent of a full step (sample distance / opacity unit distance); the
   // table's alphaStep already holds it, shorter last steps scale it.
   double correctionExponent = 1.0;
