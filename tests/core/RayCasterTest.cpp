@@ -13,6 +13,7 @@
 #include "core/render/RayCaster.h"
 #include "core/render/ReconstructionMethod.h"
 #include "core/util/Error.h"
+#include "PieceCompositing.h"
 
 namespace mfadvr {
 namespace {
@@ -252,35 +253,6 @@ TEST(RayCaster, MfaBeatsTrilinearAgainstTheTruth) {
   EXPECT_GT(mfaGradient, trilinearGradient);
 }
 
-// What a compositor (IceT in ParaView) does with the pieces of a partitioned volume: per pixel,
-// the premultiplied images of the pieces blended front to back in the order the ray meets them.
-Image compositePieces(const RenderSettings& s, const std::vector<std::pair<Vec3d, Vec3d>>& boxes,
-                      const std::vector<Image>& pieces) {
-  Image out(s.width, s.height);
-  const RayGenerator rays(s.camera, s.width, s.height);
-  for (int y = 0; y < s.height; ++y)
-    for (int x = 0; x < s.width; ++x) {
-      Vec3d o, d;
-      rays.ray(x, y, o, d);
-      std::vector<std::pair<double, size_t>> order;
-      for (size_t i = 0; i < boxes.size(); ++i) {
-        const double lo[3] = {boxes[i].first[0], boxes[i].first[1], boxes[i].first[2]};
-        const double hi[3] = {boxes[i].second[0], boxes[i].second[1], boxes[i].second[2]};
-        const double oo[3] = {o[0], o[1], o[2]}, dd[3] = {d[0], d[1], d[2]};
-        double t0, t1;
-        if (intersectBox(oo, dd, lo, hi, t0, t1)) order.push_back({t0, i});
-      }
-      std::sort(order.begin(), order.end());
-      float* acc = out.pixel(x, y);
-      for (const auto& [t, i] : order) {
-        const float* p = pieces[i].pixel(x, y);
-        const float behind = 1.0f - acc[3];
-        for (int c = 0; c < 4; ++c) acc[c] += behind * p[c];
-      }
-    }
-  return out;
-}
-
 TEST(RayCaster, PiecesWithAlignedSamplesCompositeToTheWhole) {
   // A model split into 2 x 2 x 1 pieces by clip boxes, each rendered alone over a transparent
   // background with camera-aligned steps and composited in visibility order, gives the image of
@@ -309,7 +281,7 @@ TEST(RayCaster, PiecesWithAlignedSamplesCompositeToTheWhole) {
     piece.clipMax = bmax;
     pieces.push_back(renderVolume(field, piece));
   }
-  const Image composited = compositePieces(s, boxes, pieces);
+  const Image composited = test::compositePieces(s, boxes, pieces);
   EXPECT_LT(maxAbsDifference(whole, composited), 0.02);
   EXPECT_LT(meanAbsDifference(whole, composited), 2e-4);
   EXPECT_GT(compareImages(toImage8(whole), toImage8(composited)).psnr, 50.0);
@@ -324,7 +296,7 @@ TEST(RayCaster, PiecesWithAlignedSamplesCompositeToTheWhole) {
     piece.clipMax = bmax;
     unaligned.push_back(renderVolume(field, piece));
   }
-  EXPECT_GT(meanAbsDifference(wholeUnaligned, compositePieces(s, boxes, unaligned)),
+  EXPECT_GT(meanAbsDifference(wholeUnaligned, test::compositePieces(s, boxes, unaligned)),
             meanAbsDifference(whole, composited));
 
   // A clip box beside the model renders nothing; an inverted one is refused.

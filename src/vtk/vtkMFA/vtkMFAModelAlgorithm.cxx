@@ -2,9 +2,14 @@
 
 #include "vtkDataObject.h"
 #include "vtkDemandDrivenPipeline.h"
+#include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkMFAModelData.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
+
+#include "VtkModelImage.h"
+#include "core/model/Model.h"
 
 vtkMFAModelAlgorithm::vtkMFAModelAlgorithm() {
   this->SetNumberOfInputPorts(0);
@@ -15,6 +20,7 @@ vtkMFAModelAlgorithm::~vtkMFAModelAlgorithm() = default;
 
 void vtkMFAModelAlgorithm::PrintSelf(ostream& os, vtkIndent indent) {
   this->Superclass::PrintSelf(os, indent);
+  os << indent << "OutputImageData: " << this->OutputImageData << "\n";
 }
 
 vtkMFAModelData* vtkMFAModelAlgorithm::GetOutput() {
@@ -22,7 +28,8 @@ vtkMFAModelData* vtkMFAModelAlgorithm::GetOutput() {
 }
 
 int vtkMFAModelAlgorithm::FillOutputPortInformation(int, vtkInformation* info) {
-  info->Set(vtkDataObject::DATA_TYPE_NAME(), "vtkMFAModelData");
+  // A model or an image carrying one, decided at REQUEST_DATA_OBJECT.
+  info->Set(vtkDataObject::DATA_TYPE_NAME(), "vtkDataObject");
   return 1;
 }
 
@@ -32,8 +39,13 @@ vtkTypeBool vtkMFAModelAlgorithm::ProcessRequest(vtkInformation* request,
   if (request->Has(vtkDemandDrivenPipeline::REQUEST_DATA_OBJECT())) {
     for (int i = 0; i < this->GetNumberOfOutputPorts(); ++i) {
       vtkInformation* info = outInfo->GetInformationObject(i);
-      if (!vtkMFAModelData::SafeDownCast(info->Get(vtkDataObject::DATA_OBJECT()))) {
-        vtkMFAModelData* output = vtkMFAModelData::New();
+      vtkDataObject* current = info->Get(vtkDataObject::DATA_OBJECT());
+      const bool fits = this->OutputImageData ? vtkImageData::SafeDownCast(current) != nullptr
+                                              : vtkMFAModelData::SafeDownCast(current) != nullptr;
+      if (!fits) {
+        vtkDataObject* output = this->OutputImageData
+                                    ? static_cast<vtkDataObject*>(vtkImageData::New())
+                                    : static_cast<vtkDataObject*>(vtkMFAModelData::New());
         info->Set(vtkDataObject::DATA_OBJECT(), output);
         output->FastDelete();
       }
@@ -41,7 +53,16 @@ vtkTypeBool vtkMFAModelAlgorithm::ProcessRequest(vtkInformation* request,
     return 1;
   }
   if (request->Has(vtkDemandDrivenPipeline::REQUEST_INFORMATION())) {
+    // Each piece of a partitioned pipeline makes its own model: piece requests come through
+    // as pieces, never as extents of a whole image.
+    for (int i = 0; i < this->GetNumberOfOutputPorts(); ++i) {
+      outInfo->GetInformationObject(i)->Set(
+          vtkStreamingDemandDrivenPipeline::CAN_HANDLE_PIECE_REQUEST(), 1);
+    }
     return this->RequestInformation(request, inInfo, outInfo);
+  }
+  if (request->Has(vtkStreamingDemandDrivenPipeline::REQUEST_UPDATE_EXTENT())) {
+    return this->RequestUpdateExtent(request, inInfo, outInfo);
   }
   if (request->Has(vtkDemandDrivenPipeline::REQUEST_DATA())) {
     return this->RequestData(request, inInfo, outInfo);
@@ -52,4 +73,20 @@ vtkTypeBool vtkMFAModelAlgorithm::ProcessRequest(vtkInformation* request,
 int vtkMFAModelAlgorithm::RequestInformation(vtkInformation*, vtkInformationVector**,
                                              vtkInformationVector*) {
   return 1;
+}
+
+int vtkMFAModelAlgorithm::RequestUpdateExtent(vtkInformation*, vtkInformationVector**,
+                                              vtkInformationVector*) {
+  return 1;
+}
+
+void vtkMFAModelAlgorithm::SetOutputModel(vtkInformationVector* outInfo,
+                                          std::shared_ptr<const mfadvr::Model> model,
+                                          const double* renderBounds) {
+  vtkDataObject* output = outInfo->GetInformationObject(0)->Get(vtkDataObject::DATA_OBJECT());
+  if (auto* image = vtkImageData::SafeDownCast(output)) {
+    image->ShallowCopy(mfadvr::vtkglue::imageOfModel(*model, renderBounds));
+  } else if (auto* data = vtkMFAModelData::SafeDownCast(output)) {
+    data->SetModel(std::move(model));
+  }
 }

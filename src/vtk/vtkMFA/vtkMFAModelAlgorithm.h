@@ -3,14 +3,28 @@
  * @brief   superclass for algorithms whose output is a vtkMFAModelData
  *
  * Creates the output data object (VTK's executives only know built-in types), and dispatches
- * the pipeline requests to RequestInformation and RequestData like vtkDataObjectAlgorithm.
- * Subclasses set their inputs (none for a reader) and implement RequestData.
+ * the pipeline requests to RequestInformation, RequestUpdateExtent and RequestData like
+ * vtkDataObjectAlgorithm. Subclasses set their inputs (none for a reader) and implement
+ * RequestData, handing the model to SetOutputModel.
+ *
+ * With OutputImageData on, the output is a vtkImageData that carries the model (the control
+ * points as its point scalars, the rest of the model as the field array
+ * "MFAModelDescription"; its bounds are the region to render): the form ParaView moves
+ * between processes, and which vtkMFAVolumeMapper renders like the model itself. GetOutput()
+ * is then null; use GetOutputDataObject(0).
  */
 #ifndef vtkMFAModelAlgorithm_h
 #define vtkMFAModelAlgorithm_h
 
 #include "vtkAlgorithm.h"
 #include "vtkMFAModule.h"  // for export macro
+
+#ifndef __VTK_WRAP__
+#include <memory>  // for std::shared_ptr
+namespace mfadvr {
+class Model;
+}
+#endif
 
 class vtkMFAModelData;
 
@@ -24,6 +38,15 @@ class VTKMFA_EXPORT vtkMFAModelAlgorithm : public vtkAlgorithm {
    */
   vtkMFAModelData* GetOutput();
 
+  //@{
+  /**
+   * Output the model as a vtkImageData that carries it (default off: a vtkMFAModelData).
+   */
+  vtkSetMacro(OutputImageData, bool);
+  vtkGetMacro(OutputImageData, bool);
+  vtkBooleanMacro(OutputImageData, bool);
+  //@}
+
   vtkTypeBool ProcessRequest(vtkInformation* request, vtkInformationVector** inInfo,
                              vtkInformationVector* outInfo) override;
 
@@ -32,7 +55,19 @@ class VTKMFA_EXPORT vtkMFAModelAlgorithm : public vtkAlgorithm {
   ~vtkMFAModelAlgorithm() override;
 
   virtual int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*);
+  virtual int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*);
   virtual int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) = 0;
+
+#ifndef __VTK_WRAP__
+  /**
+   * Puts `model` into the output of port 0 (`outInfo`), as the model or as image data that
+   * carries it; renderBounds (image data only): the region to render, null for the model's box.
+   */
+  void SetOutputModel(vtkInformationVector* outInfo, std::shared_ptr<const mfadvr::Model> model,
+                      const double* renderBounds = nullptr);
+#endif
+
+  bool OutputImageData = false;
 
   int FillOutputPortInformation(int port, vtkInformation* info) override;
 

@@ -1,0 +1,108 @@
+#include "core/encode/PieceEncoder.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "core/util/Error.h"
+
+namespace mfadvr {
+
+SampleRange pieceRange(const Index3& dims, const Index3& pieces, const Index3& piece) {
+  SampleRange r;
+  for (int a = 0; a < 3; ++a) {
+    const std::int64_t intervals = dims[a] - 1;
+    if (pieces[a] < 1 || (pieces[a] > 1 && pieces[a] > intervals))
+      throw Error("cannot split " + std::to_string(dims[a]) + " samples along " + "xyz"[a] +
+                  " into " + std::to_string(pieces[a]) + " pieces");
+    if (piece[a] < 0 || piece[a] >= pieces[a])
+      throw Error("piece index out of range along " + std::string(1, "xyz"[a]));
+    r.lo[a] = piece[a] * intervals / pieces[a];
+    r.hi[a] = (piece[a] + 1) * intervals / pieces[a];
+  }
+  return r;
+}
+
+SampleRange withGhostLayers(const SampleRange& range, int ghost, const Index3& dims) {
+  SampleRange r = range;
+  for (int a = 0; a < 3; ++a) {
+    r.lo[a] = std::max<std::int64_t>(0, range.lo[a] - ghost);
+    r.hi[a] = std::min<std::int64_t>(dims[a] - 1, range.hi[a] + ghost);
+  }
+  return r;
+}
+
+StructuredGrid subGrid(const StructuredGrid& grid, const SampleRange& range) {
+  StructuredGrid g;
+  g.dims = range.dims();
+  g.origin = grid.position(range.lo[0], range.lo[1], range.lo[2]);
+  g.spacing = grid.spacing;
+  g.source = grid.source;
+  g.fieldName = grid.fieldName;
+  g.sampleType = grid.sampleType;
+  g.values.resize(static_cast<size_t>(g.sampleCount()));
+  size_t out = 0;
+  for (std::int64_t k = range.lo[2]; k <= range.hi[2]; ++k)
+    for (std::int64_t j = range.lo[1]; j <= range.hi[1]; ++j)
+      for (std::int64_t i = range.lo[0]; i <= range.hi[0]; ++i) g.values[out++] = grid.at(i, j, k);
+  const double bytesPerSample =
+      grid.sampleCount() > 0 ? double(grid.inputBytes) / double(grid.sampleCount()) : 0.0;
+  g.inputBytes = static_cast<std::int64_t>(std::llround(bytesPerSample * double(g.sampleCount())));
+  return g;
+}
+
+int defaultGhostLayers(const Degree3& degree) {
+  return 2 * (*std::max_element(degree.begin(), degree.end()) + 1);
+}
+
+Model encodeStructuredPiece(const StructuredGrid& pieceGrid, const Index3& wholeDims,
+                            const EncodeOptions& options, double valueMin, double valueMax,
+                            FitReport* report) {
+  EncodeOptions piece = options;
+  for (int a = 0; a < 3; ++a) {
+    if (options.controlCounts[a] <= 0) continue;
+    if (wholeDims[a] < 2 || pieceGrid.dims[a] > wholeDims[a])
+      throw Error("the piece is larger than the whole grid");
+    // Same density: control intervals per sample interval as in the whole grid.
+    const double density =
+        double(options.controlCounts[a] - options.degree[a]) / double(wholeDims[a] - 1);
+    const std::int64_t count =
+        std::llround(density * double(pieceGrid.dims[a] - 1)) + options.degree[a];
+    piece.controlCounts[a] =
+        std::clamp<std::int64_t>(count, options.degree[a] + 1, pieceGrid.dims[a]);
+  }
+  if (piece.adaptive)
+    for (int a = 0; a < 3; ++a)
+      if (piece.adaptive->maxControlCounts[a] > 0)
+        piece.adaptive->maxControlCounts[a] =
+            std::min<std::int64_t>(piece.adaptive->maxControlCounts[a], pieceGrid.dims[a]);
+  Model m = encodeStructured(pieceGrid, piece, report);
+  return Model(m.spline(), m.domain(), valueMin, valueMax, m.provenance());
+}
+
+std::vector<ModelBlock> encodeStructuredBlocks(const StructuredGrid& grid, const Index3& blocks,
+                                               int ghost, const EncodeOptions& options) {
+  grid.validate();
+  if (ghost < 0) ghost = defaultGhostLayers(options.degree);
+  const auto [lo, hi] = std::minmax_element(grid.values.begin(), grid.values.end());
+  const std::int64_t count = blocks[0] * blocks[1] * blocks[2];
+  std::vector<ModelBlock> out;
+  out.reserve(static_cast<size_t>(count));
+  EncodeOptions quiet = options;
+  quiet.progress = nullptr;
+  for (std::int64_t k = 0; k < blocks[2]; ++k)
+    for (std::int64_t j = 0; j < blocks[1]; ++j)
+      for (std::int64_t i = 0; i < blocks[0]; ++i) {
+        const SampleRange own = pieceRange(grid.dims, blocks, {i, j, k});
+        const StructuredGrid piece = subGrid(grid, withGhostLayers(own, ghost, grid.dims));
+        ModelBlock b{{grid.position(own.lo[0], own.lo[1], own.lo[2]),
+                      grid.position(own.hi[0], own.hi[1], own.hi[2])},
+                     encodeStructuredPiece(piece, grid.dims, quiet, *lo, *hi)};
+        out.push_back(std::move(b));
+        if (options.progress)
+          options.progress(double(out.size()) / double(count), "fitting blocks");
+      }
+  return out;
+}
+
+}  // namespace mfadvr

@@ -1,0 +1,62 @@
+#pragma once
+// Partitioned encoding of a grid: the samples are split into pieces along each axis, each piece
+// is fitted with a few ghost layers of its neighbours' samples around it, and renders only its
+// own region. Used by `mfadvr encode --blocks` (a multi-block model file) and, one piece per
+// rank, by the VTK encoder under ParaView's MPI pipelines.
+//
+// Pieces share their boundary samples, as VTK's extents do: piece b of B along an axis of n
+// samples covers samples floor(b (n-1) / B) .. floor((b+1) (n-1) / B). A piece's model is fitted
+// to its samples plus `ghost` layers beyond each face that has a neighbour, so that the models of
+// two neighbours agree closely across their common face (each sees the same data there); its
+// region is the box of its own samples, and the regions of the pieces tile the whole box without
+// overlapping.
+#include <vector>
+
+#include "core/encode/Encoder.h"
+#include "core/grid/StructuredGrid.h"
+#include "core/model/Model.h"
+
+namespace mfadvr {
+
+// Inclusive sample index ranges per axis.
+struct SampleRange {
+  Index3 lo{0, 0, 0}, hi{0, 0, 0};
+  Index3 dims() const { return {hi[0] - lo[0] + 1, hi[1] - lo[1] + 1, hi[2] - lo[2] + 1}; }
+};
+
+// Piece `piece` of a grid of `dims` samples split into `pieces` per axis. Throws mfadvr::Error
+// when an axis has more pieces than sample intervals.
+SampleRange pieceRange(const Index3& dims, const Index3& pieces, const Index3& piece);
+
+// `range` grown by `ghost` samples on every side, clipped to the grid.
+SampleRange withGhostLayers(const SampleRange& range, int ghost, const Index3& dims);
+
+// The samples of `range` as a grid of their own (same spacing, origin at the range's first
+// sample).
+StructuredGrid subGrid(const StructuredGrid& grid, const SampleRange& range);
+
+// The default ghost layers for a degree: enough samples that both neighbours' fits see the same
+// data over the support of the basis functions near their common face.
+int defaultGhostLayers(const Degree3& degree);
+
+// Fits one piece: `pieceGrid` holds the piece's samples and its ghost layers, out of a whole grid
+// of `wholeDims` samples. Control counts in `options` are for the whole grid and are scaled to
+// the piece (same control-point density; 0, the default, interpolates the piece's samples). The
+// model's value range is `valueRange` (the whole grid's, so that normalized transfer functions
+// mean the same in every piece).
+Model encodeStructuredPiece(const StructuredGrid& pieceGrid, const Index3& wholeDims,
+                            const EncodeOptions& options, double valueMin, double valueMax,
+                            FitReport* report = nullptr);
+
+// A model and the region it renders.
+struct ModelBlock {
+  DomainBox region;
+  Model model;
+};
+
+// Splits `grid` into blocks[0] x blocks[1] x blocks[2] pieces (x fastest) and fits each with
+// `ghost` layers (negative: defaultGhostLayers). Progress reports the fraction of blocks done.
+std::vector<ModelBlock> encodeStructuredBlocks(const StructuredGrid& grid, const Index3& blocks,
+                                               int ghost, const EncodeOptions& options);
+
+}  // namespace mfadvr

@@ -1,0 +1,115 @@
+// Partitioned encoding: piece ranges, and blocks fitted with ghost layers that render, clipped
+// to their regions and composited, like the model of the whole grid.
+#include "core/encode/PieceEncoder.h"
+
+#include <gtest/gtest.h>
+
+#include "PieceCompositing.h"
+#include "core/analytic/BuiltinFunction.h"
+#include "core/field/ModelField.h"
+#include "core/image/ImageMetrics.h"
+#include "core/render/RayCaster.h"
+#include "core/util/Error.h"
+
+namespace mfadvr {
+namespace {
+
+TEST(PieceEncoder, PiecesShareTheirBoundarySamplesAndTileTheGrid) {
+  const Index3 dims{10, 7, 2};
+  const SampleRange a = pieceRange(dims, {3, 2, 1}, {0, 0, 0});
+  const SampleRange b = pieceRange(dims, {3, 2, 1}, {1, 0, 0});
+  const SampleRange c = pieceRange(dims, {3, 2, 1}, {2, 1, 0});
+  EXPECT_EQ(a.lo, (Index3{0, 0, 0}));
+  EXPECT_EQ(a.hi, (Index3{3, 3, 1}));
+  EXPECT_EQ(b.lo[0], 3);  // shares sample 3 with piece 0
+  EXPECT_EQ(b.hi[0], 6);
+  EXPECT_EQ(c.hi, (Index3{9, 6, 1}));
+  const SampleRange g = withGhostLayers(b, 2, dims);
+  EXPECT_EQ(g.lo, (Index3{1, 0, 0}));
+  EXPECT_EQ(g.hi, (Index3{8, 5, 1}));
+  EXPECT_THROW(pieceRange(dims, {1, 1, 2}, {0, 0, 0}), Error);  // 2 pieces of 1 interval
+  EXPECT_NO_THROW(pieceRange({10, 7, 3}, {1, 1, 2}, {0, 0, 1}));
+  EXPECT_THROW(pieceRange(dims, {1, 7, 1}, {0, 0, 0}), Error);  // 7 pieces of 6 intervals
+  EXPECT_THROW(pieceRange(dims, {3, 2, 1}, {3, 0, 0}), Error);
+}
+
+TEST(PieceEncoder, SubGridKeepsPositionsAndValues) {
+  const StructuredGrid grid = sampleBuiltinSpec("builtin:marschner-lobb:9x8x7");
+  const SampleRange r{{2, 1, 3}, {6, 7, 5}};
+  const StructuredGrid sub = subGrid(grid, r);
+  EXPECT_EQ(sub.dims, (Index3{5, 7, 3}));
+  EXPECT_EQ(sub.origin, grid.position(2, 1, 3));
+  EXPECT_EQ(sub.at(4, 6, 2), grid.at(6, 7, 5));
+  EXPECT_EQ(sub.at(0, 0, 0), grid.at(2, 1, 3));
+}
+
+TEST(PieceEncoder, BlocksCompositeToTheWholeModelsImage) {
+  const StructuredGrid grid = sampleBuiltinSpec("builtin:marschner-lobb:33x33x33");
+  EncodeOptions options;  // interpolating cubic fits
+  const Model whole = encodeStructured(grid, options);
+  const std::vector<ModelBlock> blocks = encodeStructuredBlocks(grid, {2, 2, 1}, -1, options);
+  ASSERT_EQ(blocks.size(), 4u);
+  for (const ModelBlock& b : blocks) {
+    // The blocks' value range is the whole grid's, and each model covers its ghost layers.
+    EXPECT_EQ(b.model.valueMin(), whole.valueMin());
+    EXPECT_EQ(b.model.valueMax(), whole.valueMax());
+    EXPECT_TRUE(((b.model.domain().min - b.region.min).array() <= 0.0).all());
+    EXPECT_TRUE(((b.model.domain().max - b.region.max).array() >= 0.0).all());
+  }
+
+  RenderSettings s;
+  s.width = s.height = 64;
+  s.camera.resetToBounds(whole.domain().min, whole.domain().max);
+  s.camera.azimuth(30);
+  s.camera.elevation(20);
+  s.transferFunction.space = TfSpace::Data;
+  s.transferFunction.color = {{0.0, Vec3f(0.2f, 0.3f, 1.0f)}, {1.0, Vec3f(1.0f, 0.8f, 0.3f)}};
+  s.transferFunction.opacity = {{0.0, 0.0f}, {0.45, 0.0f}, {0.55, 0.8f}, {1.0, 0.8f}};
+  s.opacityUnitDistance = 0.05;
+  s.sampleDistance = 0.01;
+  s.shade = true;
+  s.earlyTerminationOpacity = 2.0;
+  s.alignSamplesToCamera = true;
+  const Image reference = renderVolume(ModelField(whole), s);
+  std::vector<std::pair<Vec3d, Vec3d>> boxes;
+  std::vector<Image> pieces;
+  for (const ModelBlock& b : blocks) {
+    RenderSettings piece = s;
+    piece.clipMin = b.region.min;
+    piece.clipMax = b.region.max;
+    boxes.push_back({b.region.min, b.region.max});
+    pieces.push_back(renderVolume(ModelField(b.model), piece));
+  }
+  const double psnr =
+      compareImages(toImage8(reference), toImage8(test::compositePieces(s, boxes, pieces))).psnr;
+  EXPECT_GT(psnr, 40.0);
+  // Without ghost layers the pieces disagree more along their common faces.
+  const std::vector<ModelBlock> bare = encodeStructuredBlocks(grid, {2, 2, 1}, 0, options);
+  std::vector<Image> barePieces;
+  for (size_t i = 0; i < bare.size(); ++i) {
+    RenderSettings piece = s;
+    piece.clipMin = bare[i].region.min;
+    piece.clipMax = bare[i].region.max;
+    barePieces.push_back(renderVolume(ModelField(bare[i].model), piece));
+  }
+  const double barePsnr =
+      compareImages(toImage8(reference), toImage8(test::compositePieces(s, boxes, barePieces)))
+          .psnr;
+  EXPECT_GT(psnr, barePsnr);
+  RecordProperty("psnr_ghost", std::to_string(psnr));
+  RecordProperty("psnr_no_ghost", std::to_string(barePsnr));
+  std::printf("blocks vs whole: %.2f dB with ghost layers, %.2f dB without\n", psnr, barePsnr);
+}
+
+TEST(PieceEncoder, ControlCountsKeepTheirDensity) {
+  const StructuredGrid grid = sampleBuiltinSpec("builtin:marschner-lobb:41x41x41");
+  EncodeOptions options;
+  options.controlCounts = {21, 21, 21};
+  const std::vector<ModelBlock> blocks = encodeStructuredBlocks(grid, {2, 1, 1}, 0, options);
+  // 20 of 40 sample intervals: (21 - 3) / 40 * 20 + 3 = 12 control points along x.
+  EXPECT_EQ(blocks[0].model.spline().counts()[0], 12);
+  EXPECT_EQ(blocks[0].model.spline().counts()[1], 21);
+}
+
+}  // namespace
+}  // namespace mfadvr
