@@ -4,7 +4,7 @@
 
 #include <gtest/gtest.h>
 
-#include "PieceCompositing.h"
+#include "core/render/PieceCompositor.h"
 #include "core/analytic/BuiltinFunction.h"
 #include "core/field/ModelField.h"
 #include "core/image/ImageMetrics.h"
@@ -71,17 +71,17 @@ TEST(PieceEncoder, BlocksCompositeToTheWholeModelsImage) {
   s.earlyTerminationOpacity = 2.0;
   s.alignSamplesToCamera = true;
   const Image reference = renderVolume(ModelField(whole), s);
-  std::vector<std::pair<Vec3d, Vec3d>> boxes;
+  std::vector<DomainBox> boxes;
   std::vector<Image> pieces;
   for (const ModelBlock& b : blocks) {
     RenderSettings piece = s;
     piece.clipMin = b.region.min;
     piece.clipMax = b.region.max;
-    boxes.push_back({b.region.min, b.region.max});
+    boxes.push_back(b.region);
     pieces.push_back(renderVolume(ModelField(b.model), piece));
   }
   const double psnr =
-      compareImages(toImage8(reference), toImage8(test::compositePieces(s, boxes, pieces))).psnr;
+      compareImages(toImage8(reference), toImage8(compositeInVisibilityOrder(s, boxes, pieces))).psnr;
   EXPECT_GT(psnr, 40.0);
   // Without ghost layers the pieces disagree more along their common faces.
   const std::vector<ModelBlock> bare = encodeStructuredBlocks(grid, {2, 2, 1}, 0, options);
@@ -93,7 +93,7 @@ TEST(PieceEncoder, BlocksCompositeToTheWholeModelsImage) {
     barePieces.push_back(renderVolume(ModelField(bare[i].model), piece));
   }
   const double barePsnr =
-      compareImages(toImage8(reference), toImage8(test::compositePieces(s, boxes, barePieces)))
+      compareImages(toImage8(reference), toImage8(compositeInVisibilityOrder(s, boxes, barePieces)))
           .psnr;
   EXPECT_GT(psnr, barePsnr);
   RecordProperty("psnr_ghost", std::to_string(psnr));

@@ -13,7 +13,7 @@
 #include "core/render/RayCaster.h"
 #include "core/render/ReconstructionMethod.h"
 #include "core/util/Error.h"
-#include "PieceCompositing.h"
+#include "core/render/PieceCompositor.h"
 
 namespace mfadvr {
 namespace {
@@ -269,19 +269,19 @@ TEST(RayCaster, PiecesWithAlignedSamplesCompositeToTheWhole) {
   const Image whole = renderVolume(field, s);
   const Vec3d lo = model.domain().min, hi = model.domain().max;
   const double cx = lo[0] + 0.37 * (hi[0] - lo[0]), cy = lo[1] + 0.61 * (hi[1] - lo[1]);
-  std::vector<std::pair<Vec3d, Vec3d>> boxes;
+  std::vector<DomainBox> boxes;
   for (int i = 0; i < 2; ++i)
     for (int j = 0; j < 2; ++j)
-      boxes.push_back({Vec3d(i ? cx : lo[0], j ? cy : lo[1], lo[2]),
-                       Vec3d(i ? hi[0] : cx, j ? hi[1] : cy, hi[2])});
+      boxes.push_back(DomainBox{Vec3d(i ? cx : lo[0], j ? cy : lo[1], lo[2]),
+                                Vec3d(i ? hi[0] : cx, j ? hi[1] : cy, hi[2])});
   std::vector<Image> pieces;
-  for (const auto& [bmin, bmax] : boxes) {
+  for (const DomainBox& box : boxes) {
     RenderSettings piece = s;
-    piece.clipMin = bmin;
-    piece.clipMax = bmax;
+    piece.clipMin = box.min;
+    piece.clipMax = box.max;
     pieces.push_back(renderVolume(field, piece));
   }
-  const Image composited = test::compositePieces(s, boxes, pieces);
+  const Image composited = compositeInVisibilityOrder(s, boxes, pieces);
   EXPECT_LT(maxAbsDifference(whole, composited), 0.02);
   EXPECT_LT(meanAbsDifference(whole, composited), 2e-4);
   EXPECT_GT(compareImages(toImage8(whole), toImage8(composited)).psnr, 50.0);
@@ -290,13 +290,13 @@ TEST(RayCaster, PiecesWithAlignedSamplesCompositeToTheWhole) {
   s.alignSamplesToCamera = false;
   const Image wholeUnaligned = renderVolume(field, s);
   std::vector<Image> unaligned;
-  for (const auto& [bmin, bmax] : boxes) {
+  for (const DomainBox& box : boxes) {
     RenderSettings piece = s;
-    piece.clipMin = bmin;
-    piece.clipMax = bmax;
+    piece.clipMin = box.min;
+    piece.clipMax = box.max;
     unaligned.push_back(renderVolume(field, piece));
   }
-  EXPECT_GT(meanAbsDifference(wholeUnaligned, test::compositePieces(s, boxes, unaligned)),
+  EXPECT_GT(meanAbsDifference(wholeUnaligned, compositeInVisibilityOrder(s, boxes, unaligned)),
             meanAbsDifference(whole, composited));
 
   // A clip box beside the model renders nothing; an inverted one is refused.
