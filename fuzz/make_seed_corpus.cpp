@@ -1,11 +1,13 @@
 // Writes seed inputs for the fuzzers: small valid models (uniform and non-uniform knots, several
-// degrees, one with a domain mask) and point lists ("x y z" and "x y z v"), so that mutations
+// degrees, one with a domain mask, a multi-block file) and point lists ("x y z" and "x y z v"), so that mutations
 // start from the interesting structure.
 #include <filesystem>
 #include <fstream>
 
 #include "core/analytic/BuiltinFunction.h"
 #include "core/encode/StructuredEncoder.h"
+#include "core/encode/PieceEncoder.h"
+#include "core/model/BlockModelFile.h"
 #include "core/model/ModelFile.h"
 
 int main(int argc, char** argv) {
@@ -32,6 +34,14 @@ int main(int argc, char** argv) {
     for (size_t n = 0; n < nodes.size(); ++n) nodes[n] = (n * 7 % 5) < 3;
     m.setMask(mfadvr::DomainMask(mfadvr::MaskKind::PointCoverage, {3, 4, 5}, nodes));
     mfadvr::saveModel(m, models / ("seed" + std::to_string(i++) + ".mfa"));
+  }
+  {
+    // A multi-block model: 2 x 1 x 1 blocks with one ghost layer.
+    mfadvr::EncodeOptions o;
+    o.degree = {1, 1, 1};
+    const auto blocks = mfadvr::encodeStructuredBlocks(
+        mfadvr::sampleBuiltinSpec("builtin:marschner-lobb:5x3x3"), {2, 1, 1}, 1, o);
+    mfadvr::saveBlockModels(blocks, {2, 1, 1}, models / "seed-blocks.mfa");
   }
   std::ofstream(points / "seed.txt") << "x,y,z\n0 0 0\n1.5, -2e-3, 4\n# c\n";
   std::ofstream(points / "seed-values.csv") << "x,y,z,rho\n0,0,0,1\n1.5 -2e-3 4 -7e2\n# c\n";

@@ -14,6 +14,7 @@
 
 #include "core/encode/Encoder.h"
 #include "core/grid/StructuredGrid.h"
+#include "core/model/BlockModelFile.h"
 #include "core/model/Model.h"
 
 namespace mfadvr {
@@ -47,12 +48,6 @@ int defaultGhostLayers(const Degree3& degree);
 Model encodeStructuredPiece(const StructuredGrid& pieceGrid, const Index3& wholeDims,
                             const EncodeOptions& options, double valueMin, double valueMax,
                             FitReport* report = nullptr);
-
-// A model and the region it renders.
-struct ModelBlock {
-  DomainBox region;
-  Model model;
-};
 
 // Splits `grid` into blocks[0] x blocks[1] x blocks[2] pieces (x fastest) and fits each with
 // `ghost` layers (negative: defaultGhostLayers). Progress reports the fraction of blocks done.

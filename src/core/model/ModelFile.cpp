@@ -13,6 +13,7 @@
 
 #include "core/model/ProvenanceJson.h"
 #include "core/util/AtomicFile.h"
+#include "core/util/Crc32.h"
 #include "core/util/Error.h"
 
 namespace mfadvr {
@@ -124,14 +125,7 @@ T readAt(std::span<const std::uint8_t> b, size_t offset) {
 }
 
 std::uint32_t crc(const std::uint8_t* data, size_t n) {
-  uLong c = crc32(0L, Z_NULL, 0);
-  while (n > 0) {  // zlib takes uInt lengths
-    const uInt chunk = static_cast<uInt>(std::min<size_t>(n, 1u << 30));
-    c = crc32(c, data, chunk);
-    data += chunk;
-    n -= chunk;
-  }
-  return static_cast<std::uint32_t>(c);
+  return crc32Of(data, n);
 }
 
 Vec3d vec3(const json& j, const char* key) {
