@@ -1,4 +1,5 @@
 // mfadvr encode INPUT [-o MODEL.mfa] [--degree ...] [--ctrl ...] [--max-error E ...]
+//               [--blocks BX,BY,BZ [--ghost N]]
 #include <iostream>
 
 #include "app/Commands.h"
@@ -7,6 +8,8 @@
 #include "app/OptionParsing.h"
 #include "app/SceneLoader.h"
 #include "core/encode/Encoder.h"
+#include "core/encode/PieceEncoder.h"
+#include "core/model/BlockModelFile.h"
 #include "core/model/ModelFile.h"
 #include "io/ScatteredLoader.h"
 #include "io/VolumeLoader.h"
@@ -18,11 +21,69 @@ namespace {
 // Exit status when --strict is given and the bound was not reached.
 constexpr int kBoundNotReached = 3;
 
+// `encode --blocks`: fits the blocks, writes the multi-block file, reports per block.
+int encodeBlocks(const StructuredGrid& grid, const std::string& blocksText, int ghost,
+                 const EncodeOptions& options, const std::string& output, bool json) {
+  const auto n = parseIntTriple("--blocks", blocksText);
+  const Index3 blocks{n[0], n[1], n[2]};
+  for (int a = 0; a < 3; ++a)
+    if (blocks[a] < 1 || blocks[a] > grid.dims[a] - 1 + (grid.dims[a] == 1))
+      throw CLI::ValidationError(
+          "--blocks", "each axis needs 1 to (samples - 1) blocks; the grid has " +
+                          std::to_string(grid.dims[0]) + "x" + std::to_string(grid.dims[1]) + "x" +
+                          std::to_string(grid.dims[2]) + " samples");
+  if (ghost < 0) ghost = defaultGhostLayers(options.degree);
+  std::vector<FitReport> reports;
+  const std::vector<ModelBlock> models =
+      encodeStructuredBlocks(grid, blocks, ghost, options, &reports);
+  if (!output.empty()) saveBlockModels(models, blocks, output);
+  double worst = 0.0, seconds = 0.0;
+  for (const FitReport& r : reports) {
+    worst = std::max(worst, r.maxRelativeError());
+    seconds += r.seconds;
+  }
+  if (json) {
+    nlohmann::json list = nlohmann::json::array();
+    for (size_t i = 0; i < reports.size(); ++i) {
+      nlohmann::json j = fitReportJson(reports[i], "");
+      const DomainBox& r = models[i].region;
+      j["region"] = {r.min[0], r.max[0], r.min[1], r.max[1], r.min[2], r.max[2]};
+      list.push_back(j);
+    }
+    std::cout << nlohmann::json{{"output", output},
+                                {"blocks", blocks},
+                                {"ghost_layers", ghost},
+                                {"max_relative_error", worst},
+                                {"fit_seconds", seconds},
+                                {"block_reports", list}}
+                     .dump(2)
+              << "\n";
+  } else {
+    std::printf("%lld x %lld x %lld blocks of %s (%s samples), %d ghost layers\n",
+                static_cast<long long>(blocks[0]), static_cast<long long>(blocks[1]),
+                static_cast<long long>(blocks[2]), grid.source.c_str(),
+                groupDigits(grid.sampleCount()).c_str(), ghost);
+    for (size_t i = 0; i < reports.size(); ++i) {
+      const auto& c = reports[i].controlCounts;
+      std::printf("  block %zu: %lld x %lld x %lld control points, max error %.3g of the range\n",
+                  i, static_cast<long long>(c[0]), static_cast<long long>(c[1]),
+                  static_cast<long long>(c[2]), reports[i].maxRelativeError());
+    }
+    std::printf("max error over the blocks: %.3g of the value range; fit %.2f s\n", worst,
+                seconds);
+    if (!output.empty())
+      std::printf("wrote %s (%s bytes)\n", output.c_str(),
+                  groupDigits(static_cast<std::int64_t>(std::filesystem::file_size(output))).c_str());
+  }
+  return 0;
+}
+
 }  // namespace
 
 Command addEncodeCommand(CLI::App& app) {
   struct Options {
-    std::string input, output, spacing, origin, field;
+    std::string input, output, spacing, origin, field, blocks;
+    int ghost = -1;
     bool json = false, quiet = false, strict = false;
     EncodeCliOptions encode;
   };
@@ -49,6 +110,16 @@ Command addEncodeCommand(CLI::App& app) {
   sub->add_option("--field", o->field,
                   "Scalar array to encode (default: the active/first point-data array)")
       ->group("Input");
+  sub->add_option("--blocks", o->blocks,
+                  "Grids: split into BX,BY,BZ blocks (or B on every axis), each fitted with "
+                  "ghost layers around it, and write a multi-block model (for parallel "
+                  "rendering: one block per MPI rank in ParaView)")
+      ->group("Blocks");
+  sub->add_option("--ghost", o->ghost,
+                  "With --blocks: sample layers of the neighbouring blocks each block is fitted "
+                  "with (default 2 x (degree + 1))")
+      ->check(CLI::Range(0, 1024))
+      ->group("Blocks");
   sub->add_flag("--json", o->json, "Print the report as JSON");
   sub->add_flag("-q,--quiet", o->quiet, "No progress on stderr");
 
@@ -61,6 +132,13 @@ Command addEncodeCommand(CLI::App& app) {
       throw CLI::ValidationError(
           "--smooth/--mask-res/--no-mask",
           "apply to meshes and point clouds; " + o->input + " is a regular grid");
+    if (o->ghost >= 0 && o->blocks.empty())
+      throw CLI::ValidationError("--ghost", "applies with --blocks");
+    if (!o->blocks.empty() && scattered)
+      throw CLI::ValidationError("--blocks",
+                                 "applies to regular grids; " + o->input + " holds scattered points");
+    if (!o->blocks.empty() && (options.adaptive || o->strict))
+      throw CLI::ValidationError("--blocks", "does not combine with --max-error yet");
     if (scattered && (!o->spacing.empty() || !o->origin.empty()))
       throw CLI::ValidationError("--spacing/--origin",
                                  "apply to regular grids; " + o->input + " holds scattered points");
@@ -102,6 +180,8 @@ Command addEncodeCommand(CLI::App& app) {
       const VolumeLoadOptions load = parseVolumeLoadOptions(o->spacing, o->origin, o->field);
       const StructuredGrid grid = loadStructuredVolume(o->input, load);
       printReaderNotes(grid);
+      if (!o->blocks.empty()) return encodeBlocks(grid, o->blocks, o->ghost, options, o->output,
+                                                  o->json);
       model = encodeStructured(grid, options, &report);
     }
     if (report.points > 0 && report.solverResidual > 1e-4)

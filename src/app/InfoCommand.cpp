@@ -5,6 +5,7 @@
 
 #include "app/Commands.h"
 #include "app/FitReportOutput.h"
+#include "core/model/BlockModelFile.h"
 #include "core/model/ModelFile.h"
 #include "core/model/ProvenanceJson.h"
 
@@ -26,10 +27,7 @@ nlohmann::json infoJson(const Model& m, const std::string& path, std::uint32_t v
     knots.push_back(s.knots(a).isUniform()            ? "uniform"
                     : s.knots(a).hasRegularInterior() ? "regular-interior"
                                                       : "non-uniform");
-  return {{"file", path},
-          {"file_bytes", std::filesystem::file_size(path)},
-          {"format_version", version},
-          {"degree", s.degrees()},
+  nlohmann::json j = {{"degree", s.degrees()},
           {"control_counts", s.counts()},
           {"knots", knots},
           {"domain_min", {m.domain().min[0], m.domain().min[1], m.domain().min[2]}},
@@ -37,6 +35,65 @@ nlohmann::json infoJson(const Model& m, const std::string& path, std::uint32_t v
           {"value_range", {m.valueMin(), m.valueMax()}},
           {"mask", maskJson(m.mask())},
           {"provenance", provenanceToJson(m.provenance())}};
+  if (!path.empty()) {
+    j["file"] = path;
+    j["file_bytes"] = std::filesystem::file_size(path);
+    j["format_version"] = version;
+  }
+  return j;
+}
+
+nlohmann::json boxJson(const DomainBox& b) {
+  return {b.min[0], b.max[0], b.min[1], b.max[1], b.min[2], b.max[2]};
+}
+
+// `info` of a multi-block file: the index, then each block's region and model.
+int describeBlocks(const std::string& path, bool json) {
+  const BlockIndex index = readBlockIndex(path);
+  nlohmann::json list = nlohmann::json::array();
+  std::int64_t controlPoints = 0;
+  for (size_t i = 0; i < index.entries.size(); ++i) {
+    const Model m = loadBlock(path, index, i);
+    nlohmann::json b = infoJson(m, "", 0);
+    b["region"] = boxJson(index.entries[i].region);
+    b["bytes"] = index.entries[i].bytes;
+    const Index3 n = m.spline().counts();
+    controlPoints += n[0] * n[1] * n[2];
+    list.push_back(b);
+  }
+  const nlohmann::json j = {{"file", path},
+                            {"file_bytes", std::filesystem::file_size(path)},
+                            {"format", "mfadvr-blocks"},
+                            {"format_version", kBlockFormatVersion},
+                            {"blocks", index.blocks},
+                            {"box", boxJson(index.box)},
+                            {"value_range", {index.valueMin, index.valueMax}},
+                            {"control_points", controlPoints},
+                            {"entries", list}};
+  if (json) {
+    std::cout << j.dump(2) << "\n";
+    return 0;
+  }
+  std::ostringstream out;
+  out << "file            " << path << "  (" << groupDigits(j["file_bytes"].get<std::int64_t>())
+      << " bytes, multi-block format v" << kBlockFormatVersion << ")\n";
+  out << "blocks          " << index.blocks[0] << " x " << index.blocks[1] << " x "
+      << index.blocks[2] << "  (" << groupDigits(controlPoints) << " control points in all)\n";
+  out << "box             [" << index.box.min.transpose() << "] .. [" << index.box.max.transpose()
+      << "]\n";
+  out << "value range     " << index.valueMin << " .. " << index.valueMax << "\n";
+  for (size_t i = 0; i < list.size(); ++i) {
+    const auto& b = list[i];
+    const auto& r = index.entries[i].region;
+    const auto& p = b["provenance"];
+    out << "block " << i << "  region [" << r.min.transpose() << "] .. [" << r.max.transpose()
+        << "], degree " << b["degree"][0] << " " << b["degree"][1] << " " << b["degree"][2] << ", "
+        << b["control_counts"][0] << " x " << b["control_counts"][1] << " x "
+        << b["control_counts"][2] << " control points, max error " << p["max_error"].get<double>()
+        << "\n";
+  }
+  std::cout << out.str();
+  return 0;
 }
 
 }  // namespace
@@ -48,9 +105,10 @@ Command addInfoCommand(CLI::App& app) {
   };
   auto o = std::make_shared<Options>();
   CLI::App* sub = app.add_subcommand("info", "Describe an .mfa model file");
-  sub->add_option("model", o->model, "Model file (.mfa)")->required();
+  sub->add_option("model", o->model, "Model file (.mfa, one model or multi-block)")->required();
   sub->add_flag("--json", o->json, "Print as JSON");
   return {sub, [o]() {
+            if (isBlockModelFile(o->model)) return describeBlocks(o->model, o->json);
             std::uint32_t version = 0;
             const Model m = loadModel(o->model, &version);
             const nlohmann::json j = infoJson(m, o->model, version);

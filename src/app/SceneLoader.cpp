@@ -69,9 +69,14 @@ bool isModelFile(const std::string& path) {
   return path.size() > 4 && path.compare(path.size() - 4, 4, ".mfa") == 0;
 }
 
+bool isBlockModelInput(const std::string& path) {
+  return isModelFile(path) && isBlockModelFile(path);
+}
+
 SceneData LoadedScene::view() const {
   SceneData d;
   d.model = model ? &*model : nullptr;
+  d.blocks = blocks.empty() ? nullptr : &blocks;
   d.grid = grid ? &*grid : nullptr;
   d.truth = truth.get();
   d.differenceStep = spacing;
@@ -83,6 +88,18 @@ LoadedScene loadScene(const std::string& input, const SceneNeeds& needs,
   LoadedScene s;
   s.input = input;
   const auto start = Clock::now();
+  if (isBlockModelInput(input)) {
+    const BlockIndex index = readBlockIndex(input);
+    s.blocks = loadBlockModels(input);
+    s.model = s.blocks.front().model;
+    takeModelFacts(s);
+    s.boxMin = index.box.min;
+    s.boxMax = index.box.max;
+    if (needs.grid || needs.cells)
+      throw Error("a multi-block model renders with --method mfa only (it holds no samples)");
+    s.loadSeconds = since(start);
+    return s;
+  }
   if (isModelFile(input)) {
     s.model = loadModel(input);
     takeModelFacts(s);

@@ -10,6 +10,7 @@
 #include "core/analytic/BuiltinFunction.h"
 #include "core/encode/Encoder.h"
 #include "core/mesh/ScatteredData.h"
+#include "core/model/BlockModelFile.h"
 #include "core/model/Model.h"
 #include "core/render/ReconstructionMethod.h"
 #include "io/VolumeLoader.h"
@@ -26,7 +27,8 @@ struct SceneNeeds {
 
 struct LoadedScene {
   std::string input;
-  std::optional<Model> model;
+  std::optional<Model> model;  // for a multi-block file: its first block's model
+  std::vector<ModelBlock> blocks;  // a multi-block model file's blocks
   std::optional<StructuredGrid> grid;
   std::optional<ScatteredData> scattered;  // a mesh or point cloud input, when needs.cells
   std::unique_ptr<BuiltinFunction> truth;
@@ -52,5 +54,6 @@ LoadedScene loadScene(const std::string& input, const SceneNeeds& needs,
 void printReaderNotes(const StructuredGrid& grid);
 
 bool isModelFile(const std::string& path);
+bool isBlockModelInput(const std::string& path);
 
 }  // namespace mfadvr::app

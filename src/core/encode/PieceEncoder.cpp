@@ -81,7 +81,8 @@ Model encodeStructuredPiece(const StructuredGrid& pieceGrid, const Index3& whole
 }
 
 std::vector<ModelBlock> encodeStructuredBlocks(const StructuredGrid& grid, const Index3& blocks,
-                                               int ghost, const EncodeOptions& options) {
+                                               int ghost, const EncodeOptions& options,
+                                               std::vector<FitReport>* reports) {
   grid.validate();
   if (ghost < 0) ghost = defaultGhostLayers(options.degree);
   const auto [lo, hi] = std::minmax_element(grid.values.begin(), grid.values.end());
@@ -95,9 +96,11 @@ std::vector<ModelBlock> encodeStructuredBlocks(const StructuredGrid& grid, const
       for (std::int64_t i = 0; i < blocks[0]; ++i) {
         const SampleRange own = pieceRange(grid.dims, blocks, {i, j, k});
         const StructuredGrid piece = subGrid(grid, withGhostLayers(own, ghost, grid.dims));
+        FitReport report;
         ModelBlock b{{grid.position(own.lo[0], own.lo[1], own.lo[2]),
                       grid.position(own.hi[0], own.hi[1], own.hi[2])},
-                     encodeStructuredPiece(piece, grid.dims, quiet, *lo, *hi)};
+                     encodeStructuredPiece(piece, grid.dims, quiet, *lo, *hi, &report)};
+        if (reports) reports->push_back(report);
         out.push_back(std::move(b));
         if (options.progress)
           options.progress(double(out.size()) / double(count), "fitting blocks");

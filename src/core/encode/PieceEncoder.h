@@ -50,8 +50,10 @@ Model encodeStructuredPiece(const StructuredGrid& pieceGrid, const Index3& whole
                             FitReport* report = nullptr);
 
 // Splits `grid` into blocks[0] x blocks[1] x blocks[2] pieces (x fastest) and fits each with
-// `ghost` layers (negative: defaultGhostLayers). Progress reports the fraction of blocks done.
+// `ghost` layers (negative: defaultGhostLayers). Progress reports the fraction of blocks done;
+// reports (optional) receive one fit report per block.
 std::vector<ModelBlock> encodeStructuredBlocks(const StructuredGrid& grid, const Index3& blocks,
-                                               int ghost, const EncodeOptions& options);
+                                               int ghost, const EncodeOptions& options,
+                                               std::vector<FitReport>* reports = nullptr);
 
 }  // namespace mfadvr

@@ -7,6 +7,7 @@
 #include "core/field/GridField.h"
 #include "core/field/GridFilters.h"
 #include "core/field/ModelField.h"
+#include "core/render/PieceCompositor.h"
 #include "core/render/RayCaster.h"
 #include "core/util/Error.h"
 
@@ -106,6 +107,40 @@ Image renderMethod(const SceneData& scene, const MethodSpec& spec, const RenderS
     else
       render(field);
   };
+  if (scene.blocks && spec.method == ReconstructionMethod::Mfa && !spec.gradientFrom) {
+    // Each block alone over nothing, then composited as a parallel compositor would.
+    RenderSettings piece = settings;
+    piece.alignSamplesToCamera = true;
+    piece.background = Vec3f::Zero();
+    piece.progress = nullptr;
+    std::vector<DomainBox> regions;
+    std::vector<Image> images;
+    MethodRenderStats total;
+    for (size_t i = 0; i < scene.blocks->size(); ++i) {
+      const ModelBlock& b = (*scene.blocks)[i];
+      piece.clipMin = b.region.min;
+      piece.clipMax = b.region.max;
+      MethodRenderStats blockStats;
+      const ModelField field(b.model);
+      if (spec.gradient == GradientMode::CentralDifference)
+        images.push_back(
+            renderVolume(CentralDifferenceField(field, scene.differenceStep), piece, &blockStats));
+      else
+        images.push_back(renderVolume(field, piece, &blockStats));
+      regions.push_back(b.region);
+      total.seconds += blockStats.seconds;
+      total.rays = blockStats.rays;
+      total.raysHit += blockStats.raysHit;
+      total.samples += blockStats.samples;
+      total.terminated += blockStats.terminated;
+      total.skipped += blockStats.skipped;
+      if (settings.progress) settings.progress(double(i + 1) / double(scene.blocks->size()));
+    }
+    image = compositeInVisibilityOrder(settings, regions, images);
+    compositeOverBackground(image, settings.background);
+    if (stats) *stats = total;
+    return image;
+  }
   if (!spec.gradientFrom) {
     withField(scene, spec.method, withGradientMode);
     return image;

@@ -8,6 +8,7 @@
 #include "core/analytic/BuiltinFunction.h"
 #include "core/grid/StructuredGrid.h"
 #include "core/image/Image.h"
+#include "core/model/BlockModelFile.h"
 #include "core/model/Model.h"
 #include "core/render/RenderSettings.h"
 
@@ -39,6 +40,9 @@ struct MethodSpec {
 // grid, truth: truth). Pointers are borrowed.
 struct SceneData {
   const Model* model = nullptr;
+  // A multi-block model (BlockModelFile.h): mfa renders each block in its region and composites
+  // them in visibility order, with camera-aligned steps; `model` is then the first block's.
+  const std::vector<ModelBlock>* blocks = nullptr;
   const StructuredGrid* grid = nullptr;
   const BuiltinFunction* truth = nullptr;
   // Step of central differences, physical units per axis (normally the data spacing).

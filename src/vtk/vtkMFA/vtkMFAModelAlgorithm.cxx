@@ -57,7 +57,7 @@ vtkTypeBool vtkMFAModelAlgorithm::ProcessRequest(vtkInformation* request,
     // as pieces, never as extents of a whole image.
     for (int i = 0; i < this->GetNumberOfOutputPorts(); ++i) {
       outInfo->GetInformationObject(i)->Set(
-          vtkStreamingDemandDrivenPipeline::CAN_HANDLE_PIECE_REQUEST(), 1);
+          vtkAlgorithm::CAN_HANDLE_PIECE_REQUEST(), 1);
     }
     return this->RequestInformation(request, inInfo, outInfo);
   }
