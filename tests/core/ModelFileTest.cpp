@@ -189,38 +189,6 @@ TEST(ModelFile, EverySingleByteCorruptionIsAnError) {
   }
 }
 
-TEST(ModelFile, DescriptionWithControlPointsElsewhereRoundTrips) {
-  for (const Model& m : {smallModel(), maskedModel()}) {
-    const std::string description = serializeModelWithoutControlPoints(m);
-    // The description is the file without its control points (and one more header key).
-    const size_t ctrlBytes = 4 * m.spline().controlPoints().size();
-    EXPECT_GT(description.size() + ctrlBytes, serializeModel(m).size());
-    EXPECT_LT(description.size() + ctrlBytes, serializeModel(m).size() + 64);
-    const Model r = parseModelWithControlPoints(bytesOf(description), m.spline().controlPoints());
-    EXPECT_EQ(serializeModel(r), serializeModel(m));
-    // A description is not a model file and a model file is not a description.
-    EXPECT_NE(errorOf(bytesOf(description)).find("not in the file"), std::string::npos);
-    EXPECT_THROW(parseModelWithControlPoints(bytesOf(serializeModel(m)),
-                                             m.spline().controlPoints()),
-                 Error);
-    // The control points must match the described counts.
-    std::vector<float> fewer = m.spline().controlPoints();
-    fewer.pop_back();
-    EXPECT_THROW(parseModelWithControlPoints(bytesOf(description), fewer), Error);
-    // Every truncation and every flipped byte of a description is an error, as for files.
-    const auto full = bytesOf(description);
-    for (size_t n = 0; n < full.size(); ++n) {
-      const std::vector<std::uint8_t> cut(full.begin(), full.begin() + n);
-      EXPECT_THROW(parseModelWithControlPoints(cut, m.spline().controlPoints()), Error) << n;
-    }
-    for (size_t i = 0; i < full.size(); ++i) {
-      auto b = full;
-      b[i] ^= 0x5a;
-      EXPECT_THROW(parseModelWithControlPoints(b, m.spline().controlPoints()), Error) << i;
-    }
-  }
-}
-
 TEST(ModelFile, MaskRoundTripIsBitExact) {
   const Model m = maskedModel();
   const std::string bytes = serializeModel(m);

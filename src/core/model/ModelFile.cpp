@@ -92,9 +92,8 @@ std::string compressedMask(const DomainMask& mask) {
   return out;
 }
 
-// compressedMaskBytes: the size of the mask section (ignored without a mask). External: the
-// control points are not in the bytes (serializeModelWithoutControlPoints).
-std::string headerText(const Model& m, std::int64_t compressedMaskBytes, bool external = false) {
+// compressedMaskBytes: the size of the mask section (ignored without a mask).
+std::string headerText(const Model& m, std::int64_t compressedMaskBytes) {
   const TensorBSpline& s = m.spline();
   const DomainBox& d = m.domain();
   json h = {{"format", "mfadvr-model"},
@@ -108,7 +107,6 @@ std::string headerText(const Model& m, std::int64_t compressedMaskBytes, bool ex
     h["mask"] = {{"kind", maskKindName(m.mask().kind())},
                  {"dims", m.mask().dims()},
                  {"bytes", compressedMaskBytes}};
-  if (external) h["control_points"] = "external";
   return h.dump();
 }
 
@@ -135,15 +133,11 @@ Vec3d vec3(const json& j, const char* key) {
 
 }  // namespace
 
-namespace {
-
-std::string serialize(const Model& model, bool withControlPoints) {
+std::string serializeModel(const Model& model) {
   const std::string mask = model.mask().empty() ? std::string() : compressedMask(model.mask());
-  const std::string header =
-      headerText(model, static_cast<std::int64_t>(mask.size()), !withControlPoints);
-  const auto& ctrl = model.spline().controlPoints();
+  const std::string header = headerText(model, static_cast<std::int64_t>(mask.size()));
   std::string out;
-  out.reserve(kPrefixBytes + header.size() + (withControlPoints ? 4 * ctrl.size() : 0) +
+  out.reserve(kPrefixBytes + header.size() + 4 * model.spline().controlPoints().size() +
               mask.size() + 4096);
   out.append(kMagic, sizeof(kMagic));
   append(out, kModelFormatVersion);
@@ -151,21 +145,11 @@ std::string serialize(const Model& model, bool withControlPoints) {
   out += header;
   for (int a = 0; a < 3; ++a)
     for (double k : model.spline().knots(a).knots()) append(out, k);
-  if (withControlPoints)
-    out.append(reinterpret_cast<const char*>(ctrl.data()), ctrl.size() * sizeof(float));
+  const auto& ctrl = model.spline().controlPoints();
+  out.append(reinterpret_cast<const char*>(ctrl.data()), ctrl.size() * sizeof(float));
   out += mask;
   append(out, crc(reinterpret_cast<const std::uint8_t*>(out.data()), out.size()));
   return out;
-}
-
-}  // namespace
-
-std::string serializeModel(const Model& model) {
-  return serialize(model, true);
-}
-
-std::string serializeModelWithoutControlPoints(const Model& model) {
-  return serialize(model, false);
 }
 
 std::int64_t modelFileSize(const Model& model) {
@@ -178,12 +162,8 @@ std::int64_t modelFileSize(const Model& model) {
          4 * static_cast<std::int64_t>(model.spline().controlPoints().size()) + mask + 4;
 }
 
-namespace {
-
-// external: the control points when the bytes come from serializeModelWithoutControlPoints,
-// null for a whole model.
-Model parse(std::span<const std::uint8_t> b, const std::string& name,
-            std::uint32_t* formatVersion, std::vector<float>* external) {
+Model parseModel(std::span<const std::uint8_t> b, const std::string& name,
+                 std::uint32_t* formatVersion) {
   auto bad = [&](const std::string& why) -> Error {
     return Error(name + ": not a valid .mfa model: " + why);
   };
@@ -223,11 +203,6 @@ Model parse(std::span<const std::uint8_t> b, const std::string& name,
     hi = vec3(h, "domain_max");
     range = h.at("value_range").get<std::array<double, 2>>();
     if (h.contains("provenance")) prov = provenanceFromJson(h.at("provenance"));
-    const bool storedElsewhere = h.value("control_points", "") == "external";
-    if (storedElsewhere && !external)
-      throw bad("the control points are not in the file (a model description, not a model)");
-    if (!storedElsewhere && external)
-      throw bad("the bytes hold control points where a model description was expected");
     if (version >= 2 && h.contains("mask")) {
       const json& m = h.at("mask");
       if (!m.is_object()) throw bad("mask must be an object");
@@ -271,13 +246,8 @@ Model parse(std::span<const std::uint8_t> b, const std::string& name,
   const std::int64_t ctrlCount = n[0] * n[1] * n[2];
   if (ctrlCount > std::numeric_limits<std::int64_t>::max() / 8)
     throw bad("too many control points");
-  if (external && static_cast<std::int64_t>(external->size()) != ctrlCount)
-    throw bad("the header describes " + std::to_string(n[0]) + "x" + std::to_string(n[1]) + "x" +
-              std::to_string(n[2]) + " control points but " + std::to_string(external->size()) +
-              " were given");
-  const std::int64_t storedCtrlBytes = external ? 0 : 4 * ctrlCount;
   const std::int64_t expected = static_cast<std::int64_t>(kPrefixBytes + headerBytes) +
-                                8 * knotCount + storedCtrlBytes + storedMaskBytes + 4;
+                                8 * knotCount + 4 * ctrlCount + storedMaskBytes + 4;
   if (static_cast<std::int64_t>(b.size()) != expected)
     throw bad("size is " + std::to_string(b.size()) + " bytes but the header describes " +
               std::to_string(expected) +
@@ -298,14 +268,9 @@ Model parse(std::span<const std::uint8_t> b, const std::string& name,
       throw bad(std::string("knots of axis ") + "xyz"[a] + ": " + e.what());
     }
   }
-  std::vector<float> ctrl;
-  if (external) {
-    ctrl = std::move(*external);
-  } else {
-    ctrl.resize(static_cast<size_t>(ctrlCount));
-    std::memcpy(ctrl.data(), b.data() + offset, ctrl.size() * sizeof(float));
-    offset += ctrl.size() * sizeof(float);
-  }
+  std::vector<float> ctrl(static_cast<size_t>(ctrlCount));
+  std::memcpy(ctrl.data(), b.data() + offset, ctrl.size() * sizeof(float));
+  offset += ctrl.size() * sizeof(float);
   for (float c : ctrl)
     if (!std::isfinite(c)) throw bad("a control point is NaN or infinite");
   Model model(TensorBSpline(std::move(knots), std::move(ctrl)), DomainBox{lo, hi}, range[0],
@@ -328,18 +293,6 @@ Model parse(std::span<const std::uint8_t> b, const std::string& name,
   }
   if (formatVersion) *formatVersion = version;
   return model;
-}
-
-}  // namespace
-
-Model parseModel(std::span<const std::uint8_t> bytes, const std::string& name,
-                 std::uint32_t* formatVersion) {
-  return parse(bytes, name, formatVersion, nullptr);
-}
-
-Model parseModelWithControlPoints(std::span<const std::uint8_t> description,
-                                  std::vector<float> controlPoints, const std::string& name) {
-  return parse(description, name, nullptr, &controlPoints);
 }
 
 void saveModel(const Model& model, const std::filesystem::path& path) {

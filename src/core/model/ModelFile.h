@@ -13,7 +13,6 @@
 #include <filesystem>
 #include <span>
 #include <string>
-#include <vector>
 
 #include "core/model/Model.h"
 
@@ -27,16 +26,6 @@ std::string serializeModel(const Model& model);
 // version the bytes were written in.
 Model parseModel(std::span<const std::uint8_t> bytes, const std::string& name = "model",
                  std::uint32_t* formatVersion = nullptr);
-
-// The model without its control points (a "model description"), for carriers that hold them
-// elsewhere, e.g. as the point data of a VTK image in ParaView's pipeline: the same bytes as
-// serializeModel with an empty control-point section and "control_points": "external" in the
-// header. parseModelWithControlPoints checks the description as parseModel checks a file and
-// takes the control points (x fastest) from `controlPoints`, whose size must match.
-std::string serializeModelWithoutControlPoints(const Model& model);
-Model parseModelWithControlPoints(std::span<const std::uint8_t> description,
-                                  std::vector<float> controlPoints,
-                                  const std::string& name = "model description");
 
 // Writes atomically: a temporary file beside the target, flushed, then renamed over it.
 void saveModel(const Model& model, const std::filesystem::path& path);
