@@ -32,18 +32,6 @@ Image8 coreImage(const Model& model, const RenderSettings& s) {
   return toImage8(renderVolume(field, s));
 }
 
-// Fraction of pixels that differ from the background colour by more than a few levels.
-double coverage(const Image8& img, const Vec3f& background) {
-  size_t covered = 0;
-  for (size_t p = 0; p < img.data.size() / 3; ++p)
-    for (int c = 0; c < 3; ++c)
-      if (std::abs(img.data[3 * p + c] - background[c] * 255.0f) > 4.0f) {
-        ++covered;
-        break;
-      }
-  return static_cast<double>(covered) / (img.data.size() / 3);
-}
-
 TEST(VolumeMapper, ShadedImageMatchesTheCoreRenderer) {
   VtkVolumeScene scene(marschnerLobbModel(), true);
   const Image8 mapped = scene.render();

@@ -17,6 +17,7 @@
 #include <vtkVolume.h>
 #include <vtkVolumeProperty.h>
 
+#include <cmath>
 #include <memory>
 
 #include "core/analytic/BuiltinFunction.h"
@@ -53,6 +54,18 @@ inline vtkSmartPointer<vtkImageData> imageOf(const StructuredGrid& grid,
   std::copy(grid.values.begin(), grid.values.end(), values->GetPointer(0));
   image->GetPointData()->SetScalars(values);
   return image;
+}
+
+// Fraction of pixels that differ from the background colour by more than a few levels.
+inline double coverage(const Image8& img, const Vec3f& background) {
+  size_t covered = 0;
+  for (size_t p = 0; p < img.data.size() / 3; ++p)
+    for (int c = 0; c < 3; ++c)
+      if (std::abs(img.data[3 * p + c] - background[c] * 255.0f) > 4.0f) {
+        ++covered;
+        break;
+      }
+  return static_cast<double>(covered) / (img.data.size() / 3);
 }
 
 struct VtkVolumeScene {

@@ -1,5 +1,6 @@
 #include "VtkModelImage.h"
 
+#include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
@@ -11,7 +12,6 @@
 #include <cstring>
 #include <span>
 #include <string>
-#include <vector>
 
 #include "core/model/Model.h"
 #include "core/model/ModelFile.h"
@@ -20,74 +20,84 @@
 namespace mfadvr::vtkglue {
 namespace {
 
-std::string arrayNameOf(const Model& model) {
-  const std::string& field = model.provenance().field;
-  return field.empty() ? std::string("MFA control points") : field;
+constexpr const char* kRegionsArray = "MFARegions";
+
+std::string modelArrayName(size_t i) {
+  return "MFAModel" + std::to_string(i);
 }
 
 }  // namespace
 
-vtkSmartPointer<vtkImageData> imageOfModel(const Model& model, const double* renderBounds) {
-  const Index3 n = model.spline().counts();
-  double bounds[6];
-  for (int a = 0; a < 3; ++a) {
-    bounds[2 * a] = renderBounds ? renderBounds[2 * a] : model.domain().min[a];
-    bounds[2 * a + 1] = renderBounds ? renderBounds[2 * a + 1] : model.domain().max[a];
-  }
+vtkSmartPointer<vtkImageData> imageOfModels(const std::vector<CarriedModel>& models) {
+  if (models.empty()) throw Error("internal: a carrier needs at least one model");
+  double bounds[6] = {INFINITY, -INFINITY, INFINITY, -INFINITY, INFINITY, -INFINITY};
+  double lo = INFINITY, hi = -INFINITY;
+  vtkNew<vtkDoubleArray> regions;
+  regions->SetName(kRegionsArray);
+  regions->SetNumberOfComponents(6);
   auto image = vtkSmartPointer<vtkImageData>::New();
-  image->SetDimensions(static_cast<int>(n[0]), static_cast<int>(n[1]), static_cast<int>(n[2]));
+  for (size_t i = 0; i < models.size(); ++i) {
+    const Model& m = *models[i].model;
+    regions->InsertNextTuple(models[i].region);
+    for (int a = 0; a < 3; ++a) {
+      bounds[2 * a] = std::min(bounds[2 * a], models[i].region[2 * a]);
+      bounds[2 * a + 1] = std::max(bounds[2 * a + 1], models[i].region[2 * a + 1]);
+    }
+    lo = std::min(lo, m.valueMin());
+    hi = std::max(hi, m.valueMax());
+    const std::string bytes = serializeModel(m);
+    vtkNew<vtkUnsignedCharArray> array;
+    array->SetName(modelArrayName(i).c_str());
+    array->SetNumberOfTuples(static_cast<vtkIdType>(bytes.size()));
+    std::memcpy(array->GetPointer(0), bytes.data(), bytes.size());
+    image->GetFieldData()->AddArray(array);
+  }
+  image->GetFieldData()->AddArray(regions);
+  image->SetDimensions(2, 2, 2);
   image->SetOrigin(bounds[0], bounds[2], bounds[4]);
-  image->SetSpacing((bounds[1] - bounds[0]) / static_cast<double>(n[0] - 1),
-                    (bounds[3] - bounds[2]) / static_cast<double>(n[1] - 1),
-                    (bounds[5] - bounds[4]) / static_cast<double>(n[2] - 1));
-
-  const std::vector<float>& ctrl = model.spline().controlPoints();
-  vtkNew<vtkFloatArray> points;
-  points->SetName(arrayNameOf(model).c_str());
-  points->SetNumberOfTuples(static_cast<vtkIdType>(ctrl.size()));
-  std::copy(ctrl.begin(), ctrl.end(), points->GetPointer(0));
-  image->GetPointData()->SetScalars(points);
-
-  const std::string description = serializeModelWithoutControlPoints(model);
-  vtkNew<vtkUnsignedCharArray> bytes;
-  bytes->SetName(kModelDescriptionArray);
-  bytes->SetNumberOfTuples(static_cast<vtkIdType>(description.size()));
-  std::memcpy(bytes->GetPointer(0), description.data(), description.size());
-  image->GetFieldData()->AddArray(bytes);
+  image->SetSpacing(bounds[1] - bounds[0], bounds[3] - bounds[2], bounds[5] - bounds[4]);
+  const std::string& field = models.front().model->provenance().field;
+  vtkNew<vtkFloatArray> range;
+  range->SetName(field.empty() ? "MFA value" : field.c_str());
+  range->SetNumberOfTuples(8);
+  for (vtkIdType i = 0; i < 8; ++i) range->SetValue(i, static_cast<float>(i % 2 ? hi : lo));
+  image->GetPointData()->SetScalars(range);
   return image;
 }
 
-bool carriesModel(vtkDataObject* data) {
+bool carriesModels(vtkDataObject* data) {
   auto* image = vtkImageData::SafeDownCast(data);
   return image && image->GetFieldData() &&
-         image->GetFieldData()->GetAbstractArray(kModelDescriptionArray) != nullptr;
+         image->GetFieldData()->GetAbstractArray(kRegionsArray) != nullptr;
 }
 
-std::shared_ptr<const Model> modelOfImage(vtkImageData* image) {
-  if (!carriesModel(image)) throw Error("the image data does not carry an MFA model");
-  auto* bytes = vtkUnsignedCharArray::SafeDownCast(
-      image->GetFieldData()->GetAbstractArray(kModelDescriptionArray));
-  if (!bytes || bytes->GetNumberOfComponents() != 1)
-    throw Error(std::string("the ") + kModelDescriptionArray +
-                " field array must hold unsigned chars, one component");
-  const std::span<const std::uint8_t> description(bytes->GetPointer(0),
-                                                  static_cast<size_t>(bytes->GetNumberOfTuples()));
-  auto* points = vtkFloatArray::SafeDownCast(image->GetPointData()->GetScalars());
-  if (!points || points->GetNumberOfComponents() != 1)
-    throw Error("the model's control points (the image's point scalars, float, one component) "
-                "are missing");
-  int dims[3];
-  image->GetDimensions(dims);
-  const vtkIdType count = points->GetNumberOfTuples();
-  if (count != static_cast<vtkIdType>(dims[0]) * dims[1] * dims[2])
-    throw Error("the image's control points do not match its dimensions");
-  std::vector<float> ctrl(points->GetPointer(0), points->GetPointer(0) + count);
-  auto model = std::make_shared<const Model>(
-      parseModelWithControlPoints(description, std::move(ctrl), "the MFA model description"));
-  const Index3 n = model->spline().counts();
-  if (n[0] != dims[0] || n[1] != dims[1] || n[2] != dims[2])
-    throw Error("the image's dimensions differ from the model's control-point counts");
-  return model;
+std::vector<CarriedModel> modelsOfImage(vtkImageData* image) {
+  if (!carriesModels(image)) throw Error("the image data does not carry MFA models");
+  auto* regions =
+      vtkDoubleArray::SafeDownCast(image->GetFieldData()->GetAbstractArray(kRegionsArray));
+  if (!regions || regions->GetNumberOfComponents() != 6)
+    throw Error(std::string("the carrier's ") + kRegionsArray +
+                " array must hold doubles, 6 components");
+  std::vector<CarriedModel> out;
+  for (vtkIdType i = 0; i < regions->GetNumberOfTuples(); ++i) {
+    const std::string name = modelArrayName(static_cast<size_t>(i));
+    auto* bytes =
+        vtkUnsignedCharArray::SafeDownCast(image->GetFieldData()->GetAbstractArray(name.c_str()));
+    if (!bytes || bytes->GetNumberOfComponents() != 1)
+      throw Error("the carrier lacks its model array " + name);
+    CarriedModel c;
+    c.model = std::make_shared<const Model>(parseModel(
+        std::span<const std::uint8_t>(bytes->GetPointer(0),
+                                      static_cast<size_t>(bytes->GetNumberOfTuples())),
+        "the carried model " + name));
+    regions->GetTypedTuple(i, c.region);
+    for (int a = 0; a < 3; ++a)
+      if (!(c.region[2 * a] <= c.region[2 * a + 1]))
+        throw Error("the region of " + name + " is empty or not a number");
+    out.push_back(std::move(c));
+  }
+  if (out.empty()) throw Error("the carrier holds no model");
+  return out;
 }
 
 }  // namespace mfadvr::vtkglue

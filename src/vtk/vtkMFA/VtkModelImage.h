@@ -1,15 +1,19 @@
 #pragma once
-// An MFA model carried by a vtkImageData, the form in which ParaView's pipeline moves a model
-// between processes and ranks (it knows nothing of vtkMFAModelData). The carrier holds:
-//   point data: the control points (float, x fastest), named after the model's field, so that
-//     ParaView offers the array for colouring and keys its colour and opacity maps by the name;
-//   field data "MFAModelDescription": the model without its control points (unsigned char,
-//     serializeModelWithoutControlPoints: knots, degrees, box, value range, mask, provenance).
-// Its dimensions are the control-point counts and its bounds are the region this piece renders:
-// the model's box for a whole model, a rank's own part of the domain for one piece of a
-// partitioned volume (whose model also covers the ghost layers around it). Private to the
-// module.
+// MFA models carried by a vtkImageData: the form in which ParaView's pipeline moves models
+// between processes and ranks (it knows nothing of vtkMFAModelData). A carrier holds one or
+// more models, each with the region it renders (the blocks of a multi-block file that one rank
+// reads, or one piece of a partitioned volume):
+//   field data "MFAModel0", "MFAModel1", ...: each model as the bytes of a .mfa file (unsigned
+//     char), and "MFARegions" (double, 6 components: xmin, xmax, ymin, ymax, zmin, zmax, one
+//     tuple per model);
+//   geometry: 2 x 2 x 2 points spanning the union of the regions, so that a pipeline sees the
+//     carrier where its models render;
+//   point scalars: the value range at the corners (float, named after the model's field), so
+//     that ParaView offers the array for colouring and scales its colour and opacity maps to
+//     the data's range.
+// Private to the module.
 #include <memory>
+#include <vector>
 
 #include "vtkSmartPointer.h"
 
@@ -18,20 +22,24 @@ class vtkImageData;
 
 namespace mfadvr {
 class Model;
-}
+struct DomainBox;
+}  // namespace mfadvr
 
 namespace mfadvr::vtkglue {
 
-inline constexpr const char* kModelDescriptionArray = "MFAModelDescription";
+struct CarriedModel {
+  std::shared_ptr<const Model> model;
+  double region[6];  // xmin, xmax, ymin, ymax, zmin, zmax
+};
 
-// renderBounds (xmin, xmax, ymin, ymax, zmin, zmax): null for the model's box.
-vtkSmartPointer<vtkImageData> imageOfModel(const Model& model, const double* renderBounds);
+// regions: one per model, null entries (or an empty vector) for the model's box.
+vtkSmartPointer<vtkImageData> imageOfModels(const std::vector<CarriedModel>& models);
 
-// Whether `data` is an image carrying a model (it has the description array).
-bool carriesModel(vtkDataObject* data);
+// Whether `data` is an image carrying models (it has the regions array).
+bool carriesModels(vtkDataObject* data);
 
-// The model of a carrier; throws mfadvr::Error when the description is damaged or the control
-// points are missing, of another type or count.
-std::shared_ptr<const Model> modelOfImage(vtkImageData* image);
+// The models of a carrier, checked as a .mfa file is; throws mfadvr::Error for a damaged or
+// inconsistent carrier.
+std::vector<CarriedModel> modelsOfImage(vtkImageData* image);
 
 }  // namespace mfadvr::vtkglue

@@ -7,7 +7,13 @@
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkMFAModelData.h"
+#include "vtkExtentTranslator.h"
+#include "vtkInformationIntegerRequestKey.h"
+#include "vtkNew.h"
 #include "vtkObjectFactory.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
+
+#include <algorithm>
 
 #include <exception>
 #include <memory>
@@ -15,6 +21,7 @@
 
 #include "core/encode/Encoder.h"
 #include "core/encode/FitReport.h"
+#include "core/encode/PieceEncoder.h"
 #include "core/model/Model.h"
 #include "io/VtkDataConversion.h"
 
@@ -41,6 +48,7 @@ void vtkMFAEncoder::PrintSelf(ostream& os, vtkIndent indent) {
   os << indent << "Smoothing: " << this->Smoothing << "\n";
   os << indent << "DomainMask: " << this->DomainMask << "\n";
   os << indent << "MaskResolution: " << this->MaskResolution << "\n";
+  os << indent << "GhostLevels: " << this->GhostLevels << "\n";
 }
 
 int vtkMFAEncoder::FillInputPortInformation(int, vtkInformation* info) {
@@ -48,10 +56,52 @@ int vtkMFAEncoder::FillInputPortInformation(int, vtkInformation* info) {
   return 1;
 }
 
+int vtkMFAEncoder::EffectiveGhostLevels() const {
+  return this->GhostLevels >= 0
+             ? this->GhostLevels
+             : mfadvr::defaultGhostLayers({this->Degree, this->Degree, this->Degree});
+}
+
+int vtkMFAEncoder::RequestUpdateExtent(vtkInformation*, vtkInformationVector** inInfo,
+                                       vtkInformationVector* outInfo) {
+  vtkInformation* out = outInfo->GetInformationObject(0);
+  vtkInformation* in = inInfo[0]->GetInformationObject(0);
+  using SDDP = vtkStreamingDemandDrivenPipeline;
+  const int pieces =
+      out->Has(SDDP::UPDATE_NUMBER_OF_PIECES()) ? out->Get(SDDP::UPDATE_NUMBER_OF_PIECES()) : 1;
+  if (pieces > 1) {
+    const int asked = out->Has(SDDP::UPDATE_NUMBER_OF_GHOST_LEVELS())
+                          ? out->Get(SDDP::UPDATE_NUMBER_OF_GHOST_LEVELS())
+                          : 0;
+    in->Set(SDDP::UPDATE_NUMBER_OF_GHOST_LEVELS(), asked + this->EffectiveGhostLevels());
+  }
+  return 1;
+}
+
+namespace {
+
+// The extent piece `piece` of `pieces` owns without ghost layers, as the pipeline splits a
+// whole extent (vtkExtentTranslator, the split mode the pipeline was given, else blocks).
+bool ownExtent(vtkInformation* in, int ext[6]) {
+  using SDDP = vtkStreamingDemandDrivenPipeline;
+  if (!in->Has(SDDP::WHOLE_EXTENT()) || !in->Has(SDDP::UPDATE_NUMBER_OF_PIECES())) return false;
+  int whole[6];
+  in->Get(SDDP::WHOLE_EXTENT(), whole);
+  const int piece = in->Get(SDDP::UPDATE_PIECE_NUMBER());
+  const int pieces = in->Get(SDDP::UPDATE_NUMBER_OF_PIECES());
+  const int mode = in->Has(vtkExtentTranslator::UPDATE_SPLIT_MODE())
+                       ? in->Get(vtkExtentTranslator::UPDATE_SPLIT_MODE())
+                       : vtkExtentTranslator::BLOCK_MODE;
+  vtkNew<vtkExtentTranslator> translator;
+  return translator->PieceToExtentThreadSafe(piece, pieces, 0, whole, ext, mode, 0) != 0;
+}
+
+}  // namespace
+
 int vtkMFAEncoder::RequestData(vtkInformation*, vtkInformationVector** inInfo,
                                vtkInformationVector* outInfo) {
   vtkDataSet* input = vtkDataSet::GetData(inInfo[0]);
-  vtkMFAModelData* output = vtkMFAModelData::GetData(outInfo);
+  vtkDataObject* output = outInfo->GetInformationObject(0)->Get(vtkDataObject::DATA_OBJECT());
   output->Initialize();
   if (!input) {
     vtkErrorMacro("no input data set");
@@ -89,13 +139,42 @@ int vtkMFAEncoder::RequestData(vtkInformation*, vtkInformationVector** inInfo,
   };
 
   const std::string source = std::string("VTK ") + input->GetClassName();
+  vtkInformation* in = inInfo[0]->GetInformationObject(0);
+  using SDDP = vtkStreamingDemandDrivenPipeline;
+  const int pieces =
+      in->Has(SDDP::UPDATE_NUMBER_OF_PIECES()) ? in->Get(SDDP::UPDATE_NUMBER_OF_PIECES()) : 1;
+  if (input->GetNumberOfPoints() == 0 && pieces > 1) {
+    return 1;  // this piece holds no data: nothing to fit or render
+  }
   try {
     mfadvr::FitReport report;
     mfadvr::Model model;
+    double region[6];
+    bool hasRegion = false;
     if (auto* image = vtkImageData::SafeDownCast(input)) {
       mfadvr::StructuredGrid grid = mfadvr::gridFromVtkImage(image, field, source);
       grid.validate();
-      model = mfadvr::encodeStructured(grid, options, &report);
+      int own[6];
+      if (pieces > 1 && ownExtent(in, own)) {
+        // One piece with its ghost layers: fitted at the whole image's control-point density,
+        // rendered in its own extent only.
+        int whole[6], ext[6];
+        in->Get(SDDP::WHOLE_EXTENT(), whole);
+        image->GetExtent(ext);
+        const mfadvr::Index3 wholeDims{whole[1] - whole[0] + 1, whole[3] - whole[2] + 1,
+                                       whole[5] - whole[4] + 1};
+        const auto [lo, hi] = std::minmax_element(grid.values.begin(), grid.values.end());
+        model = mfadvr::encodeStructuredPiece(grid, wholeDims, options, *lo, *hi, &report);
+        for (int a = 0; a < 3; ++a) {
+          own[2 * a] = std::max(own[2 * a], ext[2 * a]);
+          own[2 * a + 1] = std::min(own[2 * a + 1], ext[2 * a + 1]);
+          region[2 * a] = image->GetOrigin()[a] + own[2 * a] * image->GetSpacing()[a];
+          region[2 * a + 1] = image->GetOrigin()[a] + own[2 * a + 1] * image->GetSpacing()[a];
+        }
+        hasRegion = true;
+      } else {
+        model = mfadvr::encodeStructured(grid, options, &report);
+      }
     } else {
       model = mfadvr::encodeScattered(mfadvr::scatteredFromVtkDataSet(input, field, source),
                                       options, &report);
@@ -110,7 +189,8 @@ int vtkMFAEncoder::RequestData(vtkInformation*, vtkInformationVector** inInfo,
                                          << report.stopReason << "); the best model has max error "
                                          << this->LastMaxRelativeError);
     }
-    output->SetModel(std::make_shared<const mfadvr::Model>(std::move(model)));
+    this->SetOutputModel(outInfo, std::make_shared<const mfadvr::Model>(std::move(model)),
+                         hasRegion ? region : nullptr);
   } catch (const std::exception& e) {
     vtkErrorMacro(<< e.what());
     return 0;

@@ -11,6 +11,13 @@
  * default the active point scalars (else the first one-component point array, else a cell
  * array, averaged to the points).
  *
+ * In a parallel pipeline (ParaView's ranks), each piece fits its own part: image data are
+ * requested with GhostLevels layers of the neighbouring pieces' samples, fitted together with
+ * them, and the model renders only the piece's own extent (PieceEncoder.h); control counts are
+ * then for the whole image and scaled to the piece. With OutputImageData on, the output is an
+ * image carrying the model and its region (vtkMFAModelAlgorithm), which is how ParaView moves
+ * it.
+ *
  * Errors (no scalar field, bad options, a flat box) are reported with vtkErrorMacro and leave
  * the output empty.
  */
@@ -90,6 +97,16 @@ class VTKMFA_EXPORT vtkMFAEncoder : public vtkMFAModelAlgorithm {
 
   //@{
   /**
+   * Image data split into pieces: sample layers of the neighbouring pieces each piece is fitted
+   * with, so that the pieces' models agree across their common faces (-1, the default:
+   * 2 x (Degree + 1)).
+   */
+  vtkSetClampMacro(GhostLevels, int, -1, 1024);
+  vtkGetMacro(GhostLevels, int);
+  //@}
+
+  //@{
+  /**
    * Results of the last fit: maximum and RMS error over every input sample, relative to the
    * value range, and the fit's wall time in seconds.
    */
@@ -103,9 +120,12 @@ class VTKMFA_EXPORT vtkMFAEncoder : public vtkMFAModelAlgorithm {
   ~vtkMFAEncoder() override;
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  int EffectiveGhostLevels() const;
 
   int Degree = 3;
+  int GhostLevels = -1;
   int NumberOfControlPoints[3] = {0, 0, 0};
   double MaxError = 0.0;
   int MaxNumberOfControlPoints[3] = {0, 0, 0};

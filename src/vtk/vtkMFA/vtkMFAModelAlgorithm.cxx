@@ -85,7 +85,12 @@ void vtkMFAModelAlgorithm::SetOutputModel(vtkInformationVector* outInfo,
                                           const double* renderBounds) {
   vtkDataObject* output = outInfo->GetInformationObject(0)->Get(vtkDataObject::DATA_OBJECT());
   if (auto* image = vtkImageData::SafeDownCast(output)) {
-    image->ShallowCopy(mfadvr::vtkglue::imageOfModel(*model, renderBounds));
+    mfadvr::vtkglue::CarriedModel carried{model, {}};
+    for (int a = 0; a < 3; ++a) {
+      carried.region[2 * a] = renderBounds ? renderBounds[2 * a] : model->domain().min[a];
+      carried.region[2 * a + 1] = renderBounds ? renderBounds[2 * a + 1] : model->domain().max[a];
+    }
+    image->ShallowCopy(mfadvr::vtkglue::imageOfModels({carried}));
   } else if (auto* data = vtkMFAModelData::SafeDownCast(output)) {
     data->SetModel(std::move(model));
   }

@@ -7,11 +7,12 @@
  * vtkDataObjectAlgorithm. Subclasses set their inputs (none for a reader) and implement
  * RequestData, handing the model to SetOutputModel.
  *
- * With OutputImageData on, the output is a vtkImageData that carries the model (the control
- * points as its point scalars, the rest of the model as the field array
- * "MFAModelDescription"; its bounds are the region to render): the form ParaView moves
- * between processes, and which vtkMFAVolumeMapper renders like the model itself. GetOutput()
- * is then null; use GetOutputDataObject(0).
+ * With OutputImageData on, the output is a vtkImageData that carries the model (and, for a
+ * reader of a multi-block file, several): the models as .mfa bytes in field arrays
+ * "MFAModel0", ..., the region each renders in "MFARegions", 2 x 2 x 2 points over the
+ * regions, point scalars holding the value range. It is the form ParaView moves between
+ * processes, and vtkMFAVolumeMapper renders it like the models themselves. GetOutput() is
+ * then null; use GetOutputDataObject(0).
  */
 #ifndef vtkMFAModelAlgorithm_h
 #define vtkMFAModelAlgorithm_h

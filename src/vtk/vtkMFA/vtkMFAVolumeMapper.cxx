@@ -3,6 +3,7 @@
 #include "vtkAlgorithmOutput.h"
 #include "vtkCamera.h"
 #include "vtkDataSet.h"
+#include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkMFAEncoder.h"
 #include "vtkMFAModelData.h"
@@ -23,16 +24,19 @@
 
 #include <algorithm>
 #include <cmath>
+#include <deque>
 #include <exception>
 #include <set>
 #include <stdexcept>
 #include <vector>
 
+#include "VtkModelImage.h"
 #include "VtkSceneConversion.h"
 #include "core/field/ModelField.h"
 #include "core/image/ImageResize.h"
 #include "core/model/Model.h"
 #include "core/render/EmptySpaceGrid.h"
+#include "core/render/PieceCompositor.h"
 #include "core/render/RayCaster.h"
 
 vtkStandardNewMacro(vtkMFAVolumeMapper);
@@ -40,6 +44,12 @@ vtkStandardNewMacro(vtkMFAVolumeMapper);
 struct vtkMFAVolumeMapper::Internals {
   vtkNew<vtkMFAEncoder> Encoder;
   vtkSmartPointer<vtkMFAModelData> Model;
+  // An image carrying models (ParaView's form, VtkModelImage.h): the models and their regions,
+  // parsed once per carrier, each rendered in its region and composited in visibility order.
+  std::vector<mfadvr::vtkglue::CarriedModel> Carried;
+  vtkImageData* CarrierImage = nullptr;  // identity only, never dereferenced
+  vtkMTimeType CarrierTime = 0;
+  std::deque<mfadvr::EmptySpaceCache> CarriedEmptySpace;
   std::set<std::string> Warned;
   std::vector<float> Depth;
   std::vector<unsigned char> Pixels;
@@ -109,12 +119,39 @@ vtkMFAModelData* vtkMFAVolumeMapper::UpdateModel() {
     connection->GetProducer()->Update(connection->GetIndex());
     vtkDataObject* input = this->GetInputDataObject(0, 0);
     model = vtkMFAModelData::SafeDownCast(input);
-    if (auto* dataSet = vtkDataSet::SafeDownCast(input)) {
+    auto* image = vtkImageData::SafeDownCast(input);
+    if (image && mfadvr::vtkglue::carriesModels(image)) {
+      auto& in = *this->Internal;
+      if (in.CarrierImage != image || in.CarrierTime != image->GetMTime()) {
+        in.Carried.clear();
+        in.CarriedEmptySpace.clear();
+        in.CarrierImage = image;
+        in.CarrierTime = image->GetMTime();
+        try {
+          in.Carried = mfadvr::vtkglue::modelsOfImage(image);
+        } catch (const std::exception& e) {
+          vtkErrorMacro(<< "cannot render the carried models: " << e.what());
+        }
+        in.CarriedEmptySpace.resize(in.Carried.size());
+      }
+      // The first model stands for them all in the queries below (bounds come from regions).
+      model = nullptr;
+      if (!in.Carried.empty()) {
+        model = vtkSmartPointer<vtkMFAModelData>::New();
+        model->SetModel(in.Carried.front().model);
+      }
+    } else if (auto* dataSet = vtkDataSet::SafeDownCast(input)) {
+      this->Internal->Carried.clear();
+      this->Internal->CarrierImage = nullptr;
       // The encoder's pipeline re-fits only when the data set or the options change.
       this->Internal->Encoder->SetInputData(dataSet);
       this->Internal->Encoder->Update();
       model = this->Internal->Encoder->GetOutput();
     }
+  }
+  if (model && !vtkImageData::SafeDownCast(this->GetInputDataObject(0, 0))) {
+    this->Internal->Carried.clear();
+    this->Internal->CarrierImage = nullptr;
   }
   this->Internal->Model = (model && model->HasModel()) ? model : nullptr;
   return this->Internal->Model;
@@ -122,7 +159,20 @@ vtkMFAModelData* vtkMFAVolumeMapper::UpdateModel() {
 
 double* vtkMFAVolumeMapper::GetBounds() {
   vtkMFAModelData* model = this->UpdateModel();
-  if (model) {
+  if (model && !this->Internal->Carried.empty()) {
+    // The union of the regions the carried models render.
+    vtkMath::UninitializeBounds(this->Bounds);
+    for (int a = 0; a < 3; ++a) {
+      this->Bounds[2 * a] = VTK_DOUBLE_MAX;
+      this->Bounds[2 * a + 1] = VTK_DOUBLE_MIN;
+    }
+    for (const auto& c : this->Internal->Carried) {
+      for (int a = 0; a < 3; ++a) {
+        this->Bounds[2 * a] = std::min(this->Bounds[2 * a], c.region[2 * a]);
+        this->Bounds[2 * a + 1] = std::max(this->Bounds[2 * a + 1], c.region[2 * a + 1]);
+      }
+    }
+  } else if (model) {
     model->GetBounds(this->Bounds);
   } else {
     vtkMath::UninitializeBounds(this->Bounds);
@@ -248,10 +298,30 @@ void vtkMFAVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol) {
       s.rayEnd.clear();
     }
 
-    mfadvr::Image image =
-        this->Internal->FieldRenderer
-            ? this->Internal->FieldRenderer(s)
-            : mfadvr::renderVolume(mfadvr::ModelField(*model, &this->Internal->EmptySpace), s);
+    mfadvr::Image image;
+    if (this->Internal->FieldRenderer) {
+      image = this->Internal->FieldRenderer(s);
+    } else if (!this->Internal->Carried.empty()) {
+      // Each carried model in its region, with steps aligned to the camera so that the pieces
+      // of a partitioned volume (here, and on other ranks) sample like the whole volume.
+      s.alignSamplesToCamera = true;
+      std::vector<mfadvr::DomainBox> regions;
+      std::vector<mfadvr::Image> images;
+      for (size_t i = 0; i < this->Internal->Carried.size(); ++i) {
+        const auto& c = this->Internal->Carried[i];
+        // Regions are in the data's (model) coordinates, like the models' boxes.
+        mfadvr::RenderSettings piece = s;
+        piece.clipMin = mfadvr::Vec3d(c.region[0], c.region[2], c.region[4]);
+        piece.clipMax = mfadvr::Vec3d(c.region[1], c.region[3], c.region[5]);
+        regions.push_back({piece.clipMin, piece.clipMax});
+        images.push_back(mfadvr::renderVolume(
+            mfadvr::ModelField(*c.model, &this->Internal->CarriedEmptySpace[i]), piece));
+      }
+      image = images.size() == 1 ? std::move(images.front())
+                                 : mfadvr::compositeInVisibilityOrder(s, regions, images);
+    } else {
+      image = mfadvr::renderVolume(mfadvr::ModelField(*model, &this->Internal->EmptySpace), s);
+    }
     if (image.width != rw || image.height != rh) {
       throw std::runtime_error("the field renderer returned an image of the wrong size");
     }

@@ -12,7 +12,11 @@
  * Input (one port, connected the usual way: SetInputConnection / SetInputData): an MFA model
  * (vtkMFAModelData, from vtkMFAReader or vtkMFAEncoder), or any vtkDataSet (image data, a
  * mesh, a point cloud), which is encoded with GetEncoder()'s options (by default, for image
- * data, an interpolating cubic fit) and re-encoded only when it or the options change.
+ * data, an interpolating cubic fit) and re-encoded only when it or the options change. An
+ * image that carries models (the output of vtkMFAReader or vtkMFAEncoder with
+ * OutputImageData on, as in ParaView) is rendered as its models: each in its own region, with
+ * samples at multiples of the sample distance along each ray so that the pieces of a
+ * partitioned volume, here or on other ranks, composite to the image of the whole.
  * SetMFAInputConnection / SetMFAInputData are the same port under older names.
  *
  * Not supported (a warning says so once): blend modes other than composite, cropping, clipping

@@ -1,0 +1,167 @@
+// Models carried by image data (the form ParaView moves): the reader's and the encoder's
+// image output, multi-block files read whole or piece by piece, the encoder's pieces with ghost
+// layers, and the mapper rendering carriers like the models themselves.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include <vtkFieldData.h>
+#include <vtkTrivialProducer.h>
+#include <vtkUnsignedCharArray.h>
+
+#include "TestSupport.h"
+#include "VtkSceneFixture.h"
+#include "core/encode/PieceEncoder.h"
+#include "core/image/ImageMetrics.h"
+#include "core/model/BlockModelFile.h"
+#include "core/model/ModelFile.h"
+#include "vtkMFAEncoder.h"
+#include "vtkMFAReader.h"
+
+namespace mfadvr::test {
+namespace {
+
+StructuredGrid mlGrid() {
+  return sampleBuiltin(*makeBuiltin("marschner-lobb"), {41, 41, 41});
+}
+
+TEST(ModelCarrier, ReaderOutputsAnImageThatRendersLikeTheModel) {
+  const auto path = scratchDir() / "carrier.mfa";
+  saveModel(*marschnerLobbModel(), path);
+  VtkVolumeScene scene(marschnerLobbModel(), true);
+  const Image8 reference = scene.render();
+
+  vtkNew<vtkMFAReader> reader;
+  reader->SetFileName(path.c_str());
+  reader->OutputImageDataOn();
+  reader->Update();
+  auto* image = vtkImageData::SafeDownCast(reader->GetOutputDataObject(0));
+  ASSERT_NE(image, nullptr);
+  EXPECT_EQ(reader->GetOutput(), nullptr);
+  // 2 x 2 x 2 points over the model's box, the value range as point scalars.
+  int dims[3];
+  image->GetDimensions(dims);
+  EXPECT_EQ(dims[0] * dims[1] * dims[2], 8);
+  double b[6], range[2];
+  image->GetBounds(b);
+  EXPECT_DOUBLE_EQ(b[0], -1.0);
+  EXPECT_DOUBLE_EQ(b[5], 1.0);
+  image->GetPointData()->GetScalars()->GetRange(range);
+  EXPECT_FLOAT_EQ(range[0], static_cast<float>(marschnerLobbModel()->valueMin()));
+  EXPECT_FLOAT_EQ(range[1], static_cast<float>(marschnerLobbModel()->valueMax()));
+
+  scene.mapper->SetInputConnection(reader->GetOutputPort());
+  const Image8 viaCarrier = scene.render();
+  // The carrier path samples at multiples of the step from the camera, the model path from
+  // where each ray enters the box: the same volume sampled at other points.
+  EXPECT_GT(compareImages(reference, viaCarrier).psnr, 33.0);
+  double mb[6];
+  scene.mapper->GetBounds(mb);
+  EXPECT_DOUBLE_EQ(mb[1], 1.0);
+
+  // A damaged carrier is an error, not a crash.
+  vtkNew<vtkImageData> broken;
+  broken->DeepCopy(image);
+  auto* bytes = vtkUnsignedCharArray::SafeDownCast(broken->GetFieldData()->GetArray("MFAModel0"));
+  ASSERT_NE(bytes, nullptr);
+  bytes->SetValue(40, static_cast<unsigned char>(bytes->GetValue(40) ^ 0x5a));
+  scene.mapper->SetInputData(broken);
+  EXPECT_EQ(coverage(scene.render(), scene.coreSettings().background), 0.0);
+}
+
+// The scene's model as a single carrier: the reference of the partitioned renders (the same
+// camera-aligned samples).
+Image8 singleCarrierImage(VtkVolumeScene& scene, const std::filesystem::path& dir) {
+  const auto path = dir / "single-carrier.mfa";
+  saveModel(*marschnerLobbModel(), path);
+  vtkNew<vtkMFAReader> reader;
+  reader->SetFileName(path.c_str());
+  reader->OutputImageDataOn();
+  scene.mapper->SetInputConnection(reader->GetOutputPort());
+  return scene.render();
+}
+
+TEST(ModelCarrier, MultiBlockFilesRenderWholeOrPieceByPiece) {
+  const auto dir = scratchDir();
+  const auto path = dir / "carrier-blocks.mfa";
+  saveBlockModels(encodeStructuredBlocks(mlGrid(), {2, 2, 1}, -1, EncodeOptions{}), {2, 2, 1},
+                  path);
+  VtkVolumeScene scene(marschnerLobbModel(), true);
+  const Image8 reference = singleCarrierImage(scene, dir);
+
+  vtkNew<vtkMFAReader> reader;
+  reader->SetFileName(path.c_str());
+  reader->Update();  // a multi-block file needs image output
+  EXPECT_FALSE(reader->GetOutput()->HasModel());
+  reader->OutputImageDataOn();
+  scene.mapper->SetInputConnection(reader->GetOutputPort());
+  const Image8 all = scene.render();  // one piece: every block, composited
+  EXPECT_GT(compareImages(reference, all).psnr, 40.0);
+
+  // Pieces split the blocks: 4 pieces read one each, 2 pieces two each, 8 pieces leave some
+  // empty.
+  auto regionCount = [&](int piece, int pieces) {
+    reader->UpdatePiece(piece, pieces, 0);
+    auto* image = vtkImageData::SafeDownCast(reader->GetOutputDataObject(0));
+    vtkDataArray* regions = image->GetFieldData()->GetArray("MFARegions");
+    return regions ? regions->GetNumberOfTuples() : 0;
+  };
+  EXPECT_EQ(regionCount(3, 4), 1);
+  EXPECT_EQ(regionCount(1, 2), 2);
+  EXPECT_EQ(regionCount(0, 8), 0);
+  EXPECT_EQ(regionCount(7, 8), 1);
+}
+
+TEST(ModelCarrier, EncoderPiecesCompositeToTheWholeImage) {
+  const StructuredGrid grid = mlGrid();
+  VtkVolumeScene scene(marschnerLobbModel(), true);
+  const Image8 reference = singleCarrierImage(scene, scratchDir());
+  vtkNew<vtkTrivialProducer> producer;
+  producer->SetOutput(imageOf(grid));
+  vtkNew<vtkMFAEncoder> encoder;
+  encoder->SetInputConnection(producer->GetOutputPort());
+  encoder->OutputImageDataOn();
+  // Each piece: its own region, a model over its samples and ghost layers.
+  std::vector<vtkSmartPointer<vtkImageData>> carriers;
+  for (int piece = 0; piece < 2; ++piece) {
+    encoder->UpdatePiece(piece, 2, 0);
+    auto copy = vtkSmartPointer<vtkImageData>::New();
+    copy->DeepCopy(vtkImageData::SafeDownCast(encoder->GetOutputDataObject(0)));
+    carriers.push_back(copy);
+  }
+  double a[6], b[6];
+  carriers[0]->GetBounds(a);
+  carriers[1]->GetBounds(b);
+  // Neighbours along one axis, sharing a face, together the whole box.
+  int shared = 0;
+  for (int axis = 0; axis < 3; ++axis)
+    if (std::abs(a[2 * axis + 1] - b[2 * axis]) < 1e-9 ||
+        std::abs(b[2 * axis + 1] - a[2 * axis]) < 1e-9)
+      ++shared;
+  EXPECT_EQ(shared, 1);
+  // Rendered through two volumes in one scene, back one first: VTK draws volumes in the order
+  // they were added, and each mapper blends over what is drawn (premultiplied).
+  vtkNew<vtkMFAVolumeMapper> second;
+  second->SetSampleDistance(0.02);
+  vtkNew<vtkVolume> secondVolume;
+  secondVolume->SetMapper(second);
+  secondVolume->SetProperty(scene.property);
+  const double* cam = scene.renderer->GetActiveCamera()->GetPosition();
+  auto distance = [&](const double* bounds) {
+    double d = 0.0;
+    for (int axis = 0; axis < 3; ++axis) {
+      const double c = 0.5 * (bounds[2 * axis] + bounds[2 * axis + 1]) - cam[axis];
+      d += c * c;
+    }
+    return d;
+  };
+  const bool firstIsFar = distance(a) > distance(b);
+  scene.mapper->SetInputData(carriers[firstIsFar ? 0 : 1]);
+  second->SetInputData(carriers[firstIsFar ? 1 : 0]);
+  scene.renderer->AddVolume(secondVolume);
+  const Image8 pieces = scene.render();
+  EXPECT_GT(compareImages(reference, pieces).psnr, 40.0);
+}
+
+}  // namespace
+}  // namespace mfadvr::test
