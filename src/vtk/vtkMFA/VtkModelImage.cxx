@@ -9,7 +9,9 @@
 #include "vtkUnsignedCharArray.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
+#include <limits>
 #include <span>
 #include <string>
 
@@ -31,21 +33,17 @@ std::string modelArrayName(size_t i) {
 vtkSmartPointer<vtkImageData> imageOfModels(const std::vector<CarriedModel>& models) {
   if (models.empty()) throw Error("internal: a carrier needs at least one model");
   double bounds[6] = {INFINITY, -INFINITY, INFINITY, -INFINITY, INFINITY, -INFINITY};
-  double lo = INFINITY, hi = -INFINITY;
   vtkNew<vtkDoubleArray> regions;
   regions->SetName(kRegionsArray);
   regions->SetNumberOfComponents(6);
   auto image = vtkSmartPointer<vtkImageData>::New();
   for (size_t i = 0; i < models.size(); ++i) {
-    const Model& m = *models[i].model;
     regions->InsertNextTuple(models[i].region);
     for (int a = 0; a < 3; ++a) {
       bounds[2 * a] = std::min(bounds[2 * a], models[i].region[2 * a]);
       bounds[2 * a + 1] = std::max(bounds[2 * a + 1], models[i].region[2 * a + 1]);
     }
-    lo = std::min(lo, m.valueMin());
-    hi = std::max(hi, m.valueMax());
-    const std::string bytes = serializeModel(m);
+    const std::string bytes = serializeModel(*models[i].model);
     vtkNew<vtkUnsignedCharArray> array;
     array->SetName(modelArrayName(i).c_str());
     array->SetNumberOfTuples(static_cast<vtkIdType>(bytes.size()));
@@ -53,15 +51,65 @@ vtkSmartPointer<vtkImageData> imageOfModels(const std::vector<CarriedModel>& mod
     image->GetFieldData()->AddArray(array);
   }
   image->GetFieldData()->AddArray(regions);
-  image->SetDimensions(2, 2, 2);
+
+  // The data's grid over the regions (at least 2 points per axis).
+  const Vec3d step = models.front().model->dataSpacing();
+  int dims[3];
+  double spacing[3];
+  for (int a = 0; a < 3; ++a) {
+    const double extent = bounds[2 * a + 1] - bounds[2 * a];
+    const double n = extent > 0.0 && step[a] > 0.0 ? std::round(extent / step[a]) + 1.0 : 2.0;
+    dims[a] = static_cast<int>(std::clamp(n, 2.0, 65536.0));
+    spacing[a] = extent / (dims[a] - 1);
+  }
+  image->SetDimensions(dims);
   image->SetOrigin(bounds[0], bounds[2], bounds[4]);
-  image->SetSpacing(bounds[1] - bounds[0], bounds[3] - bounds[2], bounds[5] - bounds[4]);
+  image->SetSpacing(spacing);
+
+  // Each point takes the value of the first model whose region holds it (neighbours share
+  // their faces, where their models agree), evaluated a z plane at a time on all cores.
   const std::string& field = models.front().model->provenance().field;
-  vtkNew<vtkFloatArray> range;
-  range->SetName(field.empty() ? "MFA value" : field.c_str());
-  range->SetNumberOfTuples(8);
-  for (vtkIdType i = 0; i < 8; ++i) range->SetValue(i, static_cast<float>(i % 2 ? hi : lo));
-  image->GetPointData()->SetScalars(range);
+  vtkNew<vtkFloatArray> values;
+  values->SetName(field.empty() ? "MFA value" : field.c_str());
+  values->SetNumberOfTuples(static_cast<vtkIdType>(dims[0]) * dims[1] * dims[2]);
+  float* out = values->GetPointer(0);
+  std::fill(out, out + values->GetNumberOfTuples(), std::numeric_limits<float>::quiet_NaN());
+  const size_t plane = static_cast<size_t>(dims[0]) * dims[1];
+  std::vector<Vec3d> points;
+  std::vector<size_t> index;
+  std::vector<float> result;
+  std::vector<char> done(plane);
+  for (int k = 0; k < dims[2]; ++k) {
+    std::fill(done.begin(), done.end(), 0);
+    for (const CarriedModel& c : models) {
+      points.clear();
+      index.clear();
+      for (int j = 0; j < dims[1]; ++j)
+        for (int i = 0; i < dims[0]; ++i) {
+          const size_t at = static_cast<size_t>(i) + static_cast<size_t>(dims[0]) * j;
+          if (done[at]) continue;
+          // The last point of an axis is the bound itself (no rounding past a region's face).
+          const Vec3d x(i + 1 == dims[0] ? bounds[1] : bounds[0] + i * spacing[0],
+                        j + 1 == dims[1] ? bounds[3] : bounds[2] + j * spacing[1],
+                        k + 1 == dims[2] ? bounds[5] : bounds[4] + k * spacing[2]);
+          bool inRegion = true;
+          for (int a = 0; a < 3; ++a) {
+            const double tolerance = 1e-9 * (bounds[2 * a + 1] - bounds[2 * a]);
+            inRegion = inRegion && x[a] >= c.region[2 * a] - tolerance &&
+                       x[a] <= c.region[2 * a + 1] + tolerance;
+          }
+          if (!inRegion) continue;
+          done[at] = 1;
+          if (!c.model->inside(x)) continue;  // outside the domain mask: NaN
+          points.push_back(x);
+          index.push_back(at);
+        }
+      result.resize(points.size());
+      c.model->evaluate(points, result);
+      for (size_t p = 0; p < points.size(); ++p) out[plane * k + index[p]] = result[p];
+    }
+  }
+  image->GetPointData()->SetScalars(values);
   return image;
 }
 

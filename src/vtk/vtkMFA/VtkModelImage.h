@@ -6,11 +6,13 @@
 //   field data "MFAModel0", "MFAModel1", ...: each model as the bytes of a .mfa file (unsigned
 //     char), and "MFARegions" (double, 6 components: xmin, xmax, ymin, ymax, zmin, zmax, one
 //     tuple per model);
-//   geometry: 2 x 2 x 2 points spanning the union of the regions, so that a pipeline sees the
-//     carrier where its models render;
-//   point scalars: the value range at the corners (float, named after the model's field), so
-//     that ParaView offers the array for colouring and scales its colour and opacity maps to
-//     the data's range.
+//   geometry: a grid over the union of the regions with the spacing of the data the models
+//     stand for (Model::dataSpacing), so that a pipeline sees the carrier where its models
+//     render, at the data's resolution (ParaView derives its default opacity unit distance from
+//     the cell size, which must not depend on how many ranks share the volume);
+//   point scalars: the models evaluated at those points (float, named after the model's field;
+//     NaN outside every region and outside a domain mask): the model resampled on the data
+//     grid, for colour maps, slices and contours of the model in the pipeline.
 // Private to the module.
 #include <memory>
 #include <vector>

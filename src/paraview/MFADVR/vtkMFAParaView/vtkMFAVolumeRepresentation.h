@@ -1,0 +1,44 @@
+/**
+ * @class   vtkMFAVolumeRepresentation
+ * @brief   ParaView's volume representation of image data, rendering MFA models
+ *
+ * The "MFA Volume" representation: ParaView's image volume representation (colour and
+ * opacity maps, shading, lights, ordered compositing across ranks) with vtkMFAVolumeMapper in
+ * place of VTK's mappers. Its input is an image that carries MFA models (the output of the MFA
+ * reader or the MFA Encode filter); each rank renders the models it holds, each in its region,
+ * and ParaView composites the ranks' premultiplied images in visibility order by their bounds.
+ */
+#ifndef vtkMFAVolumeRepresentation_h
+#define vtkMFAVolumeRepresentation_h
+
+#include "vtkImageVolumeRepresentation.h"
+#include "vtkMFAParaViewModule.h"  // for export macro
+
+class VTKMFAPARAVIEW_EXPORT vtkMFAVolumeRepresentation : public vtkImageVolumeRepresentation {
+ public:
+  static vtkMFAVolumeRepresentation* New();
+  vtkTypeMacro(vtkMFAVolumeRepresentation, vtkImageVolumeRepresentation);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  //@{
+  /**
+   * Forwarded to vtkMFAVolumeMapper: distance between samples along a ray (0: half the data
+   * spacing), early ray termination opacity, image sample distance of still frames and the
+   * largest one of interactive frames.
+   */
+  void SetSampleDistance(double distance);
+  void SetEarlyRayTerminationOpacity(double opacity);
+  void SetImageSampleDistance(double distance);
+  void SetMaximumImageSampleDistance(double distance);
+  //@}
+
+ protected:
+  vtkMFAVolumeRepresentation();
+  ~vtkMFAVolumeRepresentation() override;
+
+ private:
+  vtkMFAVolumeRepresentation(const vtkMFAVolumeRepresentation&) = delete;
+  void operator=(const vtkMFAVolumeRepresentation&) = delete;
+};
+
+#endif

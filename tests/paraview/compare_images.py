@@ -1,0 +1,43 @@
+"""compare_images.py MIN_PSNR REFERENCE.png OTHER.png...: exit 1 unless every other image is
+within MIN_PSNR dB of the reference (8-bit RGB) and the reference is not blank."""
+import math
+import sys
+
+import pv_scene  # noqa: F401  (makes ParaView's modules importable)
+from vtkmodules.vtkIOImage import vtkPNGReader
+
+
+def pixels(path):
+    reader = vtkPNGReader()
+    reader.SetFileName(path)
+    reader.Update()
+    image = reader.GetOutput()
+    scalars = image.GetPointData().GetScalars()
+    if scalars is None:
+        sys.exit("cannot read " + path)
+    comps = scalars.GetNumberOfComponents()
+    return image.GetDimensions(), [scalars.GetComponent(i, c)
+                                   for i in range(scalars.GetNumberOfTuples())
+                                   for c in range(min(3, comps))]
+
+
+def main():
+    minimum = float(sys.argv[1])
+    dims, ref = pixels(sys.argv[2])
+    if max(ref) - min(ref) < 16:
+        sys.exit("the reference image %s is blank" % sys.argv[2])
+    worst = math.inf
+    for path in sys.argv[3:]:
+        other_dims, other = pixels(path)
+        if other_dims != dims:
+            sys.exit("%s has another size than %s" % (path, sys.argv[2]))
+        mse = sum((a - b) ** 2 for a, b in zip(ref, other)) / len(ref)
+        psnr = math.inf if mse == 0 else 10 * math.log10(255.0 ** 2 / mse)
+        print("%s vs %s: PSNR %.2f dB" % (path, sys.argv[2], psnr))
+        worst = min(worst, psnr)
+    if worst < minimum:
+        sys.exit("PSNR %.2f dB is below %.1f dB" % (worst, minimum))
+
+
+if __name__ == "__main__":
+    main()
