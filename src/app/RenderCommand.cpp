@@ -154,7 +154,8 @@ Command addRenderCommand(CLI::App& app) {
       "Ray-cast a volume image of an MFA model, a grid filter or the analytic truth, or render "
       "the data with one of VTK's volume renderers");
   sub->add_option("input", o->input,
-                  "A model (.mfa), a volume, mesh or point file, or builtin:NAME[:N|:NXxNYxNZ]\n" +
+                  "A model (.mfa, one model or multi-block), a volume, mesh or point file, or "
+                  "builtin:NAME[:N|:NXxNYxNZ]\n" +
                       supportedVolumeFormats() + "\n" + supportedScatteredFormats())
       ->required();
   sub->add_option("-o,--output", o->output, "PNG to write (8-bit RGB; RGBA with --alpha)")

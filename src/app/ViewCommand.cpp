@@ -224,6 +224,10 @@ Command addViewCommand(CLI::App& app) {
   sub->add_flag("-q,--quiet", o->quiet, "No progress on stderr");
 
   auto run = [o]() -> int {
+    if (isBlockModelInput(o->input))
+      throw Error(o->input +
+                  " is a multi-block model; `view` shows single models: render it with "
+                  "`mfadvr render`, or open it in ParaView (docs/paraview.md)");
     requireRenderDisplay();
     // Grid methods need the samples: volumes and built-in functions have them; model files
     // and scattered inputs do not (a model of a built-in function has its truth).

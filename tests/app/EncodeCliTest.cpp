@@ -213,6 +213,13 @@ TEST(EncodeCli, BlocksWriteAMultiBlockModelThatInfoAndRenderRead) {
   EXPECT_NE(runMfadvr("encode builtin:marschner-lobb:33 --ghost 2").status, 0);
   EXPECT_NE(runMfadvr("encode builtin:marschner-lobb:33 --blocks 2 --max-error 1e-2").status, 0);
   EXPECT_NE(runMfadvr("render " + blocks + " --method trilinear -q -o " + a).status, 0);
+  // Commands made for one model say what the file is.
+  const auto query = runMfadvr("query " + blocks + " 0 0 0");
+  EXPECT_EQ(query.status, 1);
+  EXPECT_NE(query.err.find("multi-block"), std::string::npos) << query.err;
+  const auto viewer = runMfadvr("view " + blocks + " --screenshot " + a);
+  EXPECT_EQ(viewer.status, 1);
+  EXPECT_NE(viewer.err.find("multi-block"), std::string::npos) << viewer.err;
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include "MarschnerLobbScene.h"
 #include "core/render/PieceCompositor.h"
 #include "core/analytic/BuiltinFunction.h"
 #include "core/field/ModelField.h"
@@ -57,17 +58,7 @@ TEST(PieceEncoder, BlocksCompositeToTheWholeModelsImage) {
     EXPECT_TRUE(((b.model.domain().max - b.region.max).array() >= 0.0).all());
   }
 
-  RenderSettings s;
-  s.width = s.height = 64;
-  s.camera.resetToBounds(whole.domain().min, whole.domain().max);
-  s.camera.azimuth(30);
-  s.camera.elevation(20);
-  s.transferFunction.space = TfSpace::Data;
-  s.transferFunction.color = {{0.0, Vec3f(0.2f, 0.3f, 1.0f)}, {1.0, Vec3f(1.0f, 0.8f, 0.3f)}};
-  s.transferFunction.opacity = {{0.0, 0.0f}, {0.45, 0.0f}, {0.55, 0.8f}, {1.0, 0.8f}};
-  s.opacityUnitDistance = 0.05;
-  s.sampleDistance = 0.01;
-  s.shade = true;
+  RenderSettings s = mlSettings(64);
   s.earlyTerminationOpacity = 2.0;
   s.alignSamplesToCamera = true;
   const Image reference = renderVolume(ModelField(whole), s);

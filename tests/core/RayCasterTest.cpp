@@ -13,6 +13,7 @@
 #include "core/render/RayCaster.h"
 #include "core/render/ReconstructionMethod.h"
 #include "core/util/Error.h"
+#include "MarschnerLobbScene.h"
 #include "core/render/PieceCompositor.h"
 
 namespace mfadvr {
@@ -127,22 +128,6 @@ TEST(RayCaster, RaysMissingTheBoxShowTheBackground) {
   EXPECT_FLOAT_EQ(corner[3], 0.0f);
   EXPECT_LT(stats.raysHit, stats.rays);
   EXPECT_GT(stats.raysHit, 0);
-}
-
-// A shaded render of the Marschner-Lobb truth, the workhorse of the invariant tests.
-RenderSettings mlSettings(int size) {
-  RenderSettings s;
-  s.width = s.height = size;
-  s.camera.resetToBounds(BuiltinFunction::domainMin(), BuiltinFunction::domainMax());
-  s.camera.azimuth(30);
-  s.camera.elevation(20);
-  s.transferFunction.space = TfSpace::Data;
-  s.transferFunction.color = {{0.0, Vec3f(0.2f, 0.3f, 1.0f)}, {1.0, Vec3f(1.0f, 0.8f, 0.3f)}};
-  s.transferFunction.opacity = {{0.0, 0.0f}, {0.45, 0.0f}, {0.55, 0.8f}, {1.0, 0.8f}};
-  s.opacityUnitDistance = 0.05;
-  s.sampleDistance = 0.01;
-  s.shade = true;
-  return s;
 }
 
 double maxAbsDifference(const Image& a, const Image& b) {
@@ -274,14 +259,17 @@ TEST(RayCaster, PiecesWithAlignedSamplesCompositeToTheWhole) {
     for (int j = 0; j < 2; ++j)
       boxes.push_back(DomainBox{Vec3d(i ? cx : lo[0], j ? cy : lo[1], lo[2]),
                                 Vec3d(i ? hi[0] : cx, j ? hi[1] : cy, hi[2])});
-  std::vector<Image> pieces;
-  for (const DomainBox& box : boxes) {
-    RenderSettings piece = s;
-    piece.clipMin = box.min;
-    piece.clipMax = box.max;
-    pieces.push_back(renderVolume(field, piece));
-  }
-  const Image composited = compositeInVisibilityOrder(s, boxes, pieces);
+  auto renderPieces = [&](const RenderSettings& settings) {
+    std::vector<Image> pieces;
+    for (const DomainBox& box : boxes) {
+      RenderSettings piece = settings;
+      piece.clipMin = box.min;
+      piece.clipMax = box.max;
+      pieces.push_back(renderVolume(field, piece));
+    }
+    return compositeInVisibilityOrder(settings, boxes, pieces);
+  };
+  const Image composited = renderPieces(s);
   EXPECT_LT(maxAbsDifference(whole, composited), 0.02);
   EXPECT_LT(meanAbsDifference(whole, composited), 2e-4);
   EXPECT_GT(compareImages(toImage8(whole), toImage8(composited)).psnr, 50.0);
@@ -289,14 +277,7 @@ TEST(RayCaster, PiecesWithAlignedSamplesCompositeToTheWhole) {
   // Without aligned steps each piece starts its steps where its rays enter it: further apart.
   s.alignSamplesToCamera = false;
   const Image wholeUnaligned = renderVolume(field, s);
-  std::vector<Image> unaligned;
-  for (const DomainBox& box : boxes) {
-    RenderSettings piece = s;
-    piece.clipMin = box.min;
-    piece.clipMax = box.max;
-    unaligned.push_back(renderVolume(field, piece));
-  }
-  EXPECT_GT(meanAbsDifference(wholeUnaligned, compositeInVisibilityOrder(s, boxes, unaligned)),
+  EXPECT_GT(meanAbsDifference(wholeUnaligned, renderPieces(s)),
             meanAbsDifference(whole, composited));
 
   // A clip box beside the model renders nothing; an inverted one is refused.

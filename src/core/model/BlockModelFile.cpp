@@ -9,6 +9,7 @@
 
 #include "core/model/ModelFile.h"
 #include "core/util/AtomicFile.h"
+#include "core/util/ByteIo.h"
 #include "core/util/Crc32.h"
 #include "core/util/Error.h"
 
@@ -22,17 +23,7 @@ constexpr size_t kPrefixBytes = sizeof(kMagic) + 4 + 4;  // magic, version, inde
 constexpr std::uint32_t kMaxIndexBytes = 64u << 20;
 constexpr std::int64_t kMaxBlocks = 1 << 20;
 
-template <class T>
-void append(std::string& out, const T& v) {
-  out.append(reinterpret_cast<const char*>(&v), sizeof(T));
-}
 
-template <class T>
-T readAt(std::span<const std::uint8_t> b, size_t offset) {
-  T v;
-  std::memcpy(&v, b.data() + offset, sizeof(T));
-  return v;
-}
 
 json boxJson(const DomainBox& b) {
   return {b.min[0], b.max[0], b.min[1], b.max[1], b.min[2], b.max[2]};
@@ -113,10 +104,10 @@ std::string serializeBlockModels(const std::vector<ModelBlock>& blocks, const In
   }
   std::string out;
   out.append(kMagic, sizeof(kMagic));
-  append(out, kBlockFormatVersion);
-  append(out, static_cast<std::uint32_t>(index.size()));
+  appendBytes(out, kBlockFormatVersion);
+  appendBytes(out, static_cast<std::uint32_t>(index.size()));
   out += index;
-  append(out, crc32Of(reinterpret_cast<const std::uint8_t*>(out.data()), out.size()));
+  appendBytes(out, crc32Of(reinterpret_cast<const std::uint8_t*>(out.data()), out.size()));
   if (out.size() != first) throw Error("internal: the block index did not settle");
   for (const std::string& m : models) out += m;
   return out;
@@ -135,16 +126,16 @@ BlockIndex parseBlockIndex(std::span<const std::uint8_t> b, std::uint64_t fileBy
   if (b.size() < sizeof(kMagic) || std::memcmp(b.data(), kMagic, sizeof(kMagic)) != 0)
     throw Error(name + ": not a multi-block .mfa model (wrong magic bytes)");
   if (b.size() < kPrefixBytes) throw bad("file is truncated");
-  const auto version = readAt<std::uint32_t>(b, sizeof(kMagic));
+  const auto version = readBytesAt<std::uint32_t>(b, sizeof(kMagic));
   if (version != kBlockFormatVersion)
     throw Error(name + ": multi-block format version " + std::to_string(version) +
                 " is not supported; this build reads version " +
                 std::to_string(kBlockFormatVersion));
-  const auto indexBytes = readAt<std::uint32_t>(b, sizeof(kMagic) + 4);
+  const auto indexBytes = readBytesAt<std::uint32_t>(b, sizeof(kMagic) + 4);
   if (indexBytes > kMaxIndexBytes || kPrefixBytes + indexBytes + 4 > b.size())
     throw bad("index length " + std::to_string(indexBytes) + " does not fit the file");
   const size_t crcAt = kPrefixBytes + indexBytes;
-  if (crc32Of(b.data(), crcAt) != readAt<std::uint32_t>(b, crcAt))
+  if (crc32Of(b.data(), crcAt) != readBytesAt<std::uint32_t>(b, crcAt))
     throw bad("index checksum mismatch (file is corrupted)");
 
   BlockIndex index;
@@ -210,7 +201,7 @@ BlockIndex readBlockIndex(const std::filesystem::path& path) {
   std::uint64_t headBytes = prefix.size();
   if (prefix.size() == kPrefixBytes && std::memcmp(prefix.data(), kMagic, sizeof(kMagic)) == 0)
     headBytes = std::min<std::uint64_t>(
-        size, kPrefixBytes + std::min<std::uint64_t>(readAt<std::uint32_t>(prefix, 16),
+        size, kPrefixBytes + std::min<std::uint64_t>(readBytesAt<std::uint32_t>(prefix, 16),
                                                      kMaxIndexBytes) +
                   4);
   return parseBlockIndex(readRange(path, 0, headBytes), size, path.string());

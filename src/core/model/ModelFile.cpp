@@ -13,6 +13,7 @@
 
 #include "core/model/ProvenanceJson.h"
 #include "core/util/AtomicFile.h"
+#include "core/util/ByteIo.h"
 #include "core/util/Crc32.h"
 #include "core/util/Error.h"
 
@@ -110,17 +111,7 @@ std::string headerText(const Model& m, std::int64_t compressedMaskBytes) {
   return h.dump();
 }
 
-template <class T>
-void append(std::string& out, const T& v) {
-  out.append(reinterpret_cast<const char*>(&v), sizeof(T));
-}
 
-template <class T>
-T readAt(std::span<const std::uint8_t> b, size_t offset) {
-  T v;
-  std::memcpy(&v, b.data() + offset, sizeof(T));
-  return v;
-}
 
 std::uint32_t crc(const std::uint8_t* data, size_t n) {
   return crc32Of(data, n);
@@ -140,15 +131,15 @@ std::string serializeModel(const Model& model) {
   out.reserve(kPrefixBytes + header.size() + 4 * model.spline().controlPoints().size() +
               mask.size() + 4096);
   out.append(kMagic, sizeof(kMagic));
-  append(out, kModelFormatVersion);
-  append(out, static_cast<std::uint32_t>(header.size()));
+  appendBytes(out, kModelFormatVersion);
+  appendBytes(out, static_cast<std::uint32_t>(header.size()));
   out += header;
   for (int a = 0; a < 3; ++a)
-    for (double k : model.spline().knots(a).knots()) append(out, k);
+    for (double k : model.spline().knots(a).knots()) appendBytes(out, k);
   const auto& ctrl = model.spline().controlPoints();
   out.append(reinterpret_cast<const char*>(ctrl.data()), ctrl.size() * sizeof(float));
   out += mask;
-  append(out, crc(reinterpret_cast<const std::uint8_t*>(out.data()), out.size()));
+  appendBytes(out, crc(reinterpret_cast<const std::uint8_t*>(out.data()), out.size()));
   return out;
 }
 
@@ -167,16 +158,19 @@ Model parseModel(std::span<const std::uint8_t> b, const std::string& name,
   auto bad = [&](const std::string& why) -> Error {
     return Error(name + ": not a valid .mfa model: " + why);
   };
+  if (b.size() >= 8 && std::memcmp(b.data(), "MFADVRMB", 8) == 0)
+    throw Error(name + ": is a multi-block model (mfadvr encode --blocks), not a single model; "
+                       "`mfadvr render` and `info` read it, and ParaView's MFA reader");
   if (b.size() < sizeof(kMagic) || std::memcmp(b.data(), kMagic, sizeof(kMagic)) != 0)
     throw Error(name + ": not an .mfa model file (wrong magic bytes)");
   if (b.size() < kPrefixBytes + 4) throw bad("file is truncated");
-  const auto version = readAt<std::uint32_t>(b, sizeof(kMagic));
+  const auto version = readBytesAt<std::uint32_t>(b, sizeof(kMagic));
   if (version < kOldestModelFormatVersion || version > kModelFormatVersion)
     throw Error(name + ": .mfa format version " + std::to_string(version) +
                 " is not supported; this build reads versions " +
                 std::to_string(kOldestModelFormatVersion) + " to " +
                 std::to_string(kModelFormatVersion));
-  const auto headerBytes = readAt<std::uint32_t>(b, sizeof(kMagic) + 4);
+  const auto headerBytes = readBytesAt<std::uint32_t>(b, sizeof(kMagic) + 4);
   if (headerBytes > kMaxHeaderBytes || kPrefixBytes + headerBytes + 4 > b.size())
     throw bad("header length " + std::to_string(headerBytes) + " does not fit the file");
 
@@ -253,7 +247,7 @@ Model parseModel(std::span<const std::uint8_t> b, const std::string& name,
               std::to_string(expected) +
               (static_cast<std::int64_t>(b.size()) < expected ? " (file is truncated)"
                                                               : " (trailing bytes)"));
-  const auto stored = readAt<std::uint32_t>(b, b.size() - 4);
+  const auto stored = readBytesAt<std::uint32_t>(b, b.size() - 4);
   if (crc(b.data(), b.size() - 4) != stored) throw bad("checksum mismatch (file is corrupted)");
 
   size_t offset = kPrefixBytes + headerBytes;

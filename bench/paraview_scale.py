@@ -1,0 +1,62 @@
+"""ParaView scale figures: encode + render of a large Wavelet with the MFA plugin, on however
+many MPI ranks pvbatch runs with (bench/paraview_scale.sh drives it).
+
+    pvbatch bench/paraview_scale.py N IMAGE_SIZE
+
+Prints, per rank, the encode time, the first (still) render, a second render, and the peak
+memory of the rank (max RSS).
+"""
+import os
+import resource
+import sys
+import time
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tests",
+                                "paraview"))
+import pv_scene  # noqa: E402
+import paraview.simple as pvs  # noqa: E402
+from paraview import servermanager as sm  # noqa: E402
+
+n = int(sys.argv[1])
+size = int(sys.argv[2])
+rank = sm.vtkProcessModule.GetProcessModule().GetPartitionId()
+ranks = sm.vtkProcessModule.GetProcessModule().GetNumberOfLocalPartitions()
+
+pv_scene.load_plugin()
+wavelet = pvs.Wavelet()
+half = n // 2
+wavelet.WholeExtent = [-half, n - 1 - half] * 3
+encoded = pvs.MFAEncode(Input=wavelet)
+encoded.Degree = 2
+start = time.perf_counter()
+encoded.UpdatePipeline()
+encode = time.perf_counter() - start
+
+view = pvs.CreateRenderView()
+view.ViewSize = [size, size]
+view.OrientationAxesVisibility = 0
+start = time.perf_counter()
+display = pvs.Show(encoded, view)
+show = time.perf_counter() - start
+display.Representation = "MFA Volume"
+pvs.ColorBy(display, ("POINTS", "RTData"))
+lut = pvs.GetColorTransferFunction("RTData")
+lut.RescaleTransferFunction(37.35, 276.8)
+opacity = pvs.GetOpacityTransferFunction("RTData")
+opacity.Points = [37.35, 0.0, 0.5, 0.0, 150.0, 0.0, 0.5, 0.0, 200.0, 0.3, 0.5, 0.0,
+                  276.8, 0.6, 0.5, 0.0]
+display.ScalarOpacityUnitDistance = n / 16.0
+display.Shade = 1
+view.ResetCamera()
+view.GetActiveCamera().Azimuth(30)
+view.GetActiveCamera().Elevation(20)
+view.ResetCamera()
+times = []
+for _ in range(2):
+    start = time.perf_counter()
+    pvs.Render(view)
+    times.append(time.perf_counter() - start)
+rss = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
+print("rank %d of %d: %d^3 Wavelet, encode %.2f s, show %.2f s, render %.2f s then %.2f s "
+      "(%dx%d), peak memory %.0f MiB" % (rank, ranks, n, encode, show, times[0], times[1], size,
+                                         size, rss), flush=True)

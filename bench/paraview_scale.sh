@@ -1,0 +1,21 @@
+#!/usr/bin/env bash
+# ParaView scale figures (docs/benchmarks.md): the MFA plugin encodes and renders an N^3
+# Wavelet (degree 2, one control point per sample) on 1 and 2 MPI ranks.
+#   bench/paraview_scale.sh [N=512] [IMAGE=800] [RANKS="1 2"]
+# Needs the paraview preset built (scripts/install-deps.sh --paraview first).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+n=${1:-512}
+size=${2:-800}
+ranks=${3:-"1 2"}
+export MFADVR_PLUGIN=$PWD/build/paraview/lib/paraview-plugins/MFADVR/MFADVR.so
+export MFADVR_PARAVIEW_PYTHONPATH=$PWD/build/deps/python3-paraview/usr/lib/python3/dist-packages
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+for r in $ranks; do
+  start=$EPOCHREALTIME
+  xvfb-run -a -s "-screen 0 1280x1024x24" mpiexec --oversubscribe -np "$r" \
+    pvbatch --symmetric --disable-xdisplay-test bench/paraview_scale.py "$n" "$size" 2>&1 |
+    grep -E "rank [0-9]+ of" || true
+  awk -v s="$start" -v e="$EPOCHREALTIME" -v r="$r" \
+    'BEGIN { printf "%d rank(s): %.1f s in all (start-up included)\n", r, e - s }'
+done
