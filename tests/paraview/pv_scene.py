@@ -20,8 +20,17 @@ SIZE = [240, 240]
 
 
 def load_plugin():
-    # Without ns, the plugin's proxies become functions of paraview.simple.
-    pvs.LoadPlugin(os.environ["MFADVR_PLUGIN"])
+    """Loads the plugin; with MFADVR_PV_SERVER=host:port, connects to that pvserver first and
+    loads it on both sides."""
+    server = os.environ.get("MFADVR_PV_SERVER")
+    if server:
+        host, port = server.rsplit(":", 1)
+        pvs.Connect(host, int(port))
+        pvs.LoadPlugin(os.environ["MFADVR_PLUGIN"], remote=True)
+        pvs.LoadPlugin(os.environ["MFADVR_PLUGIN"], remote=False)
+    else:
+        # Without ns, the plugin's proxies become functions of paraview.simple.
+        pvs.LoadPlugin(os.environ["MFADVR_PLUGIN"])
 
 
 def source(kind):

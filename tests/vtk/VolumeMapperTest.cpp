@@ -153,6 +153,34 @@ TEST(VolumeMapper, FollowsTheVolumeTransform) {
   EXPECT_GT(compareImages(base, scaled.render()).psnr, 40.0);
 }
 
+// Off-axis frusta (a shifted window centre, as ParaView's client-server rendering and VTK's
+// tiled screenshots use) come from VTK's own projection: the picture moves with the window.
+TEST(VolumeMapper, FollowsAShiftedWindowCenter) {
+  VtkVolumeScene scene(marschnerLobbModel(), true);
+  const Image8 centred = scene.render();
+  scene.renderer->GetActiveCamera()->SetWindowCenter(0.25, 0.0);  // a quarter of the width
+  const Image8 shifted = scene.render();
+  // Columns [shift, size) of one image against columns [0, size - shift) of the other.
+  constexpr int kShift = VtkVolumeScene::kSize / 8;
+  auto compareShifted = [&](const Image8& a, const Image8& b) {
+    Image8 ca, cb;
+    ca.width = cb.width = VtkVolumeScene::kSize - kShift;
+    ca.height = cb.height = VtkVolumeScene::kSize;
+    for (int y = 0; y < VtkVolumeScene::kSize; ++y)
+      for (int x = 0; x < ca.width; ++x)
+        for (int c = 0; c < 3; ++c) {
+          ca.data.push_back(a.data[3 * (y * VtkVolumeScene::kSize + x + kShift) + c]);
+          cb.data.push_back(b.data[3 * (y * VtkVolumeScene::kSize + x) + c]);
+        }
+    return compareImages(ca, cb).psnr;
+  };
+  // A window centre of 0.25 (normalized device units) moves the picture by 0.25 / 2 of the
+  // width, one way; the other way does not match.
+  const double oneWay = compareShifted(centred, shifted), otherWay = compareShifted(shifted, centred);
+  EXPECT_GT(std::max(oneWay, otherWay), 40.0) << oneWay << " " << otherWay;
+  EXPECT_LT(std::min(oneWay, otherWay), 30.0) << oneWay << " " << otherWay;
+}
+
 TEST(VolumeMapper, ImageSampleDistanceRendersFewerRays) {
   VtkVolumeScene scene(marschnerLobbModel(), true);
   const Image8 full = scene.render();

@@ -17,13 +17,12 @@ Image compositeInVisibilityOrder(const RenderSettings& s, const std::vector<Doma
     if (im.width != s.width || im.height != s.height)
       throw Error("internal: piece images must have the render's size");
   Image out(s.width, s.height);
-  const RayGenerator rays(s.camera, s.width, s.height);
+  const CameraRays rays = s.primaryRays();
   std::vector<std::pair<double, size_t>> order;
   for (int y = 0; y < s.height; ++y)
     for (int x = 0; x < s.width; ++x) {
-      Vec3d o, d;
-      rays.ray(x, y, o, d);
-      const double oo[3] = {o[0], o[1], o[2]}, dd[3] = {d[0], d[1], d[2]};
+      double oo[3], dd[3];
+      primaryRay(rays, x, y, oo, dd);
       order.clear();
       for (size_t i = 0; i < regions.size(); ++i) {
         const double lo[3] = {regions[i].min[0], regions[i].min[1], regions[i].min[2]};

@@ -14,7 +14,7 @@ namespace mfadvr {
 RayParams compileRayParams(const RenderSettings& s, const TransferFunctionTable& table,
                            const Vec3d& boxMin, const Vec3d& boxMax) {
   RayParams p;
-  p.camera = RayGenerator(s.camera, s.width, s.height).rays();
+  p.camera = s.primaryRays();
   const bool clip = s.hasClipBox();
   for (int a = 0; a < 3; ++a) {
     p.boxMin[a] = clip ? std::max(boxMin[a], s.clipMin[a]) : boxMin[a];

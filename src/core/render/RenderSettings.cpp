@@ -12,6 +12,8 @@ void RenderSettings::validate() const {
     throw Error("image size must be between 1x1 and 32768x32768, got " + std::to_string(width) +
                 "x" + std::to_string(height));
   camera.validate();
+  if (rays && (rays->width != width || rays->height != height))
+    throw Error("internal: the primary rays are for another image size");
   transferFunction.validate();
   if (transferFunction.space != TfSpace::Data)
     throw Error("internal: the transfer function must be resolved to data values before rendering");
@@ -36,6 +38,10 @@ void RenderSettings::validate() const {
   }
   if (threads < 0) throw Error("thread count must be >= 0 (0: all cores)");
   if (shade) lighting.validate();
+}
+
+CameraRays RenderSettings::primaryRays() const {
+  return rays ? *rays : RayGenerator(camera, width, height).rays();
 }
 
 }  // namespace mfadvr

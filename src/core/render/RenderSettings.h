@@ -3,17 +3,26 @@
 // sampling and compositing. The same settings render every reconstruction method.
 #include <cmath>
 #include <functional>
+#include <optional>
 #include <vector>
 
 #include "core/render/Camera.h"
 #include "core/render/Lighting.h"
 #include "core/render/TransferFunction.h"
+#include "core/render/kernel/CameraRays.h"
 
 namespace mfadvr {
 
 struct RenderSettings {
   int width = 512, height = 512;
   Camera camera;
+  // The primary rays, when they do not come from `camera` alone: a host that renders into
+  // another program's frame (VTK, ParaView) takes them from that program's projection, which
+  // may be off axis (a tile of a larger image, a shifted window centre). Their width and
+  // height must be the image's. `camera` still gives the view direction for shading.
+  std::optional<CameraRays> rays;
+  // The rays of every pixel: `rays`, else those of `camera`.
+  CameraRays primaryRays() const;
   // Must be resolved to data values (TransferFunction::resolved) against the value range that
   // is common to every method being compared.
   TransferFunction transferFunction;

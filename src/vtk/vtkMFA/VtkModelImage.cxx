@@ -30,7 +30,8 @@ std::string modelArrayName(size_t i) {
 
 }  // namespace
 
-vtkSmartPointer<vtkImageData> imageOfModels(const std::vector<CarriedModel>& models) {
+vtkSmartPointer<vtkImageData> imageOfModels(const std::vector<CarriedModel>& models,
+                                            const int* firstIndex) {
   if (models.empty()) throw Error("internal: a carrier needs at least one model");
   double bounds[6] = {INFINITY, -INFINITY, INFINITY, -INFINITY, INFINITY, -INFINITY};
   vtkNew<vtkDoubleArray> regions;
@@ -62,8 +63,12 @@ vtkSmartPointer<vtkImageData> imageOfModels(const std::vector<CarriedModel>& mod
     dims[a] = static_cast<int>(std::clamp(n, 2.0, 65536.0));
     spacing[a] = extent / (dims[a] - 1);
   }
-  image->SetDimensions(dims);
-  image->SetOrigin(bounds[0], bounds[2], bounds[4]);
+  int first[3] = {0, 0, 0};
+  if (firstIndex) std::copy(firstIndex, firstIndex + 3, first);
+  image->SetExtent(first[0], first[0] + dims[0] - 1, first[1], first[1] + dims[1] - 1, first[2],
+                   first[2] + dims[2] - 1);
+  image->SetOrigin(bounds[0] - first[0] * spacing[0], bounds[2] - first[1] * spacing[1],
+                   bounds[4] - first[2] * spacing[2]);
   image->SetSpacing(spacing);
 
   // Each point takes the value of the first model whose region holds it (neighbours share

@@ -34,8 +34,11 @@ struct CarriedModel {
   double region[6];  // xmin, xmax, ymin, ymax, zmin, zmax
 };
 
-// regions: one per model, null entries (or an empty vector) for the model's box.
-vtkSmartPointer<vtkImageData> imageOfModels(const std::vector<CarriedModel>& models);
+// firstIndex (optional): the index of the carrier's first point, for a carrier made from image
+// data, so that its extent lies in the input's index space (a pipeline crops an image to the
+// update extent it asked for, which is in that space); null: the extent starts at 0.
+vtkSmartPointer<vtkImageData> imageOfModels(const std::vector<CarriedModel>& models,
+                                            const int* firstIndex = nullptr);
 
 // Whether `data` is an image carrying models (it has the regions array).
 bool carriesModels(vtkDataObject* data);

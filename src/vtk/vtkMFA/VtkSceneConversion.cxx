@@ -139,6 +139,49 @@ Camera cameraFromVtk(vtkCamera* camera, const WorldToModel& toModel) {
   return c;
 }
 
+CameraRays raysFromVtk(vtkRenderer* renderer, const WorldToModel& toModel, int width,
+                       int height) {
+  int w = 0, h = 0, x0 = 0, y0 = 0;
+  renderer->GetTiledSizeAndOrigin(&w, &h, &x0, &y0);
+  vtkCamera* camera = renderer->GetActiveCamera();
+  vtkMatrix4x4* worldToClip = camera->GetCompositeProjectionTransformMatrix(
+      static_cast<double>(std::max(w, 1)) / std::max(h, 1), -1, 1);
+  vtkNew<vtkMatrix4x4> clipToWorld;
+  vtkMatrix4x4::Invert(worldToClip, clipToWorld);
+  // Points of the near (z = -1) or far (z = 1) clipping plane at normalized device x, y.
+  auto unproject = [&](double x, double y, double z) {
+    const double clip[4] = {x, y, z, 1.0};
+    double world[4];
+    clipToWorld->MultiplyPoint(clip, world);
+    return toModel.point(Vec3d(world[0], world[1], world[2]) / world[3]);
+  };
+  // primaryRay walks the image plane as p(sx, sy) = base + sx right + sy up with sx, sy the
+  // normalized device coordinates of the pixel centre (half extents 1): the near plane's
+  // points are exactly such an affine function of them, whatever the frustum.
+  const Vec3d n00 = unproject(0, 0, -1);
+  const Vec3d right = unproject(1, 0, -1) - n00, up = unproject(0, 1, -1) - n00;
+  CameraRays r;
+  r.width = width;
+  r.height = height;
+  r.halfWidth = r.halfHeight = 1.0;
+  r.parallel = camera->GetParallelProjection() != 0;
+  Vec3d origin, forward;
+  if (r.parallel) {
+    origin = n00;  // rays start on the near plane and run parallel
+    forward = (unproject(0, 0, 1) - n00).normalized();
+  } else {
+    origin = toModel.point(toVec(camera->GetPosition()));  // rays through the eye
+    forward = n00 - origin;
+  }
+  for (int a = 0; a < 3; ++a) {
+    r.position[a] = origin[a];
+    r.forward[a] = forward[a];
+    r.right[a] = right[a];
+    r.up[a] = up[a];
+  }
+  return r;
+}
+
 TransferFunction transferFunctionFromVtk(vtkVolumeProperty* property,
                                          std::vector<std::string>& notes) {
   TransferFunction tf;

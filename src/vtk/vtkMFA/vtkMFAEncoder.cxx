@@ -151,9 +151,14 @@ int vtkMFAEncoder::RequestData(vtkInformation*, vtkInformationVector** inInfo,
     mfadvr::Model model;
     double region[6];
     bool hasRegion = false;
+    int firstIndex[3] = {0, 0, 0};  // of the carrier's first point, in the input's index space
+    bool fromImage = false;
     if (auto* image = vtkImageData::SafeDownCast(input)) {
       mfadvr::StructuredGrid grid = mfadvr::gridFromVtkImage(image, field, source);
       grid.validate();
+      fromImage = true;
+      const int* dataExtent = image->GetExtent();
+      for (int a = 0; a < 3; ++a) firstIndex[a] = dataExtent[2 * a];
       int own[6];
       if (pieces > 1 && ownExtent(in, own)) {
         // One piece with its ghost layers: fitted at the whole image's control-point density,
@@ -172,6 +177,7 @@ int vtkMFAEncoder::RequestData(vtkInformation*, vtkInformationVector** inInfo,
           region[2 * a + 1] = image->GetOrigin()[a] + own[2 * a + 1] * image->GetSpacing()[a];
         }
         hasRegion = true;
+        for (int a = 0; a < 3; ++a) firstIndex[a] = own[2 * a];
       } else {
         model = mfadvr::encodeStructured(grid, options, &report);
       }
@@ -190,7 +196,7 @@ int vtkMFAEncoder::RequestData(vtkInformation*, vtkInformationVector** inInfo,
                                          << this->LastMaxRelativeError);
     }
     this->SetOutputModel(outInfo, std::make_shared<const mfadvr::Model>(std::move(model)),
-                         hasRegion ? region : nullptr);
+                         hasRegion ? region : nullptr, fromImage ? firstIndex : nullptr);
   } catch (const std::exception& e) {
     vtkErrorMacro(<< e.what());
     return 0;

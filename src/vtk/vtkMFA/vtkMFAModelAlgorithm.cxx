@@ -82,7 +82,8 @@ int vtkMFAModelAlgorithm::RequestUpdateExtent(vtkInformation*, vtkInformationVec
 
 void vtkMFAModelAlgorithm::SetOutputModel(vtkInformationVector* outInfo,
                                           std::shared_ptr<const mfadvr::Model> model,
-                                          const double* renderBounds) {
+                                          const double* renderBounds,
+                                          const int* firstIndex) {
   vtkDataObject* output = outInfo->GetInformationObject(0)->Get(vtkDataObject::DATA_OBJECT());
   if (auto* image = vtkImageData::SafeDownCast(output)) {
     mfadvr::vtkglue::CarriedModel carried{model, {}};
@@ -90,7 +91,7 @@ void vtkMFAModelAlgorithm::SetOutputModel(vtkInformationVector* outInfo,
       carried.region[2 * a] = renderBounds ? renderBounds[2 * a] : model->domain().min[a];
       carried.region[2 * a + 1] = renderBounds ? renderBounds[2 * a + 1] : model->domain().max[a];
     }
-    image->ShallowCopy(mfadvr::vtkglue::imageOfModels({carried}));
+    image->ShallowCopy(mfadvr::vtkglue::imageOfModels({carried}, firstIndex));
   } else if (auto* data = vtkMFAModelData::SafeDownCast(output)) {
     data->SetModel(std::move(model));
   }

@@ -62,10 +62,12 @@ class VTKMFA_EXPORT vtkMFAModelAlgorithm : public vtkAlgorithm {
 #ifndef __VTK_WRAP__
   /**
    * Puts `model` into the output of port 0 (`outInfo`), as the model or as image data that
-   * carries it; renderBounds (image data only): the region to render, null for the model's box.
+   * carries it; renderBounds (image data only): the region to render, null for the model's box;
+   * firstIndex (image data only): the index of the carrier's first point in the input image's
+   * index space, null for 0.
    */
   void SetOutputModel(vtkInformationVector* outInfo, std::shared_ptr<const mfadvr::Model> model,
-                      const double* renderBounds = nullptr);
+                      const double* renderBounds = nullptr, const int* firstIndex = nullptr);
 #endif
 
   bool OutputImageData = false;

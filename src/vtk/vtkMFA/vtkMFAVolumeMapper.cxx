@@ -248,6 +248,7 @@ void vtkMFAVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol) {
     s.width = rw;
     s.height = rh;
     s.camera = mfadvr::vtkglue::cameraFromVtk(ren->GetActiveCamera(), toModel);
+    s.rays = mfadvr::vtkglue::raysFromVtk(ren, toModel, rw, rh);
     s.transferFunction = mfadvr::vtkglue::transferFunctionFromVtk(property, notes);
     s.opacityUnitDistance = property->GetScalarOpacityUnitDistance(0) * toModel.scale;
     s.sampleDistance = this->SampleDistance > 0.0 ? this->SampleDistance * toModel.scale
@@ -269,7 +270,7 @@ void vtkMFAVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol) {
         static_cast<double>(width) / height, -1, 1);
     vtkNew<vtkMatrix4x4> clipToWorld;
     vtkMatrix4x4::Invert(worldToClip, clipToWorld);
-    const mfadvr::RayGenerator rays(s.camera, rw, rh);
+    const mfadvr::CameraRays rays = s.primaryRays();
     s.rayEnd.assign(static_cast<size_t>(rw) * rh, INFINITY);
     bool anyGeometry = false;
     for (int y = 0; y < rh; ++y) {
@@ -288,10 +289,10 @@ void vtkMFAVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol) {
         clipToWorld->MultiplyPoint(clip, world);
         const mfadvr::Vec3d p =
             toModel.point(mfadvr::Vec3d(world[0], world[1], world[2]) / world[3]);
-        mfadvr::Vec3d o, d;
-        rays.ray(x, y, o, d);
-        s.rayEnd[static_cast<size_t>(y) * rw + x] =
-            static_cast<float>(std::max(0.0, (p - o).dot(d)));
+        double o[3], d[3];
+        mfadvr::primaryRay(rays, x, y, o, d);
+        s.rayEnd[static_cast<size_t>(y) * rw + x] = static_cast<float>(std::max(
+            0.0, (p - mfadvr::Vec3d(o[0], o[1], o[2])).dot(mfadvr::Vec3d(d[0], d[1], d[2]))));
       }
     }
     if (!anyGeometry) {
