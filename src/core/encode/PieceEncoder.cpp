@@ -100,6 +100,10 @@ std::vector<ModelBlock> encodeStructuredBlocks(const StructuredGrid& grid, const
         ModelBlock b{{grid.position(own.lo[0], own.lo[1], own.lo[2]),
                       grid.position(own.hi[0], own.hi[1], own.hi[2])},
                      encodeStructuredPiece(piece, grid.dims, quiet, *lo, *hi, &report)};
+        // The region and the model's box are computed from different origins; keep rounding
+        // from putting the region a hair outside the box.
+        b.region.min = b.region.min.cwiseMax(b.model.domain().min);
+        b.region.max = b.region.max.cwiseMin(b.model.domain().max);
         if (reports) reports->push_back(report);
         out.push_back(std::move(b));
         if (options.progress)
