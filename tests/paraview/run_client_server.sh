@@ -5,16 +5,9 @@
 set -euo pipefail
 out=$1
 here=$(cd "$(dirname "$0")" && pwd)
-for tool in pvbatch pvserver mpiexec xvfb-run; do
-  if ! command -v "$tool" >/dev/null; then
-    echo "skipped: $tool is not installed"
-    exit 77
-  fi
-done
+PV_TOOLS="pvbatch pvserver mpiexec xvfb-run"
+source "$here/pv_test_env.sh"
 mkdir -p "$out"
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
-export PYTHONPATH="$here${PYTHONPATH:+:$PYTHONPATH}"
-screen=(-s "-screen 0 1280x1024x24")
 timeout 300 xvfb-run -a "${screen[@]}" mpiexec -np 1 pvbatch --disable-xdisplay-test \
   "$here/pv_scene.py" encode "$out/cs-batch.png"
 
