@@ -1,12 +1,12 @@
 // Writes seed inputs for the fuzzers: small valid models (uniform and non-uniform knots, several
-// degrees, one with a domain mask, a multi-block file) and point lists ("x y z" and "x y z v"), so that mutations
-// start from the interesting structure.
+// degrees, one with a domain mask, a multi-block file) and point lists ("x y z" and "x y z v"), so
+// that mutations start from the interesting structure.
 #include <filesystem>
 #include <fstream>
 
 #include "core/analytic/BuiltinFunction.h"
-#include "core/encode/StructuredEncoder.h"
 #include "core/encode/PieceEncoder.h"
+#include "core/encode/StructuredEncoder.h"
 #include "core/model/BlockModelFile.h"
 #include "core/model/ModelFile.h"
 

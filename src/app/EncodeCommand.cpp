@@ -50,12 +50,9 @@ int encodeBlocks(const StructuredGrid& grid, const std::string& blocksText, int 
       j["region"] = {r.min[0], r.max[0], r.min[1], r.max[1], r.min[2], r.max[2]};
       list.push_back(j);
     }
-    std::cout << nlohmann::json{{"output", output},
-                                {"blocks", blocks},
-                                {"ghost_layers", ghost},
-                                {"max_relative_error", worst},
-                                {"fit_seconds", seconds},
-                                {"block_reports", list}}
+    std::cout << nlohmann::json{{"output", output},       {"blocks", blocks},
+                                {"ghost_layers", ghost},  {"max_relative_error", worst},
+                                {"fit_seconds", seconds}, {"block_reports", list}}
                      .dump(2)
               << "\n";
   } else {
@@ -69,11 +66,11 @@ int encodeBlocks(const StructuredGrid& grid, const std::string& blocksText, int 
                   i, static_cast<long long>(c[0]), static_cast<long long>(c[1]),
                   static_cast<long long>(c[2]), reports[i].maxRelativeError());
     }
-    std::printf("max error over the blocks: %.3g of the value range; fit %.2f s\n", worst,
-                seconds);
+    std::printf("max error over the blocks: %.3g of the value range; fit %.2f s\n", worst, seconds);
     if (!output.empty())
-      std::printf("wrote %s (%s bytes)\n", output.c_str(),
-                  groupDigits(static_cast<std::int64_t>(std::filesystem::file_size(output))).c_str());
+      std::printf(
+          "wrote %s (%s bytes)\n", output.c_str(),
+          groupDigits(static_cast<std::int64_t>(std::filesystem::file_size(output))).c_str());
   }
   return 0;
 }
@@ -135,8 +132,8 @@ Command addEncodeCommand(CLI::App& app) {
     if (o->ghost >= 0 && o->blocks.empty())
       throw CLI::ValidationError("--ghost", "applies with --blocks");
     if (!o->blocks.empty() && scattered)
-      throw CLI::ValidationError("--blocks",
-                                 "applies to regular grids; " + o->input + " holds scattered points");
+      throw CLI::ValidationError(
+          "--blocks", "applies to regular grids; " + o->input + " holds scattered points");
     if (!o->blocks.empty() && (options.adaptive || o->strict))
       throw CLI::ValidationError("--blocks", "does not combine with --max-error yet");
     if (scattered && (!o->spacing.empty() || !o->origin.empty()))
@@ -180,8 +177,8 @@ Command addEncodeCommand(CLI::App& app) {
       const VolumeLoadOptions load = parseVolumeLoadOptions(o->spacing, o->origin, o->field);
       const StructuredGrid grid = loadStructuredVolume(o->input, load);
       printReaderNotes(grid);
-      if (!o->blocks.empty()) return encodeBlocks(grid, o->blocks, o->ghost, options, o->output,
-                                                  o->json);
+      if (!o->blocks.empty())
+        return encodeBlocks(grid, o->blocks, o->ghost, options, o->output, o->json);
       model = encodeStructured(grid, options, &report);
     }
     if (report.points > 0 && report.solverResidual > 1e-4)

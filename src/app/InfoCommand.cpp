@@ -28,13 +28,13 @@ nlohmann::json infoJson(const Model& m, const std::string& path, std::uint32_t v
                     : s.knots(a).hasRegularInterior() ? "regular-interior"
                                                       : "non-uniform");
   nlohmann::json j = {{"degree", s.degrees()},
-          {"control_counts", s.counts()},
-          {"knots", knots},
-          {"domain_min", {m.domain().min[0], m.domain().min[1], m.domain().min[2]}},
-          {"domain_max", {m.domain().max[0], m.domain().max[1], m.domain().max[2]}},
-          {"value_range", {m.valueMin(), m.valueMax()}},
-          {"mask", maskJson(m.mask())},
-          {"provenance", provenanceToJson(m.provenance())}};
+                      {"control_counts", s.counts()},
+                      {"knots", knots},
+                      {"domain_min", {m.domain().min[0], m.domain().min[1], m.domain().min[2]}},
+                      {"domain_max", {m.domain().max[0], m.domain().max[1], m.domain().max[2]}},
+                      {"value_range", {m.valueMin(), m.valueMax()}},
+                      {"mask", maskJson(m.mask())},
+                      {"provenance", provenanceToJson(m.provenance())}};
   if (!path.empty()) {
     j["file"] = path;
     j["file_bytes"] = std::filesystem::file_size(path);

@@ -27,7 +27,7 @@ struct SceneNeeds {
 
 struct LoadedScene {
   std::string input;
-  std::optional<Model> model;  // for a multi-block file: its first block's model
+  std::optional<Model> model;      // for a multi-block file: its first block's model
   std::vector<ModelBlock> blocks;  // a multi-block model file's blocks
   std::optional<StructuredGrid> grid;
   std::optional<ScatteredData> scattered;  // a mesh or point cloud input, when needs.cells

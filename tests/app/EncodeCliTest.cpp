@@ -180,8 +180,8 @@ TEST(EncodeCli, BlocksWriteAMultiBlockModelThatInfoAndRenderRead) {
   using test::runMfadvr;
   const auto dir = test::scratchDir();
   const std::string blocks = (dir / "ml-blocks.mfa").string();
-  const auto r = runMfadvr("encode builtin:marschner-lobb:33 --degree 2 --blocks 2,1,2 --json -o " +
-                           blocks);
+  const auto r =
+      runMfadvr("encode builtin:marschner-lobb:33 --degree 2 --blocks 2,1,2 --json -o " + blocks);
   ASSERT_EQ(r.status, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["blocks"], nlohmann::json({2, 1, 2}));

@@ -5,10 +5,10 @@
 #include <gtest/gtest.h>
 
 #include "MarschnerLobbScene.h"
-#include "core/render/PieceCompositor.h"
 #include "core/analytic/BuiltinFunction.h"
 #include "core/field/ModelField.h"
 #include "core/image/ImageMetrics.h"
+#include "core/render/PieceCompositor.h"
 #include "core/render/RayCaster.h"
 #include "core/util/Error.h"
 
@@ -72,7 +72,8 @@ TEST(PieceEncoder, BlocksCompositeToTheWholeModelsImage) {
     pieces.push_back(renderVolume(ModelField(b.model), piece));
   }
   const double psnr =
-      compareImages(toImage8(reference), toImage8(compositeInVisibilityOrder(s, boxes, pieces))).psnr;
+      compareImages(toImage8(reference), toImage8(compositeInVisibilityOrder(s, boxes, pieces)))
+          .psnr;
   EXPECT_GT(psnr, 40.0);
   // Without ghost layers the pieces disagree more along their common faces.
   const std::vector<ModelBlock> bare = encodeStructuredBlocks(grid, {2, 2, 1}, 0, options);

@@ -5,16 +5,16 @@
 #include <algorithm>
 #include <cmath>
 
+#include "MarschnerLobbScene.h"
 #include "core/analytic/BuiltinFunction.h"
 #include "core/encode/StructuredEncoder.h"
 #include "core/field/AnalyticField.h"
 #include "core/field/ModelField.h"
 #include "core/image/ImageMetrics.h"
+#include "core/render/PieceCompositor.h"
 #include "core/render/RayCaster.h"
 #include "core/render/ReconstructionMethod.h"
 #include "core/util/Error.h"
-#include "MarschnerLobbScene.h"
-#include "core/render/PieceCompositor.h"
 
 namespace mfadvr {
 namespace {

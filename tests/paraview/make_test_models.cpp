@@ -22,8 +22,8 @@ int main(int argc, char** argv) {
     mfadvr::EncodeOptions options;
     options.degree = {2, 2, 2};
     mfadvr::saveModel(mfadvr::encodeStructured(grid, options), dir / "single.mfa");
-    mfadvr::saveBlockModels(mfadvr::encodeStructuredBlocks(grid, {4, 1, 1}, -1, options),
-                            {4, 1, 1}, dir / "blocks.mfa");
+    mfadvr::saveBlockModels(mfadvr::encodeStructuredBlocks(grid, {4, 1, 1}, -1, options), {4, 1, 1},
+                            dir / "blocks.mfa");
   } catch (const std::exception& e) {
     std::fprintf(stderr, "%s\n", e.what());
     return 1;

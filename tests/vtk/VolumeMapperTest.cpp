@@ -176,7 +176,8 @@ TEST(VolumeMapper, FollowsAShiftedWindowCenter) {
   };
   // A window centre of 0.25 (normalized device units) moves the picture by 0.25 / 2 of the
   // width, one way; the other way does not match.
-  const double oneWay = compareShifted(centred, shifted), otherWay = compareShifted(shifted, centred);
+  const double oneWay = compareShifted(centred, shifted),
+               otherWay = compareShifted(shifted, centred);
   EXPECT_GT(std::max(oneWay, otherWay), 40.0) << oneWay << " " << otherWay;
   EXPECT_LT(std::min(oneWay, otherWay), 30.0) << oneWay << " " << otherWay;
 }

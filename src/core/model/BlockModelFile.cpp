@@ -23,8 +23,6 @@ constexpr size_t kPrefixBytes = sizeof(kMagic) + 4 + 4;  // magic, version, inde
 constexpr std::uint32_t kMaxIndexBytes = 64u << 20;
 constexpr std::int64_t kMaxBlocks = 1 << 20;
 
-
-
 json boxJson(const DomainBox& b) {
   return {b.min[0], b.max[0], b.min[1], b.max[1], b.min[2], b.max[2]};
 }
@@ -91,12 +89,12 @@ std::string serializeBlockModels(const std::vector<ModelBlock>& blocks, const In
                          {"bytes", static_cast<std::uint64_t>(models[i].size())}});
       offset += models[i].size();
     }
-    const json h = {{"format", "mfadvr-blocks"},
-                    {"blocks", grid},
-                    {"box", boxJson(whole)},
-                    {"value_range",
-                     {blocks.front().model.valueMin(), blocks.front().model.valueMax()}},
-                    {"entries", entries}};
+    const json h = {
+        {"format", "mfadvr-blocks"},
+        {"blocks", grid},
+        {"box", boxJson(whole)},
+        {"value_range", {blocks.front().model.valueMin(), blocks.front().model.valueMax()}},
+        {"entries", entries}};
     index = h.dump();
     const std::uint64_t needed = kPrefixBytes + index.size() + 4;
     if (needed == first) break;
@@ -201,8 +199,8 @@ BlockIndex readBlockIndex(const std::filesystem::path& path) {
   std::uint64_t headBytes = prefix.size();
   if (prefix.size() == kPrefixBytes && std::memcmp(prefix.data(), kMagic, sizeof(kMagic)) == 0)
     headBytes = std::min<std::uint64_t>(
-        size, kPrefixBytes + std::min<std::uint64_t>(readBytesAt<std::uint32_t>(prefix, 16),
-                                                     kMaxIndexBytes) +
+        size, kPrefixBytes +
+                  std::min<std::uint64_t>(readBytesAt<std::uint32_t>(prefix, 16), kMaxIndexBytes) +
                   4);
   return parseBlockIndex(readRange(path, 0, headBytes), size, path.string());
 }

@@ -111,8 +111,6 @@ std::string headerText(const Model& m, std::int64_t compressedMaskBytes) {
   return h.dump();
 }
 
-
-
 std::uint32_t crc(const std::uint8_t* data, size_t n) {
   return crc32Of(data, n);
 }
@@ -159,8 +157,9 @@ Model parseModel(std::span<const std::uint8_t> b, const std::string& name,
     return Error(name + ": not a valid .mfa model: " + why);
   };
   if (b.size() >= 8 && std::memcmp(b.data(), "MFADVRMB", 8) == 0)
-    throw Error(name + ": is a multi-block model (mfadvr encode --blocks), not a single model; "
-                       "`mfadvr render` and `info` read it, and ParaView's MFA reader");
+    throw Error(name +
+                ": is a multi-block model (mfadvr encode --blocks), not a single model; "
+                "`mfadvr render` and `info` read it, and ParaView's MFA reader");
   if (b.size() < sizeof(kMagic) || std::memcmp(b.data(), kMagic, sizeof(kMagic)) != 0)
     throw Error(name + ": not an .mfa model file (wrong magic bytes)");
   if (b.size() < kPrefixBytes + 4) throw bad("file is truncated");

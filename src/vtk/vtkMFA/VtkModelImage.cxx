@@ -139,10 +139,10 @@ std::vector<CarriedModel> modelsOfImage(vtkImageData* image) {
     if (!bytes || bytes->GetNumberOfComponents() != 1)
       throw Error("the carrier lacks its model array " + name);
     CarriedModel c;
-    c.model = std::make_shared<const Model>(parseModel(
-        std::span<const std::uint8_t>(bytes->GetPointer(0),
-                                      static_cast<size_t>(bytes->GetNumberOfTuples())),
-        "the carried model " + name));
+    c.model = std::make_shared<const Model>(
+        parseModel(std::span<const std::uint8_t>(bytes->GetPointer(0),
+                                                 static_cast<size_t>(bytes->GetNumberOfTuples())),
+                   "the carried model " + name));
     regions->GetTypedTuple(i, c.region);
     for (int a = 0; a < 3; ++a)
       if (!(c.region[2 * a] <= c.region[2 * a + 1]))

@@ -139,8 +139,7 @@ Camera cameraFromVtk(vtkCamera* camera, const WorldToModel& toModel) {
   return c;
 }
 
-CameraRays raysFromVtk(vtkRenderer* renderer, const WorldToModel& toModel, int width,
-                       int height) {
+CameraRays raysFromVtk(vtkRenderer* renderer, const WorldToModel& toModel, int width, int height) {
   int w = 0, h = 0, x0 = 0, y0 = 0;
   renderer->GetTiledSizeAndOrigin(&w, &h, &x0, &y0);
   vtkCamera* camera = renderer->GetActiveCamera();

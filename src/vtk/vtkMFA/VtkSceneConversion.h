@@ -39,8 +39,7 @@ Camera cameraFromVtk(vtkCamera* camera, const WorldToModel& toModel);
 // The primary rays of `renderer`'s current projection, in model coordinates, for an image of
 // width x height pixels over the renderer's (tiled) viewport: the same frustum as VTK's own
 // mappers, including a shifted window centre, view shear and the tiles of a large screenshot.
-CameraRays raysFromVtk(vtkRenderer* renderer, const WorldToModel& toModel, int width,
-                       int height);
+CameraRays raysFromVtk(vtkRenderer* renderer, const WorldToModel& toModel, int width, int height);
 
 // The property's colour (or gray) and scalar opacity functions of component 0, in data values.
 // Piecewise-linear RGB functions with default midpoints and sharpness convert exactly, node by

@@ -56,8 +56,7 @@ vtkTypeBool vtkMFAModelAlgorithm::ProcessRequest(vtkInformation* request,
     // Each piece of a partitioned pipeline makes its own model: piece requests come through
     // as pieces, never as extents of a whole image.
     for (int i = 0; i < this->GetNumberOfOutputPorts(); ++i) {
-      outInfo->GetInformationObject(i)->Set(
-          vtkAlgorithm::CAN_HANDLE_PIECE_REQUEST(), 1);
+      outInfo->GetInformationObject(i)->Set(vtkAlgorithm::CAN_HANDLE_PIECE_REQUEST(), 1);
     }
     return this->RequestInformation(request, inInfo, outInfo);
   }
@@ -82,8 +81,7 @@ int vtkMFAModelAlgorithm::RequestUpdateExtent(vtkInformation*, vtkInformationVec
 
 void vtkMFAModelAlgorithm::SetOutputModel(vtkInformationVector* outInfo,
                                           std::shared_ptr<const mfadvr::Model> model,
-                                          const double* renderBounds,
-                                          const int* firstIndex) {
+                                          const double* renderBounds, const int* firstIndex) {
   vtkDataObject* output = outInfo->GetInformationObject(0)->Get(vtkDataObject::DATA_OBJECT());
   if (auto* image = vtkImageData::SafeDownCast(output)) {
     mfadvr::vtkglue::CarriedModel carried{model, {}};

@@ -60,8 +60,7 @@ bool regionsFormABox(const std::vector<mfadvr::vtkglue::CarriedModel>& models) {
     }
     sum += v;
   }
-  const double whole =
-      (bounds[1] - bounds[0]) * (bounds[3] - bounds[2]) * (bounds[5] - bounds[4]);
+  const double whole = (bounds[1] - bounds[0]) * (bounds[3] - bounds[2]) * (bounds[5] - bounds[4]);
   return std::abs(whole - sum) <= 1e-9 * std::max(whole, 1e-300);
 }
 
@@ -99,8 +98,8 @@ int vtkMFAReader::RequestData(vtkInformation*, vtkInformationVector**,
       std::vector<mfadvr::vtkglue::CarriedModel> models;
       for (size_t i = first; i < last; ++i) {
         mfadvr::vtkglue::CarriedModel m;
-        m.model = std::make_shared<const mfadvr::Model>(
-            mfadvr::loadBlock(this->FileName, index, i));
+        m.model =
+            std::make_shared<const mfadvr::Model>(mfadvr::loadBlock(this->FileName, index, i));
         const mfadvr::DomainBox& r = index.entries[i].region;
         for (int a = 0; a < 3; ++a) {
           m.region[2 * a] = r.min[a];
@@ -124,8 +123,8 @@ int vtkMFAReader::RequestData(vtkInformation*, vtkInformationVector**,
     if (this->OutputImageData && piece != 0) {
       return 1;  // a single model is read and rendered by piece 0 only
     }
-    this->SetOutputModel(
-        outInfo, std::make_shared<const mfadvr::Model>(mfadvr::loadModel(this->FileName)));
+    this->SetOutputModel(outInfo,
+                         std::make_shared<const mfadvr::Model>(mfadvr::loadModel(this->FileName)));
   } catch (const std::exception& e) {
     vtkErrorMacro(<< e.what());
     return 0;
