@@ -66,8 +66,7 @@ TEST(PieceEncoder, BlocksCompositeToTheWholeModelsImage) {
   std::vector<Image> pieces;
   for (const ModelBlock& b : blocks) {
     RenderSettings piece = s;
-    piece.clipMin = b.region.min;
-    piece.clipMax = b.region.max;
+    piece.clipBox = b.region;
     boxes.push_back(b.region);
     pieces.push_back(renderVolume(ModelField(b.model), piece));
   }
@@ -80,8 +79,7 @@ TEST(PieceEncoder, BlocksCompositeToTheWholeModelsImage) {
   std::vector<Image> barePieces;
   for (size_t i = 0; i < bare.size(); ++i) {
     RenderSettings piece = s;
-    piece.clipMin = bare[i].region.min;
-    piece.clipMax = bare[i].region.max;
+    piece.clipBox = bare[i].region;
     barePieces.push_back(renderVolume(ModelField(bare[i].model), piece));
   }
   const double barePsnr =

@@ -263,8 +263,7 @@ TEST(RayCaster, PiecesWithAlignedSamplesCompositeToTheWhole) {
     std::vector<Image> pieces;
     for (const DomainBox& box : boxes) {
       RenderSettings piece = settings;
-      piece.clipMin = box.min;
-      piece.clipMax = box.max;
+      piece.clipBox = box;
       pieces.push_back(renderVolume(field, piece));
     }
     return compositeInVisibilityOrder(settings, boxes, pieces);
@@ -282,12 +281,10 @@ TEST(RayCaster, PiecesWithAlignedSamplesCompositeToTheWhole) {
 
   // A clip box beside the model renders nothing; an inverted one is refused.
   RenderSettings outside = s;
-  outside.clipMin = hi + Vec3d::Ones();
-  outside.clipMax = hi + Vec3d::Constant(2.0);
+  outside.clipBox = DomainBox{hi + Vec3d::Ones(), hi + Vec3d::Constant(2.0)};
   const Image empty = renderVolume(field, outside);
   EXPECT_EQ(*std::max_element(empty.rgba.begin(), empty.rgba.end()), 0.0f);
-  outside.clipMin = hi;
-  outside.clipMax = lo;
+  outside.clipBox = DomainBox{hi, lo};
   EXPECT_THROW(renderVolume(field, outside), Error);
 }
 

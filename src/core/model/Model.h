@@ -11,24 +11,11 @@
 #include <string>
 
 #include "core/mask/DomainMask.h"
+#include "core/model/DomainBox.h"
 #include "core/spline/TensorBSpline.h"
 #include "core/util/Vec.h"
 
 namespace mfadvr {
-
-struct DomainBox {
-  Vec3d min = Vec3d::Zero();
-  Vec3d max = Vec3d::Ones();
-  Vec3d extent() const { return max - min; }
-  // Multiplies by the reciprocal extent, exactly as the renderer's ModelView does, so that a
-  // point query and a render sample at the same point agree to the last bit.
-  Vec3d toParameter(const Vec3d& x) const {
-    return (x - min).cwiseProduct(extent().cwiseInverse());
-  }
-  bool contains(const Vec3d& x) const {
-    return (x.array() >= min.array()).all() && (x.array() <= max.array()).all();
-  }
-};
 
 // What the model was fitted from and how well; stored in the .mfa header and shown by `info`.
 struct Provenance {

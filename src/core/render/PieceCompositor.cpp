@@ -41,6 +41,32 @@ Image compositeInVisibilityOrder(const RenderSettings& s, const std::vector<Doma
   return out;
 }
 
+Image renderPieces(const RenderSettings& settings, const std::vector<DomainBox>& regions,
+                   const PieceRenderer& renderPiece, RenderStats* stats) {
+  RenderSettings piece = settings;
+  piece.alignSamplesToCamera = true;
+  piece.background = Vec3f::Zero();
+  piece.progress = nullptr;
+  std::vector<Image> images;
+  RenderStats total;
+  for (size_t i = 0; i < regions.size(); ++i) {
+    piece.clipBox = regions[i];
+    RenderStats pieceStats;
+    images.push_back(renderPiece(i, piece, &pieceStats));
+    total.seconds += pieceStats.seconds;
+    total.rays = pieceStats.rays;
+    total.raysHit += pieceStats.raysHit;
+    total.samples += pieceStats.samples;
+    total.terminated += pieceStats.terminated;
+    total.skipped += pieceStats.skipped;
+    if (settings.progress) settings.progress(double(i + 1) / double(regions.size()));
+  }
+  if (stats) *stats = total;
+  // A single piece is already its own composite.
+  return images.size() == 1 ? std::move(images.front())
+                            : compositeInVisibilityOrder(settings, regions, images);
+}
+
 void compositeOverBackground(Image& image, const Vec3f& background) {
   for (int y = 0; y < image.height; ++y)
     for (int x = 0; x < image.width; ++x) {

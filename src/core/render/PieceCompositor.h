@@ -3,6 +3,7 @@
 // in ParaView) does across ranks: per pixel, the premultiplied images of the pieces are blended
 // front to back in the order in which the pixel's ray enters the pieces' regions. Regions must
 // not overlap (the pieces of PieceEncoder.h, the blocks of a multi-block model file).
+#include <functional>
 #include <vector>
 
 #include "core/image/Image.h"
@@ -16,6 +17,15 @@ namespace mfadvr {
 Image compositeInVisibilityOrder(const RenderSettings& settings,
                                  const std::vector<DomainBox>& regions,
                                  const std::vector<Image>& images);
+
+// Renders the pieces of a partitioned volume here, as the ranks of a parallel renderer would:
+// renderPiece(i, pieceSettings, pieceStats) renders piece i with `settings` clipped to
+// regions[i], with camera-aligned steps (RenderSettings::alignSamplesToCamera) over a
+// transparent background; the images are composited in visibility order. The result is
+// premultiplied over a transparent background; stats (optional) receive the pieces' sums.
+using PieceRenderer = std::function<Image(size_t, const RenderSettings&, RenderStats*)>;
+Image renderPieces(const RenderSettings& settings, const std::vector<DomainBox>& regions,
+                   const PieceRenderer& renderPiece, RenderStats* stats = nullptr);
 
 // The same image over settings.background.
 void compositeOverBackground(Image& image, const Vec3f& background);

@@ -15,10 +15,9 @@ RayParams compileRayParams(const RenderSettings& s, const TransferFunctionTable&
                            const Vec3d& boxMin, const Vec3d& boxMax) {
   RayParams p;
   p.camera = s.primaryRays();
-  const bool clip = s.hasClipBox();
   for (int a = 0; a < 3; ++a) {
-    p.boxMin[a] = clip ? std::max(boxMin[a], s.clipMin[a]) : boxMin[a];
-    p.boxMax[a] = clip ? std::min(boxMax[a], s.clipMax[a]) : boxMax[a];
+    p.boxMin[a] = s.clipBox ? std::max(boxMin[a], s.clipBox->min[a]) : boxMin[a];
+    p.boxMax[a] = s.clipBox ? std::min(boxMax[a], s.clipBox->max[a]) : boxMax[a];
     // A clip box beside the field leaves a box of zero width, which no ray samples.
     if (p.boxMax[a] < p.boxMin[a]) p.boxMax[a] = p.boxMin[a];
     p.background[a] = s.background[a];

@@ -108,37 +108,19 @@ Image renderMethod(const SceneData& scene, const MethodSpec& spec, const RenderS
       render(field);
   };
   if (scene.blocks && spec.method == ReconstructionMethod::Mfa && !spec.gradientFrom) {
-    // Each block alone over nothing, then composited as a parallel compositor would.
-    RenderSettings piece = settings;
-    piece.alignSamplesToCamera = true;
-    piece.background = Vec3f::Zero();
-    piece.progress = nullptr;
     std::vector<DomainBox> regions;
-    std::vector<Image> images;
-    MethodRenderStats total;
-    for (size_t i = 0; i < scene.blocks->size(); ++i) {
-      const ModelBlock& b = (*scene.blocks)[i];
-      piece.clipMin = b.region.min;
-      piece.clipMax = b.region.max;
-      MethodRenderStats blockStats;
-      const ModelField field(b.model);
-      if (spec.gradient == GradientMode::CentralDifference)
-        images.push_back(
-            renderVolume(CentralDifferenceField(field, scene.differenceStep), piece, &blockStats));
-      else
-        images.push_back(renderVolume(field, piece, &blockStats));
-      regions.push_back(b.region);
-      total.seconds += blockStats.seconds;
-      total.rays = blockStats.rays;
-      total.raysHit += blockStats.raysHit;
-      total.samples += blockStats.samples;
-      total.terminated += blockStats.terminated;
-      total.skipped += blockStats.skipped;
-      if (settings.progress) settings.progress(double(i + 1) / double(scene.blocks->size()));
-    }
-    image = compositeInVisibilityOrder(settings, regions, images);
+    for (const ModelBlock& b : *scene.blocks) regions.push_back(b.region);
+    image = renderPieces(
+        settings, regions,
+        [&](size_t i, const RenderSettings& piece, RenderStats* pieceStats) {
+          const ModelField field((*scene.blocks)[i].model);
+          if (spec.gradient == GradientMode::CentralDifference)
+            return renderVolume(CentralDifferenceField(field, scene.differenceStep), piece,
+                                pieceStats);
+          return renderVolume(field, piece, pieceStats);
+        },
+        stats);
     compositeOverBackground(image, settings.background);
-    if (stats) *stats = total;
     return image;
   }
   if (!spec.gradientFrom) {

@@ -31,11 +31,9 @@ void RenderSettings::validate() const {
     for (float t : rayEnd)
       if (std::isnan(t)) throw Error("ray ends must not be NaN");
   }
-  if (!clipMin.allFinite() && !clipMax.allFinite()) {
-    // no clip box
-  } else if (!hasClipBox() || !clipMin.allFinite() || !clipMax.allFinite()) {
+  if (clipBox && !(clipBox->min.allFinite() && clipBox->max.allFinite() &&
+                   (clipBox->min.array() <= clipBox->max.array()).all()))
     throw Error("the clip box must be finite with min <= max on every axis");
-  }
   if (threads < 0) throw Error("thread count must be >= 0 (0: all cores)");
   if (shade) lighting.validate();
 }

@@ -1,11 +1,11 @@
 #pragma once
 // Everything about a render except the field: image size, camera, transfer function, shading,
 // sampling and compositing. The same settings render every reconstruction method.
-#include <cmath>
 #include <functional>
 #include <optional>
 #include <vector>
 
+#include "core/model/DomainBox.h"
 #include "core/render/Camera.h"
 #include "core/render/Lighting.h"
 #include "core/render/TransferFunction.h"
@@ -41,10 +41,9 @@ struct RenderSettings {
   // Nothing beyond is sampled, and the last step is shortened to end there.
   std::vector<float> rayEnd;
   // Render only inside this box (intersected with the field's box), world units: a piece of a
-  // distributed volume renders its own region and a compositor blends the pieces. Empty (the
-  // default, min > max): the whole field.
-  Vec3d clipMin = Vec3d::Constant(INFINITY), clipMax = Vec3d::Constant(-INFINITY);
-  bool hasClipBox() const { return (clipMin.array() <= clipMax.array()).all(); }
+  // distributed volume renders its own region and a compositor blends the pieces. None (the
+  // default): the whole field.
+  std::optional<DomainBox> clipBox;
   // Steps start at multiples of the sample distance along each ray (from its origin) instead of
   // where the ray enters the box, so that pieces of a partitioned volume sample the same points
   // as the whole volume; the first and last steps of a ray are shorter. Off by default (the

@@ -33,17 +33,17 @@ std::string modelArrayName(size_t i) {
 vtkSmartPointer<vtkImageData> imageOfModels(const std::vector<CarriedModel>& models,
                                             const int* firstIndex) {
   if (models.empty()) throw Error("internal: a carrier needs at least one model");
-  double bounds[6] = {INFINITY, -INFINITY, INFINITY, -INFINITY, INFINITY, -INFINITY};
+  DomainBox all = models.front().region;
   vtkNew<vtkDoubleArray> regions;
   regions->SetName(kRegionsArray);
   regions->SetNumberOfComponents(6);
   auto image = vtkSmartPointer<vtkImageData>::New();
   for (size_t i = 0; i < models.size(); ++i) {
-    regions->InsertNextTuple(models[i].region);
-    for (int a = 0; a < 3; ++a) {
-      bounds[2 * a] = std::min(bounds[2 * a], models[i].region[2 * a]);
-      bounds[2 * a + 1] = std::max(bounds[2 * a + 1], models[i].region[2 * a + 1]);
-    }
+    const DomainBox& r = models[i].region;
+    const double tuple[6] = {r.min[0], r.max[0], r.min[1], r.max[1], r.min[2], r.max[2]};
+    regions->InsertNextTuple(tuple);
+    all.min = all.min.cwiseMin(r.min);
+    all.max = all.max.cwiseMax(r.max);
     const std::string bytes = serializeModel(*models[i].model);
     vtkNew<vtkUnsignedCharArray> array;
     array->SetName(modelArrayName(i).c_str());
@@ -52,6 +52,7 @@ vtkSmartPointer<vtkImageData> imageOfModels(const std::vector<CarriedModel>& mod
     image->GetFieldData()->AddArray(array);
   }
   image->GetFieldData()->AddArray(regions);
+  const double bounds[6] = {all.min[0], all.max[0], all.min[1], all.max[1], all.min[2], all.max[2]};
 
   // The data's grid over the regions (at least 2 points per axis).
   const Vec3d step = models.front().model->dataSpacing();
@@ -100,8 +101,8 @@ vtkSmartPointer<vtkImageData> imageOfModels(const std::vector<CarriedModel>& mod
           bool inRegion = true;
           for (int a = 0; a < 3; ++a) {
             const double tolerance = 1e-9 * (bounds[2 * a + 1] - bounds[2 * a]);
-            inRegion = inRegion && x[a] >= c.region[2 * a] - tolerance &&
-                       x[a] <= c.region[2 * a + 1] + tolerance;
+            inRegion = inRegion && x[a] >= c.region.min[a] - tolerance &&
+                       x[a] <= c.region.max[a] + tolerance;
           }
           if (!inRegion) continue;
           done[at] = 1;
@@ -143,10 +144,14 @@ std::vector<CarriedModel> modelsOfImage(vtkImageData* image) {
         parseModel(std::span<const std::uint8_t>(bytes->GetPointer(0),
                                                  static_cast<size_t>(bytes->GetNumberOfTuples())),
                    "the carried model " + name));
-    regions->GetTypedTuple(i, c.region);
-    for (int a = 0; a < 3; ++a)
-      if (!(c.region[2 * a] <= c.region[2 * a + 1]))
+    double tuple[6];
+    regions->GetTypedTuple(i, tuple);
+    for (int a = 0; a < 3; ++a) {
+      if (!(tuple[2 * a] <= tuple[2 * a + 1]))
         throw Error("the region of " + name + " is empty or not a number");
+      c.region.min[a] = tuple[2 * a];
+      c.region.max[a] = tuple[2 * a + 1];
+    }
     out.push_back(std::move(c));
   }
   if (out.empty()) throw Error("the carrier holds no model");

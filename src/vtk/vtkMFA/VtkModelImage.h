@@ -22,16 +22,17 @@
 class vtkDataObject;
 class vtkImageData;
 
+#include "core/model/DomainBox.h"
+
 namespace mfadvr {
 class Model;
-struct DomainBox;
 }  // namespace mfadvr
 
 namespace mfadvr::vtkglue {
 
 struct CarriedModel {
   std::shared_ptr<const Model> model;
-  double region[6];  // xmin, xmax, ymin, ymax, zmin, zmax
+  DomainBox region;
 };
 
 // firstIndex (optional): the index of the carrier's first point, for a carrier made from image

@@ -84,10 +84,10 @@ void vtkMFAModelAlgorithm::SetOutputModel(vtkInformationVector* outInfo,
                                           const double* renderBounds, const int* firstIndex) {
   vtkDataObject* output = outInfo->GetInformationObject(0)->Get(vtkDataObject::DATA_OBJECT());
   if (auto* image = vtkImageData::SafeDownCast(output)) {
-    mfadvr::vtkglue::CarriedModel carried{model, {}};
-    for (int a = 0; a < 3; ++a) {
-      carried.region[2 * a] = renderBounds ? renderBounds[2 * a] : model->domain().min[a];
-      carried.region[2 * a + 1] = renderBounds ? renderBounds[2 * a + 1] : model->domain().max[a];
+    mfadvr::vtkglue::CarriedModel carried{model, model->domain()};
+    if (renderBounds) {
+      carried.region.min = mfadvr::Vec3d(renderBounds[0], renderBounds[2], renderBounds[4]);
+      carried.region.max = mfadvr::Vec3d(renderBounds[1], renderBounds[3], renderBounds[5]);
     }
     image->ShallowCopy(mfadvr::vtkglue::imageOfModels({carried}, firstIndex));
   } else if (auto* data = vtkMFAModelData::SafeDownCast(output)) {

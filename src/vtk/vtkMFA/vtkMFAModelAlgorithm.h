@@ -9,9 +9,9 @@
  *
  * With OutputImageData on, the output is a vtkImageData that carries the model (and, for a
  * reader of a multi-block file, several): the models as .mfa bytes in field arrays
- * "MFAModel0", ..., the region each renders in "MFARegions", 2 x 2 x 2 points over the
- * regions, point scalars holding the value range. It is the form ParaView moves between
- * processes, and vtkMFAVolumeMapper renders it like the models themselves. GetOutput() is
+ * "MFAModel0", ..., the region each renders in "MFARegions", a grid over the regions at the
+ * data's spacing holding the model's values (VtkModelImage.h). It is the form ParaView moves
+ * between processes, and vtkMFAVolumeMapper renders it like the models themselves. GetOutput() is
  * then null; use GetOutputDataObject(0).
  */
 #ifndef vtkMFAModelAlgorithm_h

@@ -49,18 +49,14 @@ namespace {
 // Whether the regions tile their bounding box (their volumes add up to its volume): then a
 // rank's share of blocks is one box, as ordered compositing across ranks assumes.
 bool regionsFormABox(const std::vector<mfadvr::vtkglue::CarriedModel>& models) {
-  double bounds[6] = {INFINITY, -INFINITY, INFINITY, -INFINITY, INFINITY, -INFINITY};
+  mfadvr::DomainBox all = models.front().region;
   double sum = 0.0;
   for (const auto& m : models) {
-    double v = 1.0;
-    for (int a = 0; a < 3; ++a) {
-      bounds[2 * a] = std::min(bounds[2 * a], m.region[2 * a]);
-      bounds[2 * a + 1] = std::max(bounds[2 * a + 1], m.region[2 * a + 1]);
-      v *= m.region[2 * a + 1] - m.region[2 * a];
-    }
-    sum += v;
+    all.min = all.min.cwiseMin(m.region.min);
+    all.max = all.max.cwiseMax(m.region.max);
+    sum += m.region.extent().prod();
   }
-  const double whole = (bounds[1] - bounds[0]) * (bounds[3] - bounds[2]) * (bounds[5] - bounds[4]);
+  const double whole = all.extent().prod();
   return std::abs(whole - sum) <= 1e-9 * std::max(whole, 1e-300);
 }
 
@@ -100,11 +96,7 @@ int vtkMFAReader::RequestData(vtkInformation*, vtkInformationVector**,
         mfadvr::vtkglue::CarriedModel m;
         m.model =
             std::make_shared<const mfadvr::Model>(mfadvr::loadBlock(this->FileName, index, i));
-        const mfadvr::DomainBox& r = index.entries[i].region;
-        for (int a = 0; a < 3; ++a) {
-          m.region[2 * a] = r.min[a];
-          m.region[2 * a + 1] = r.max[a];
-        }
+        m.region = index.entries[i].region;
         models.push_back(std::move(m));
       }
       if (models.empty()) {

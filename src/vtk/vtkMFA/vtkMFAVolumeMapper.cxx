@@ -50,6 +50,15 @@ struct vtkMFAVolumeMapper::Internals {
   vtkImageData* CarrierImage = nullptr;  // identity only, never dereferenced
   vtkMTimeType CarrierTime = 0;
   std::deque<mfadvr::EmptySpaceCache> CarriedEmptySpace;
+  // The first carried model, standing for them all where one model is asked for.
+  vtkSmartPointer<vtkMFAModelData> CarrierModel;
+
+  void ForgetCarrier() {
+    this->Carried.clear();
+    this->CarriedEmptySpace.clear();
+    this->CarrierImage = nullptr;
+    this->CarrierModel = nullptr;
+  }
   std::set<std::string> Warned;
   std::vector<float> Depth;
   std::vector<unsigned char> Pixels;
@@ -114,44 +123,39 @@ vtkMFAModelData* vtkMFAVolumeMapper::GetMFAInput() {
 
 vtkMFAModelData* vtkMFAVolumeMapper::UpdateModel() {
   vtkSmartPointer<vtkMFAModelData> model;
+  bool carrier = false;
   if (this->GetNumberOfInputConnections(0) > 0) {
     vtkAlgorithmOutput* connection = this->GetInputConnection(0, 0);
     connection->GetProducer()->Update(connection->GetIndex());
     vtkDataObject* input = this->GetInputDataObject(0, 0);
     model = vtkMFAModelData::SafeDownCast(input);
     auto* image = vtkImageData::SafeDownCast(input);
-    if (image && mfadvr::vtkglue::carriesModels(image)) {
-      auto& in = *this->Internal;
+    carrier = image && mfadvr::vtkglue::carriesModels(image);
+    auto& in = *this->Internal;
+    if (carrier) {
       if (in.CarrierImage != image || in.CarrierTime != image->GetMTime()) {
-        in.Carried.clear();
-        in.CarriedEmptySpace.clear();
+        in.ForgetCarrier();
         in.CarrierImage = image;
         in.CarrierTime = image->GetMTime();
         try {
           in.Carried = mfadvr::vtkglue::modelsOfImage(image);
+          in.CarriedEmptySpace.resize(in.Carried.size());
+          in.CarrierModel = vtkSmartPointer<vtkMFAModelData>::New();
+          in.CarrierModel->SetModel(in.Carried.front().model);
         } catch (const std::exception& e) {
           vtkErrorMacro(<< "cannot render the carried models: " << e.what());
         }
-        in.CarriedEmptySpace.resize(in.Carried.size());
       }
-      // The first model stands for them all in the queries below (bounds come from regions).
-      model = nullptr;
-      if (!in.Carried.empty()) {
-        model = vtkSmartPointer<vtkMFAModelData>::New();
-        model->SetModel(in.Carried.front().model);
-      }
+      model = in.CarrierModel;
     } else if (auto* dataSet = vtkDataSet::SafeDownCast(input)) {
-      this->Internal->Carried.clear();
-      this->Internal->CarrierImage = nullptr;
       // The encoder's pipeline re-fits only when the data set or the options change.
-      this->Internal->Encoder->SetInputData(dataSet);
-      this->Internal->Encoder->Update();
-      model = this->Internal->Encoder->GetOutput();
+      in.Encoder->SetInputData(dataSet);
+      in.Encoder->Update();
+      model = in.Encoder->GetOutput();
     }
   }
-  if (model && !vtkImageData::SafeDownCast(this->GetInputDataObject(0, 0))) {
-    this->Internal->Carried.clear();
-    this->Internal->CarrierImage = nullptr;
+  if (!carrier) {
+    this->Internal->ForgetCarrier();
   }
   this->Internal->Model = (model && model->HasModel()) ? model : nullptr;
   return this->Internal->Model;
@@ -161,16 +165,14 @@ double* vtkMFAVolumeMapper::GetBounds() {
   vtkMFAModelData* model = this->UpdateModel();
   if (model && !this->Internal->Carried.empty()) {
     // The union of the regions the carried models render.
-    vtkMath::UninitializeBounds(this->Bounds);
-    for (int a = 0; a < 3; ++a) {
-      this->Bounds[2 * a] = VTK_DOUBLE_MAX;
-      this->Bounds[2 * a + 1] = VTK_DOUBLE_MIN;
-    }
+    mfadvr::DomainBox all = this->Internal->Carried.front().region;
     for (const auto& c : this->Internal->Carried) {
-      for (int a = 0; a < 3; ++a) {
-        this->Bounds[2 * a] = std::min(this->Bounds[2 * a], c.region[2 * a]);
-        this->Bounds[2 * a + 1] = std::max(this->Bounds[2 * a + 1], c.region[2 * a + 1]);
-      }
+      all.min = all.min.cwiseMin(c.region.min);
+      all.max = all.max.cwiseMax(c.region.max);
+    }
+    for (int a = 0; a < 3; ++a) {
+      this->Bounds[2 * a] = all.min[a];
+      this->Bounds[2 * a + 1] = all.max[a];
     }
   } else if (model) {
     model->GetBounds(this->Bounds);
@@ -303,23 +305,16 @@ void vtkMFAVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol) {
     if (this->Internal->FieldRenderer) {
       image = this->Internal->FieldRenderer(s);
     } else if (!this->Internal->Carried.empty()) {
-      // Each carried model in its region, with steps aligned to the camera so that the pieces
-      // of a partitioned volume (here, and on other ranks) sample like the whole volume.
-      s.alignSamplesToCamera = true;
+      // Each carried model in its region (regions are in the data's coordinates, like the
+      // models' boxes), sampled as the pieces on other ranks are.
+      auto& in = *this->Internal;
       std::vector<mfadvr::DomainBox> regions;
-      std::vector<mfadvr::Image> images;
-      for (size_t i = 0; i < this->Internal->Carried.size(); ++i) {
-        const auto& c = this->Internal->Carried[i];
-        // Regions are in the data's (model) coordinates, like the models' boxes.
-        mfadvr::RenderSettings piece = s;
-        piece.clipMin = mfadvr::Vec3d(c.region[0], c.region[2], c.region[4]);
-        piece.clipMax = mfadvr::Vec3d(c.region[1], c.region[3], c.region[5]);
-        regions.push_back({piece.clipMin, piece.clipMax});
-        images.push_back(mfadvr::renderVolume(
-            mfadvr::ModelField(*c.model, &this->Internal->CarriedEmptySpace[i]), piece));
-      }
-      image = images.size() == 1 ? std::move(images.front())
-                                 : mfadvr::compositeInVisibilityOrder(s, regions, images);
+      for (const auto& c : in.Carried) regions.push_back(c.region);
+      image = mfadvr::renderPieces(
+          s, regions, [&](size_t i, const mfadvr::RenderSettings& piece, mfadvr::RenderStats*) {
+            return mfadvr::renderVolume(
+                mfadvr::ModelField(*in.Carried[i].model, &in.CarriedEmptySpace[i]), piece);
+          });
     } else {
       image = mfadvr::renderVolume(mfadvr::ModelField(*model, &this->Internal->EmptySpace), s);
     }

@@ -17,22 +17,26 @@ void vtkMFAVolumeRepresentation::PrintSelf(ostream& os, vtkIndent indent) {
   this->Superclass::PrintSelf(os, indent);
 }
 
+vtkMFAVolumeMapper* vtkMFAVolumeRepresentation::GetMFAMapper() {
+  return vtkMFAVolumeMapper::SafeDownCast(this->VolumeMapper);
+}
+
 void vtkMFAVolumeRepresentation::SetSampleDistance(double distance) {
-  vtkMFAVolumeMapper::SafeDownCast(this->VolumeMapper)->SetSampleDistance(distance);
+  this->GetMFAMapper()->SetSampleDistance(distance);
   this->Modified();
 }
 
 void vtkMFAVolumeRepresentation::SetEarlyRayTerminationOpacity(double opacity) {
-  vtkMFAVolumeMapper::SafeDownCast(this->VolumeMapper)->SetEarlyRayTerminationOpacity(opacity);
+  this->GetMFAMapper()->SetEarlyRayTerminationOpacity(opacity);
   this->Modified();
 }
 
 void vtkMFAVolumeRepresentation::SetImageSampleDistance(double distance) {
-  vtkMFAVolumeMapper::SafeDownCast(this->VolumeMapper)->SetImageSampleDistance(distance);
+  this->GetMFAMapper()->SetImageSampleDistance(distance);
   this->Modified();
 }
 
 void vtkMFAVolumeRepresentation::SetMaximumImageSampleDistance(double distance) {
-  vtkMFAVolumeMapper::SafeDownCast(this->VolumeMapper)->SetMaximumImageSampleDistance(distance);
+  this->GetMFAMapper()->SetMaximumImageSampleDistance(distance);
   this->Modified();
 }

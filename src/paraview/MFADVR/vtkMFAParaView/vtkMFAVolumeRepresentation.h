@@ -14,6 +14,8 @@
 #include "vtkImageVolumeRepresentation.h"
 #include "vtkMFAParaViewModule.h"  // for export macro
 
+class vtkMFAVolumeMapper;
+
 class VTKMFAPARAVIEW_EXPORT vtkMFAVolumeRepresentation : public vtkImageVolumeRepresentation {
  public:
   static vtkMFAVolumeRepresentation* New();
@@ -35,6 +37,11 @@ class VTKMFAPARAVIEW_EXPORT vtkMFAVolumeRepresentation : public vtkImageVolumeRe
  protected:
   vtkMFAVolumeRepresentation();
   ~vtkMFAVolumeRepresentation() override;
+
+  /**
+   * The mapper (set in the constructor; the superclass holds it as a vtkVolumeMapper).
+   */
+  vtkMFAVolumeMapper* GetMFAMapper();
 
  private:
   vtkMFAVolumeRepresentation(const vtkMFAVolumeRepresentation&) = delete;
