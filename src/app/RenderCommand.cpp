@@ -7,6 +7,7 @@
 #include "app/Commands.h"
 #include "app/EncodeCliOptions.h"
 #include "app/OptionParsing.h"
+#include "app/RenderDevice.h"
 #include "app/RenderOptions.h"
 #include "app/SceneLoader.h"
 #include "core/image/FloatImageFile.h"
@@ -40,6 +41,7 @@ std::string methodList(const std::vector<std::string>& names) {
 
 struct Options {
   std::string input, output, floatOutput, method, gradientFrom, gradient = "analytic";
+  std::string device = "auto";
   std::string spacing, origin, field;
   EncodeCliOptions encode;
   bool json = false, quiet = false, alpha = false;
@@ -179,6 +181,7 @@ Command addRenderCommand(CLI::App& app) {
                   "the mapper's structures), the frame time is the median of the others "
                   "[default: 3 for vtk-*, 1 otherwise]")
       ->check(CLI::Range(1, 1000));
+  addDeviceOption(sub, o->device);
   sub->add_flag("--alpha", o->alpha, "Write RGBA (alpha = accumulated opacity)");
   sub->add_option("--float", o->floatOutput,
                   "Also write the linear float RGBA image as NRRD (for analysis)");
@@ -194,7 +197,12 @@ Command addRenderCommand(CLI::App& app) {
 
   auto run = [o]() -> int {
     const auto start = Clock::now();
-    if (const auto vtk = findVtkMethod(o->method)) return renderWithVtk(*o, *vtk, start);
+    if (const auto vtk = findVtkMethod(o->method)) {
+      if (o->device == "cuda")
+        throw Error("--device cuda: " + o->method +
+                    " is VTK's own renderer and runs where VTK runs it; use --device auto or cpu");
+      return renderWithVtk(*o, *vtk, start);
+    }
     MethodSpec spec;
     if (!o->gradientFrom.empty()) {
       spec.gradientFrom = parseReconstructionMethod(o->gradientFrom);
@@ -215,6 +223,8 @@ Command addRenderCommand(CLI::App& app) {
       needs.grid |= isGridMethod(*m);
     }
 
+    const RenderDevice device = openRenderDevice(o->device, spec);
+    spec.device = device.renderer.get();
     const bool progress = wantProgress(o->quiet || o->json);
     const LoadedScene scene = loadScene(o->input, needs, loadOptions(*o, progress));
     RenderSettings settings = o->render.settingsFor(scene);
@@ -252,6 +262,8 @@ Command addRenderCommand(CLI::App& app) {
       j["sample_distance"] = settings.sampleDistance;
       j["opacity_unit_distance"] = settings.opacityUnitDistance;
       j["shade"] = settings.shade;
+      j["device"] = device.name;
+      j["device_description"] = device.description;
       j["value_range"] = {scene.valueMin, scene.valueMax};
       j["frames"] = frames;
       j["frame_seconds"] = frameSeconds;
@@ -277,7 +289,7 @@ Command addRenderCommand(CLI::App& app) {
                     firstFrame);
       if (scene.encodeSeconds > 0) std::printf(", encode %.3f s", scene.encodeSeconds);
       if (stats.setupSeconds > 0.001) std::printf(", setup %.3f s", stats.setupSeconds);
-      std::printf(", total %.3f s\n", total);
+      std::printf(", total %.3f s\n  on the %s\n", total, device.description.c_str());
     }
     return 0;
   };

@@ -5,7 +5,8 @@
 //
 //   NearestFilter     value of the nearest sample; a piecewise-constant function has no useful
 //                     derivative, so its gradient is the central difference at that sample.
-//   TrilinearFilter   8 samples; gradient of the trilinear polynomial of the cell.
+//   TrilinearFilter   8 samples; gradient of the trilinear polynomial of the cell (the formulas
+//                     live in render/kernel/TrilinearKernel.h, shared with the GPU).
 //   TricubicFilter    Lekien & Marsden (2005): the C1 tricubic of each cell matching value,
 //                     first, second-mixed and third-mixed derivatives at its 8 corners, the
 //                     derivatives taken by central differences of the samples.
@@ -17,6 +18,7 @@
 #include <cmath>
 
 #include "core/field/PaddedGrid.h"
+#include "core/render/kernel/TrilinearKernel.h"
 #include "core/spline/TensorBSpline.h"
 
 namespace mfadvr {
@@ -32,15 +34,26 @@ class NearestFilter {
   const PaddedGrid* g_;
 };
 
+// The formulas are shared with the GPU renderer (render/kernel/TrilinearKernel.h).
 class TrilinearFilter {
  public:
   static PaddedGrid prepare(const StructuredGrid& g) { return PaddedGrid(g); }
-  explicit TrilinearFilter(const PaddedGrid& g) : g_(&g) {}
-  [[gnu::always_inline]] float value(const Vec3d& x) const;
-  [[gnu::always_inline]] ValueGradient valueGradient(const Vec3d& x) const;
+  explicit TrilinearFilter(const PaddedGrid& g) : g_(g.view()) {}
+  [[gnu::always_inline]] float value(const Vec3d& x) const {
+    const double p[3] = {x[0], x[1], x[2]};
+    return trilinearValue(g_, p);
+  }
+  [[gnu::always_inline]] ValueGradient valueGradient(const Vec3d& x) const {
+    const double p[3] = {x[0], x[1], x[2]};
+    float g[3];
+    ValueGradient r;
+    r.value = trilinearValueGradient(g_, p, g);
+    r.gradient = Vec3f(g[0], g[1], g[2]);
+    return r;
+  }
 
  private:
-  const PaddedGrid* g_;
+  GridView g_;
 };
 
 // Shared 4x4x4 tensor kernel of the two cubic filters; Weights gives the four weights (and their
@@ -137,44 +150,6 @@ inline ValueGradient NearestFilter::valueGradient(const Vec3d& x) const {
   r.gradient = Vec3f(0.5 * (g_->at(i + 1, j, k) - g_->at(i - 1, j, k)) * s[0],
                      0.5 * (g_->at(i, j + 1, k) - g_->at(i, j - 1, k)) * s[1],
                      0.5 * (g_->at(i, j, k + 1) - g_->at(i, j, k - 1)) * s[2]);
-  return r;
-}
-
-inline float TrilinearFilter::value(const Vec3d& x) const {
-  std::int64_t c[3];
-  double t[3];
-  g_->cell(g_->continuousIndex(x), c, t);
-  const float* p = g_->pointer(c[0], c[1], c[2]);
-  const std::int64_t sy = g_->strideY(), sz = g_->strideZ();
-  const double c00 = p[0] + t[0] * (p[1] - p[0]);
-  const double c10 = p[sy] + t[0] * (p[sy + 1] - p[sy]);
-  const double c01 = p[sz] + t[0] * (p[sz + 1] - p[sz]);
-  const double c11 = p[sz + sy] + t[0] * (p[sz + sy + 1] - p[sz + sy]);
-  const double c0 = c00 + t[1] * (c10 - c00), c1 = c01 + t[1] * (c11 - c01);
-  return static_cast<float>(c0 + t[2] * (c1 - c0));
-}
-
-inline ValueGradient TrilinearFilter::valueGradient(const Vec3d& x) const {
-  std::int64_t c[3];
-  double t[3];
-  g_->cell(g_->continuousIndex(x), c, t);
-  const float* p = g_->pointer(c[0], c[1], c[2]);
-  const std::int64_t sy = g_->strideY(), sz = g_->strideZ();
-  const double f000 = p[0], f100 = p[1], f010 = p[sy], f110 = p[sy + 1];
-  const double f001 = p[sz], f101 = p[sz + 1], f011 = p[sz + sy], f111 = p[sz + sy + 1];
-  // Interpolate along x, then y, then z, keeping the x derivative of each edge.
-  const double c00 = f000 + t[0] * (f100 - f000), d00 = f100 - f000;
-  const double c10 = f010 + t[0] * (f110 - f010), d10 = f110 - f010;
-  const double c01 = f001 + t[0] * (f101 - f001), d01 = f101 - f001;
-  const double c11 = f011 + t[0] * (f111 - f011), d11 = f111 - f011;
-  const double c0 = c00 + t[1] * (c10 - c00), c1 = c01 + t[1] * (c11 - c01);
-  const double dx0 = d00 + t[1] * (d10 - d00), dx1 = d01 + t[1] * (d11 - d01);
-  const double dy0 = c10 - c00, dy1 = c11 - c01;
-  const Vec3d& s = g_->inverseSpacing();
-  ValueGradient r;
-  r.value = static_cast<float>(c0 + t[2] * (c1 - c0));
-  r.gradient =
-      Vec3f((dx0 + t[2] * (dx1 - dx0)) * s[0], (dy0 + t[2] * (dy1 - dy0)) * s[1], (c1 - c0) * s[2]);
   return r;
 }
 

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/grid/StructuredGrid.h"
+#include "core/render/kernel/TrilinearKernel.h"
 #include "core/util/Vec.h"
 
 namespace mfadvr {
@@ -33,6 +34,22 @@ class PaddedGrid {
     return data_.data() + ((i + 1) + sy_ * (j + 1) + sz_ * (k + 1));
   }
   std::int64_t strideY() const { return sy_; }
+  // The plain view of the trilinear kernel (render/kernel/TrilinearKernel.h); valid while this
+  // grid lives.
+  GridView view() const {
+    GridView v;
+    v.data = data_.data();
+    v.sy = sy_;
+    v.sz = sz_;
+    for (int a = 0; a < 3; ++a) {
+      v.dims[a] = dims_[a];
+      v.origin[a] = origin_[a];
+      v.inverseSpacing[a] = invSpacing_[a];
+    }
+    return v;
+  }
+  // Number of floats in the padded array (view().data).
+  size_t paddedSize() const { return data_.size(); }
   std::int64_t strideZ() const { return sz_; }
 
   // Continuous index of physical point x, clamped to [0, n-1] per axis.

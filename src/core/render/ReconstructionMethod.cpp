@@ -88,17 +88,42 @@ bool isGridMethod(ReconstructionMethod m) {
   return m != ReconstructionMethod::Mfa && m != ReconstructionMethod::Truth;
 }
 
+bool deviceRendersMethod(const MethodSpec& spec) {
+  return (spec.method == ReconstructionMethod::Mfa ||
+          spec.method == ReconstructionMethod::Trilinear) &&
+         spec.gradient == GradientMode::Analytic && !spec.gradientFrom;
+}
+
 Image renderMethod(const SceneData& scene, const MethodSpec& spec, const RenderSettings& settings,
                    MethodRenderStats* stats) {
   settings.validate();
+  if (spec.device && !deviceRendersMethod(spec))
+    throw Error("the " + spec.device->description() +
+                " renders methods 'mfa' and 'trilinear' with analytic gradients; '" +
+                methodName(spec.method) + "'" +
+                (spec.gradientFrom || spec.gradient != GradientMode::Analytic
+                     ? " with this gradient"
+                     : "") +
+                " renders on the CPU only");
   if (spec.gradient == GradientMode::CentralDifference &&
       !(scene.differenceStep.array() > 0.0).all())
     throw Error("central differences need a positive step");
   const auto setupStart = Clock::now();
   Image image;
-  auto render = [&](const auto& field) {
+  auto render = [&]<class F>(const F& field) {
     if (stats)
       stats->setupSeconds = std::chrono::duration<double>(Clock::now() - setupStart).count();
+    if constexpr (std::same_as<F, ModelField>) {
+      if (spec.device) {
+        image = spec.device->renderModel(field, settings, stats);
+        return;
+      }
+    } else if constexpr (std::same_as<F, GridField<TrilinearFilter>>) {
+      if (spec.device) {
+        image = spec.device->renderTrilinear(field.grid(), settings, stats);
+        return;
+      }
+    }
     image = renderVolume(field, settings, stats);
   };
   auto withGradientMode = [&](const auto& field) {
@@ -114,6 +139,7 @@ Image renderMethod(const SceneData& scene, const MethodSpec& spec, const RenderS
         settings, regions,
         [&](size_t i, const RenderSettings& piece, RenderStats* pieceStats) {
           const ModelField field((*scene.blocks)[i].model);
+          if (spec.device) return spec.device->renderModel(field, piece, pieceStats);
           if (spec.gradient == GradientMode::CentralDifference)
             return renderVolume(CentralDifferenceField(field, scene.differenceStep), piece,
                                 pieceStats);

@@ -10,6 +10,7 @@
 #include "core/image/Image.h"
 #include "core/model/BlockModelFile.h"
 #include "core/model/Model.h"
+#include "core/render/DeviceRenderer.h"
 #include "core/render/RenderSettings.h"
 
 namespace mfadvr {
@@ -34,6 +35,10 @@ struct MethodSpec {
   // The paper's gradient test (Table 1): the value comes from `method` (normally the truth),
   // the gradient from this method.
   std::optional<ReconstructionMethod> gradientFrom;
+  // Render on this device (the CUDA backend) instead of the CPU. It renders 'mfa' (single and
+  // multi-block models) and 'trilinear' with analytic gradients; other methods throw
+  // mfadvr::Error. Borrowed.
+  DeviceRenderer* device = nullptr;
 };
 
 // What a scene can be reconstructed from; a method needs its piece (mfa: model, grid methods:
@@ -52,6 +57,10 @@ struct SceneData {
 struct MethodRenderStats : RenderStats {
   double setupSeconds = 0.0;  // building the field (padding, prefiltering); 0 for mfa and truth
 };
+
+// Whether `device` can render `spec` (method mfa or trilinear, analytic gradients, no gradient
+// test).
+bool deviceRendersMethod(const MethodSpec& spec);
 
 // Throws mfadvr::Error when the scene lacks what the method needs.
 Image renderMethod(const SceneData& scene, const MethodSpec& spec, const RenderSettings& settings,

@@ -1,0 +1,75 @@
+#include "app/RenderDevice.h"
+
+#include <tbb/info.h>
+
+#include "core/util/Error.h"
+#if defined(MFADVR_HAVE_CUDA)
+#include "gpu/CudaRenderer.h"
+#endif
+
+namespace mfadvr::app {
+
+bool buildHasCuda() {
+#if defined(MFADVR_HAVE_CUDA)
+  return true;
+#else
+  return false;
+#endif
+}
+
+void addDeviceOption(CLI::App* sub, std::string& choice) {
+  sub->add_option("--device", choice,
+                  "Where to render: auto (a CUDA GPU when one is usable and the method runs "
+                  "there, else the CPU), cpu, or cuda (error when no GPU can). The GPU renders "
+                  "'mfa' and 'trilinear'")
+      ->check(CLI::IsMember({"auto", "cpu", "cuda"}))
+      ->capture_default_str();
+}
+
+namespace {
+
+RenderDevice cpu(const std::string& why) {
+  RenderDevice d;
+  d.name = "cpu";
+  d.description = "CPU (" + std::to_string(tbb::info::default_concurrency()) + " threads)";
+  if (!why.empty()) d.description += "; " + why;
+  return d;
+}
+
+}  // namespace
+
+RenderDevice openRenderDevice(const std::string& choice, const MethodSpec& spec) {
+  if (choice == "cpu") return cpu("");
+  if (choice != "auto" && choice != "cuda")
+    throw Error("unknown device '" + choice + "'; choose auto, cpu or cuda");
+  const bool required = choice == "cuda";
+  if (!deviceRendersMethod(spec)) {
+    const std::string why = "method '" + methodName(spec.method) + "'" +
+                            (spec.gradientFrom || spec.gradient != GradientMode::Analytic
+                                 ? " with this gradient"
+                                 : "") +
+                            " renders on the CPU only (the GPU renders 'mfa' and 'trilinear' "
+                            "with analytic gradients)";
+    if (required) throw Error("--device cuda: " + why);
+    return cpu(why);
+  }
+#if defined(MFADVR_HAVE_CUDA)
+  const gpu::CudaDeviceStatus status = gpu::cudaDeviceStatus();
+  if (!status.usable) {
+    if (required) throw Error("--device cuda: " + status.describe());
+    return cpu(status.describe());
+  }
+  RenderDevice d;
+  d.renderer = std::make_unique<gpu::CudaRenderer>();
+  d.name = "cuda";
+  d.description = d.renderer->description();
+  return d;
+#else
+  const std::string why =
+      "this mfadvr was built without the CUDA backend (no nvcc when it was configured)";
+  if (required) throw Error("--device cuda: " + why);
+  return cpu(why);
+#endif
+}
+
+}  // namespace mfadvr::app

@@ -1,0 +1,45 @@
+#include "core/render/ModelRenderSetup.h"
+
+#include <chrono>
+
+#include "core/render/RayCaster.h"
+
+namespace mfadvr {
+
+namespace {
+const RenderSettings& validated(const RenderSettings& s) {
+  s.validate();
+  return s;
+}
+}  // namespace
+
+ModelRenderSetup::ModelRenderSetup(const ModelField& field, const RenderSettings& settings)
+    : table_(validated(settings).transferFunction,
+             OpacityCorrection(settings.sampleDistance / settings.opacityUnitDistance)) {
+  const Model& model = field.model();
+  params_ = compileRayParams(settings, table_, model.domain().min, model.domain().max);
+  view_.spline = model.spline().view();
+  const Vec3d extent = model.domain().extent();
+  for (int a = 0; a < 3; ++a) {
+    view_.boxMin[a] = model.domain().min[a];
+    view_.inverseExtent[a] = 1.0 / extent[a];
+  }
+  view_.mask = model.mask().view();
+  // The flags' (re)build is part of the frame: its time is added to the ray casting's.
+  const auto start = std::chrono::steady_clock::now();
+  if (settings.skipEmptySpace) {
+    EmptySpaceCache local;
+    EmptySpaceCache& cache = field.emptySpaceCache() ? *field.emptySpaceCache() : local;
+    flags_ = cache.flags(model.spline(), table_);
+    // Nothing to skip: the loop without the per-sample test.
+    if (flags_->emptyCells > 0) {
+      view_.empty = flags_->cells.data();
+      view_.emptyBlocks = flags_->blocks.data();
+      for (int a = 0; a < 3; ++a) view_.blocks[a] = flags_->blockCounts[a];
+    }
+  }
+  setupSeconds_ =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace mfadvr

@@ -1,0 +1,45 @@
+#pragma once
+// Everything a render of the MFA model needs besides the driver that walks the pixels: the
+// transfer-function table, the plain ray parameters and model view, and the empty-space flags
+// (built for this frame, or taken from the field's cache when the transfer function did not
+// change). The CPU driver (ModelRenderer.cpp) and the CUDA driver (src/gpu) both start from it,
+// so that the two render exactly the same scene.
+#include <memory>
+
+#include "core/field/ModelField.h"
+#include "core/render/EmptySpaceGrid.h"
+#include "core/render/RenderSettings.h"
+#include "core/render/TransferFunctionTable.h"
+#include "core/render/kernel/RayParams.h"
+#include "core/render/kernel/SplineRaySampler.h"
+
+namespace mfadvr {
+
+class ModelRenderSetup {
+ public:
+  // Validates the settings (throws mfadvr::Error). The field and settings must outlive this.
+  ModelRenderSetup(const ModelField& field, const RenderSettings& settings);
+  // params() and view() point into this object: it stays where it was made.
+  ModelRenderSetup(const ModelRenderSetup&) = delete;
+  ModelRenderSetup& operator=(const ModelRenderSetup&) = delete;
+
+  const RayParams& params() const { return params_; }
+  const ModelView& view() const { return view_; }
+  const TransferFunctionTable& table() const { return table_; }
+  bool masked() const { return view_.mask.nodes != nullptr; }
+  // Whether the view carries empty-space flags (skipping on and something to skip).
+  bool skips() const { return view_.empty != nullptr; }
+  // The flags behind view().empty / emptyBlocks, or null.
+  const EmptySpaceFlags* emptySpaceFlags() const { return skips() ? flags_.get() : nullptr; }
+  // Time spent building the flags: part of the frame.
+  double setupSeconds() const { return setupSeconds_; }
+
+ private:
+  TransferFunctionTable table_;
+  RayParams params_;
+  ModelView view_;
+  std::shared_ptr<const EmptySpaceFlags> flags_;
+  double setupSeconds_ = 0.0;
+};
+
+}  // namespace mfadvr
