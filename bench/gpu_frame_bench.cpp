@@ -1,0 +1,177 @@
+// Frame time of the CUDA backend against the CPU ray caster in the same run (docs/benchmarks.md):
+// shaded 1024x1024 frames of a 256^3 degree-3 model and a 512^3 degree-2 model of Marschner-Lobb.
+//
+//   build/release/bench/mfadvr_gpu_bench [--size 1024x1024] [--frames 5] [--cpu-frames 2]
+//                                       [--scenes 256:3,512:2] [--no-cpu]
+//
+// The control points are the function's samples on the control grid (no fit: the frame time
+// does not depend on how control points were found, and a 512^3 fit would dominate the run).
+// Frame times are medians; the GPU's include the per-frame uploads (transfer-function table,
+// empty-space flags) and the image's read-back, its kernel time is listed apart. The first GPU
+// frame (model upload, kernel load) is reported separately. Without a usable GPU it says why and
+// measures the CPU alone. Self-contained: scripts/pack-gpu-check.sh bundles it for a GPU machine.
+#include <CLI/CLI.hpp>
+#include <tbb/info.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <optional>
+
+#include "core/analytic/BuiltinFunction.h"
+#include "core/field/ModelField.h"
+#include "core/image/ImageMetrics.h"
+#include "core/render/EmptySpaceGrid.h"
+#include "core/render/RayCaster.h"
+#include "gpu/CudaRenderer.h"
+
+namespace mfadvr {
+namespace {
+
+struct Scene {
+  int n = 256, degree = 3;
+};
+
+Model sampledModel(const BuiltinFunction& f, int n, int degree) {
+  const Vec3d lo = BuiltinFunction::domainMin(), hi = BuiltinFunction::domainMax();
+  std::vector<float> ctrl(std::size_t(n) * n * n);
+  const double h = (hi[0] - lo[0]) / (n - 1);
+  tbb::parallel_for(0, n, [&](int k) {
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i)
+        ctrl[i + std::size_t(n) * (j + std::size_t(n) * k)] = static_cast<float>(
+            f.value(Vec3d(lo[0] + i * h, lo[1] + j * h, lo[2] + k * h)));
+  });
+  const KnotVector knots = KnotVector::clampedUniform(degree, n);
+  return Model(TensorBSpline({knots, knots, knots}, std::move(ctrl)), DomainBox{lo, hi}, 0.0, 1.0);
+}
+
+RenderSettings sceneSettings(const Model& m, int width, int height, int n) {
+  RenderSettings s;
+  s.width = width;
+  s.height = height;
+  s.camera.resetToBounds(m.domain().min, m.domain().max);
+  s.camera.azimuth(30);
+  s.camera.elevation(20);
+  s.transferFunction.space = TfSpace::Data;
+  s.transferFunction.color = {{0.0, Vec3f(0.2f, 0.3f, 1.0f)}, {1.0, Vec3f(1.0f, 0.8f, 0.3f)}};
+  s.transferFunction.opacity = {{0.0, 0.0f}, {0.45, 0.0f}, {0.55, 0.8f}, {1.0, 0.8f}};
+  const double spacing = (m.domain().max[0] - m.domain().min[0]) / (n - 1);
+  s.sampleDistance = 0.5 * spacing;
+  s.opacityUnitDistance = spacing;
+  s.shade = true;
+  return s;
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+}
+
+std::string cpuName() {
+  std::ifstream in("/proc/cpuinfo");
+  std::string line;
+  while (std::getline(in, line))
+    if (line.rfind("model name", 0) == 0) return line.substr(line.find(':') + 2);
+  return "unknown CPU";
+}
+
+int run(int argc, char** argv) {
+  std::string size = "1024x1024", scenes = "256:3,512:2";
+  int frames = 5, cpuFrames = 2;
+  bool noCpu = false;
+  CLI::App app("GPU (CUDA) against CPU frame time of the MFA ray caster");
+  app.add_option("--size", size, "Image size WxH")->capture_default_str();
+  app.add_option("--frames", frames, "Timed GPU frames (median)")->capture_default_str();
+  app.add_option("--cpu-frames", cpuFrames, "Timed CPU frames (median)")->capture_default_str();
+  app.add_option("--scenes", scenes, "N:DEGREE list (N^3 control points)")->capture_default_str();
+  app.add_flag("--no-cpu", noCpu, "GPU frames only");
+  CLI11_PARSE(app, argc, argv);
+  int width = 0, height = 0;
+  if (std::sscanf(size.c_str(), "%dx%d", &width, &height) != 2 || width <= 0 || height <= 0) {
+    std::fprintf(stderr, "--size: expected WxH\n");
+    return 1;
+  }
+  std::vector<Scene> list;
+  for (std::size_t at = 0; at < scenes.size();) {
+    const std::size_t end = std::min(scenes.find(',', at), scenes.size());
+    Scene sc;
+    if (std::sscanf(scenes.substr(at, end - at).c_str(), "%d:%d", &sc.n, &sc.degree) != 2 ||
+        sc.n < 8 || sc.degree < 1 || sc.degree > 7 || sc.n <= sc.degree) {
+      std::fprintf(stderr, "--scenes: expected N:DEGREE,... (N >= 8, 1 <= DEGREE <= 7)\n");
+      return 1;
+    }
+    list.push_back(sc);
+    at = end + 1;
+  }
+
+  const gpu::CudaDeviceStatus status = gpu::cudaDeviceStatus();
+  std::optional<gpu::CudaRenderer> gpuRenderer;
+  if (status.usable) gpuRenderer.emplace();
+  std::printf("GPU: %s (CUDA runtime %s)\n", status.describe().c_str(),
+              gpu::cudaVersionString(status.runtimeVersion).c_str());
+  std::printf("CPU: %s, %d threads\n", cpuName().c_str(), tbb::info::default_concurrency());
+  std::printf("%dx%d, shaded, Marschner-Lobb, step = half the control spacing, skipping on\n\n",
+              width, height);
+  std::printf("%-10s %-4s %10s %9s %10s %10s %11s %9s\n", "scene", "dev", "frame s", "fps",
+              "kernel s", "first s", "M samples", "speed-up");
+  const auto f = makeBuiltin("marschner-lobb");
+  for (const Scene& sc : list) {
+    const auto buildStart = std::chrono::steady_clock::now();
+    const Model model = sampledModel(*f, sc.n, sc.degree);
+    const double buildSeconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - buildStart).count();
+    const RenderSettings s = sceneSettings(model, width, height, sc.n);
+    EmptySpaceCache cache;  // as a viewer: flags built once for the TF
+    const ModelField field(model, &cache);
+    const std::string name = std::to_string(sc.n) + "^3 p=" + std::to_string(sc.degree);
+    std::optional<Image> gpuImage, cpuImage;
+    double gpuFrame = 0.0, cpuFrame = 0.0;
+    if (gpuRenderer) {
+      RenderStats stats;
+      gpuImage = gpuRenderer->renderModel(field, s, &stats);
+      const double first = stats.seconds;
+      std::vector<double> times, kernel;
+      for (int i = 0; i < frames; ++i) {
+        gpuImage = gpuRenderer->renderModel(field, s, &stats);
+        times.push_back(stats.seconds);
+        kernel.push_back(gpuRenderer->lastKernelSeconds());
+      }
+      gpuFrame = median(times);
+      std::printf("%-10s %-4s %10.4f %9.1f %10.4f %10.3f %11.1f %9s\n", name.c_str(), "cuda",
+                  gpuFrame, 1.0 / gpuFrame, median(kernel), first, stats.samples / 1e6, "");
+    }
+    if (!noCpu) {
+      RenderStats stats;
+      std::vector<double> times;
+      for (int i = 0; i < std::max(cpuFrames, 1); ++i) {
+        cpuImage = renderVolume(field, s, &stats);
+        times.push_back(stats.seconds);
+      }
+      cpuFrame = median(times);
+      std::printf("%-10s %-4s %10.4f %9.2f %10s %10s %11.1f", name.c_str(), "cpu", cpuFrame,
+                  1.0 / cpuFrame, "-", "-", stats.samples / 1e6);
+      if (gpuRenderer) std::printf(" %8.1fx", cpuFrame / gpuFrame);
+      std::printf("\n");
+    }
+    if (gpuImage && cpuImage)
+      std::printf("%-10s GPU vs CPU image: PSNR %.2f dB (model built in %.1f s)\n", name.c_str(),
+                  compareImages(toImage8(*gpuImage), toImage8(*cpuImage)).psnr, buildSeconds);
+  }
+  if (!gpuRenderer) std::printf("\nno GPU figures: %s\n", status.reason.c_str());
+  return 0;
+}
+
+}  // namespace
+}  // namespace mfadvr
+
+int main(int argc, char** argv) {
+  try {
+    return mfadvr::run(argc, argv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "mfadvr_gpu_bench: %s\n", e.what());
+    return 1;
+  }
+}
