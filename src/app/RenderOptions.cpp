@@ -245,4 +245,13 @@ RenderSettings RenderOptions::settingsFor(const LoadedScene& scene) const {
   return s;
 }
 
+void addDeviceOption(CLI::App* sub, std::string& choice) {
+  sub->add_option("--device", choice,
+                  "Where to render: auto (a CUDA GPU when one is usable and the method runs "
+                  "there, else the CPU), cpu, or cuda (error when no GPU can). The GPU renders "
+                  "'mfa' and 'trilinear'")
+      ->check(CLI::IsMember({"auto", "cpu", "cuda"}))
+      ->capture_default_str();
+}
+
 }  // namespace mfadvr::app

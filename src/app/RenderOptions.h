@@ -33,6 +33,9 @@ struct RenderOptions {
   RenderSettings settingsFor(const LoadedScene& scene) const;
 };
 
+// Adds --device (device/RenderDevice.h) to `sub`, storing into `choice`.
+void addDeviceOption(CLI::App* sub, std::string& choice);
+
 // "WxH" -> width, height.
 void parseImageSize(const std::string& text, int& width, int& height);
 

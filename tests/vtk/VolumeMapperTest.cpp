@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <vtkActor.h>
+#include <vtkCallbackCommand.h>
+#include <vtkCommand.h>
 #include <vtkDataSetTriangleFilter.h>
 #include <vtkPolyDataMapper.h>
 #include <vtkProperty.h>
@@ -275,6 +277,45 @@ TEST(VolumeMapper, RendersNothingWithoutInput) {
   scene.mapper->RemoveAllInputConnections(0);
   const Image8 empty = scene.render();
   EXPECT_EQ(coverage(empty, scene.coreSettings().background), 0.0);
+}
+
+// SetDevice: the device used is reported; DeviceAuto falls back to the CPU with the reason when
+// no GPU is usable, and DeviceCUDA then reports an error and draws nothing. Where a GPU is
+// usable, its image agrees with the CPU's.
+TEST(VolumeMapper, DeviceChoiceIsReportedAndCudaWithoutAGpuDrawsNothing) {
+  VtkVolumeScene scene(marschnerLobbModel(), true);
+  scene.mapper->SetDeviceToCPU();
+  const Image8 cpu = scene.render();
+  EXPECT_EQ(scene.mapper->GetLastDevice(), vtkMFAVolumeMapper::DeviceCPU);
+  EXPECT_GT(coverage(cpu, scene.coreSettings().background), 0.3);
+
+  scene.mapper->SetDeviceToAuto();
+  const Image8 automatic = scene.render();
+  const bool gpu = scene.mapper->GetLastDevice() == vtkMFAVolumeMapper::DeviceCUDA;
+  const std::string description = scene.mapper->GetLastDeviceDescription();
+  if (gpu) {
+    EXPECT_GT(compareImages(automatic, cpu).psnr, 45.0) << description;
+  } else {
+    EXPECT_EQ(automatic.data, cpu.data);
+    EXPECT_NE(description.find("; "), std::string::npos) << "no reason given: " << description;
+  }
+
+  int errors = 0;
+  vtkNew<vtkCallbackCommand> onError;
+  onError->SetClientData(&errors);
+  onError->SetCallback([](vtkObject*, unsigned long, void* count, void*) {
+    ++*static_cast<int*>(count);
+  });
+  scene.mapper->AddObserver(vtkCommand::ErrorEvent, onError);
+  scene.mapper->SetDeviceToCUDA();
+  const Image8 cuda = scene.render();
+  if (gpu) {
+    EXPECT_EQ(errors, 0);
+    EXPECT_GT(compareImages(cuda, cpu).psnr, 45.0);
+  } else {
+    EXPECT_GE(errors, 1);
+    EXPECT_EQ(coverage(cuda, scene.coreSettings().background), 0.0);
+  }
 }
 
 }  // namespace

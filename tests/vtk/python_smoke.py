@@ -77,6 +77,11 @@ window.AddRenderer(renderer)
 window.SetSize(96, 96)
 window.Render()
 check(mapper.GetTimeToDraw() > 0.0, "the mapper rendered")
+# The render device: auto by default, reported after the frame (the GPU or the CPU with a reason).
+check(mapper.GetDevice() == mfadvr.vtkMFAVolumeMapper.DeviceAuto, "auto is the default device")
+check(mapper.GetLastDevice() in (mfadvr.vtkMFAVolumeMapper.DeviceCPU,
+                                 mfadvr.vtkMFAVolumeMapper.DeviceCUDA), "a device was used")
+check(len(mapper.GetLastDeviceDescription()) > 0, "the device is described")
 
 grab = vtkWindowToImageFilter()
 grab.SetInput(window)

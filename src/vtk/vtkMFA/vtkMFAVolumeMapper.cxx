@@ -33,6 +33,7 @@
 #include "VtkModelImage.h"
 #include "VtkSceneConversion.h"
 #include "core/field/ModelField.h"
+#include "device/RenderDevice.h"
 #include "core/image/ImageResize.h"
 #include "core/model/Model.h"
 #include "core/render/EmptySpaceGrid.h"
@@ -66,6 +67,40 @@ struct vtkMFAVolumeMapper::Internals {
   double LastSeconds = 0.0;
   // Empty-space flags of the current model and transfer function, kept between frames.
   mfadvr::EmptySpaceCache EmptySpace;
+  // GPU renderers, one per model rendered (the single model, or each carried one), so that each
+  // keeps its model in GPU memory; made for the Device in GpuFor.
+  std::vector<std::unique_ptr<mfadvr::DeviceRenderer>> Gpu;
+  int GpuFor = -1;
+  std::string DeviceDescription;
+
+  // The renderer for model `i` under `device`, or null for the CPU; throws for DeviceCUDA
+  // without a usable GPU.
+  mfadvr::DeviceRenderer* GpuRenderer(int device, size_t i) {
+    if (device != this->GpuFor) {
+      this->Gpu.clear();
+      this->GpuFor = device;
+      this->DeviceDescription.clear();
+    }
+    if (device == vtkMFAVolumeMapper::DeviceCPU) {
+      this->DeviceDescription = "CPU";
+      return nullptr;
+    }
+    if (i < this->Gpu.size() && this->Gpu[i]) {
+      return this->Gpu[i].get();
+    }
+    mfadvr::MethodSpec spec;  // the model, analytic gradients
+    mfadvr::RenderDevice opened =
+        mfadvr::openRenderDevice(device == vtkMFAVolumeMapper::DeviceCUDA ? "cuda" : "auto", spec);
+    this->DeviceDescription = opened.description;
+    if (!opened.renderer) {
+      return nullptr;
+    }
+    if (this->Gpu.size() <= i) {
+      this->Gpu.resize(i + 1);
+    }
+    this->Gpu[i] = std::move(opened.renderer);
+    return this->Gpu[i].get();
+  }
 };
 
 vtkMFAVolumeMapper::vtkMFAVolumeMapper() : Internal(new Internals) {}
@@ -81,6 +116,13 @@ void vtkMFAVolumeMapper::PrintSelf(ostream& os, vtkIndent indent) {
   os << indent << "AutoAdjustSampleDistances: " << this->AutoAdjustSampleDistances << "\n";
   os << indent << "EarlyRayTerminationOpacity: " << this->EarlyRayTerminationOpacity << "\n";
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
+  os << indent << "Device: " << this->Device << "\n";
+  os << indent << "LastDevice: " << this->LastDevice << " ("
+     << this->Internal->DeviceDescription << ")\n";
+}
+
+const char* vtkMFAVolumeMapper::GetLastDeviceDescription() {
+  return this->Internal->DeviceDescription.c_str();
 }
 
 int vtkMFAVolumeMapper::FillInputPortInformation(int, vtkInformation* info) {
@@ -312,11 +354,23 @@ void vtkMFAVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol) {
       for (const auto& c : in.Carried) regions.push_back(c.region);
       image = mfadvr::renderPieces(
           s, regions, [&](size_t i, const mfadvr::RenderSettings& piece, mfadvr::RenderStats*) {
-            return mfadvr::renderVolume(
-                mfadvr::ModelField(*in.Carried[i].model, &in.CarriedEmptySpace[i]), piece);
+            const mfadvr::ModelField field(*in.Carried[i].model, &in.CarriedEmptySpace[i]);
+            if (mfadvr::DeviceRenderer* gpu = in.GpuRenderer(this->Device, i)) {
+              this->LastDevice = DeviceCUDA;
+              return gpu->renderModel(field, piece, nullptr);
+            }
+            this->LastDevice = DeviceCPU;
+            return mfadvr::renderVolume(field, piece);
           });
     } else {
-      image = mfadvr::renderVolume(mfadvr::ModelField(*model, &this->Internal->EmptySpace), s);
+      const mfadvr::ModelField field(*model, &this->Internal->EmptySpace);
+      if (mfadvr::DeviceRenderer* gpu = this->Internal->GpuRenderer(this->Device, 0)) {
+        this->LastDevice = DeviceCUDA;
+        image = gpu->renderModel(field, s, nullptr);
+      } else {
+        this->LastDevice = DeviceCPU;
+        image = mfadvr::renderVolume(field, s);
+      }
     }
     if (image.width != rw || image.height != rh) {
       throw std::runtime_error("the field renderer returned an image of the wrong size");

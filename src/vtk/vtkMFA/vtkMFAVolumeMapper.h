@@ -123,6 +123,33 @@ class VTKMFA_EXPORT vtkMFAVolumeMapper : public vtkVolumeMapper {
   vtkGetMacro(NumberOfThreads, int);
   //@}
 
+  //@{
+  /**
+   * Where the ray caster runs: DeviceAuto (the default: a CUDA GPU when this build has the CUDA
+   * backend and a GPU is usable, else the CPU), DeviceCPU, or DeviceCUDA (an error, and no
+   * volume drawn, when no GPU is usable). GPU and CPU images differ only by float rounding.
+   * Each model is uploaded to the GPU once and kept for the next frames.
+   */
+  enum DeviceType
+  {
+    DeviceAuto = 0,
+    DeviceCPU = 1,
+    DeviceCUDA = 2
+  };
+  vtkSetClampMacro(Device, int, DeviceAuto, DeviceCUDA);
+  vtkGetMacro(Device, int);
+  void SetDeviceToAuto() { this->SetDevice(DeviceAuto); }
+  void SetDeviceToCPU() { this->SetDevice(DeviceCPU); }
+  void SetDeviceToCUDA() { this->SetDevice(DeviceCUDA); }
+  //@}
+
+  /**
+   * The device the last frame ran on (DeviceCPU or DeviceCUDA), and its description: the GPU's
+   * name, or with DeviceAuto on the CPU, why the GPU was not used.
+   */
+  vtkGetMacro(LastDevice, int);
+  const char* GetLastDeviceDescription();
+
   /**
    * The image sample distance the last frame used.
    */
@@ -164,6 +191,8 @@ class VTKMFA_EXPORT vtkMFAVolumeMapper : public vtkVolumeMapper {
   bool AutoAdjustSampleDistances = true;
   double EarlyRayTerminationOpacity = 0.99;
   int NumberOfThreads = 0;
+  int Device = DeviceAuto;
+  int LastDevice = DeviceCPU;
   double LastImageSampleDistance = 1.0;
 
  private:

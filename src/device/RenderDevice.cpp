@@ -1,4 +1,4 @@
-#include "app/RenderDevice.h"
+#include "device/RenderDevice.h"
 
 #include <tbb/info.h>
 
@@ -7,7 +7,7 @@
 #include "gpu/CudaRenderer.h"
 #endif
 
-namespace mfadvr::app {
+namespace mfadvr {
 
 bool buildHasCuda() {
 #if defined(MFADVR_HAVE_CUDA)
@@ -15,15 +15,6 @@ bool buildHasCuda() {
 #else
   return false;
 #endif
-}
-
-void addDeviceOption(CLI::App* sub, std::string& choice) {
-  sub->add_option("--device", choice,
-                  "Where to render: auto (a CUDA GPU when one is usable and the method runs "
-                  "there, else the CPU), cpu, or cuda (error when no GPU can). The GPU renders "
-                  "'mfa' and 'trilinear'")
-      ->check(CLI::IsMember({"auto", "cpu", "cuda"}))
-      ->capture_default_str();
 }
 
 namespace {
@@ -72,4 +63,4 @@ RenderDevice openRenderDevice(const std::string& choice, const MethodSpec& spec)
 #endif
 }
 
-}  // namespace mfadvr::app
+}  // namespace mfadvr
