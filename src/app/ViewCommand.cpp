@@ -35,6 +35,7 @@
 #include "core/render/ReconstructionMethod.h"
 #include "core/render/TransferFunction.h"
 #include "core/util/Error.h"
+#include "device/RenderDevice.h"
 #include "io/ScatteredLoader.h"
 #include "io/VolumeLoader.h"
 #include "vtkMFAModelData.h"
@@ -55,6 +56,8 @@ struct Viewer {
   RenderOptions options;
   std::vector<ReconstructionMethod> methods;
   size_t method = 0;
+  // The GPU renderer of the grid methods it renders (trilinear); the model's is the mapper's own.
+  std::shared_ptr<DeviceRenderer> gpu;
   vtkNew<vtkMFAModelData> data;
   vtkNew<vtkMFAVolumeMapper> mapper;
   vtkNew<vtkVolumeProperty> property;
@@ -73,9 +76,10 @@ struct Viewer {
       mapper->SetFieldRenderer({});
     } else {
       const SceneData view = scene->view();
-      mapper->SetFieldRenderer([view, m](const RenderSettings& settings) {
+      mapper->SetFieldRenderer([view, m, gpu = gpu](const RenderSettings& settings) {
         MethodSpec spec;
         spec.method = m;
+        if (gpu && deviceRendersMethod(spec)) spec.device = gpu.get();
         return renderMethod(view, spec, settings);
       });
     }
@@ -177,6 +181,7 @@ int runViewBenchmark(Viewer& viewer, int frames, double fps) {
                 1.0 / median, 1000.0 * median, settled.size(), fps);
     std::printf("still frame (full quality): %.1f ms, image sample distance %.2f\n", 1000.0 * still,
                 viewer.mapper->GetLastImageSampleDistance());
+    std::printf("device: %s\n", viewer.mapper->GetLastDeviceDescription());
     viewer.window->Finalize();
   }
   return 0;
@@ -186,7 +191,7 @@ int runViewBenchmark(Viewer& viewer, int frames, double fps) {
 
 Command addViewCommand(CLI::App& app) {
   struct Options {
-    std::string input, method = "mfa", screenshot, spacing, origin, field;
+    std::string input, method = "mfa", screenshot, spacing, origin, field, device = "auto";
     EncodeCliOptions encode;
     RenderOptions render;
     bool quiet = false;
@@ -215,6 +220,7 @@ Command addViewCommand(CLI::App& app) {
                   "does), then the full-quality frame; print frames per second and times")
       ->check(CLI::Range(1, 100000));
   o->render.addTo(sub);
+  addDeviceOption(sub, o->device);
   o->encode.addTo(sub, "Encoding (non-model inputs)");
   const char* in = "Input";
   sub->add_option("--spacing", o->spacing, "Sample spacing S or SX,SY,SZ (overrides the file's)")
@@ -262,6 +268,15 @@ Command addViewCommand(CLI::App& app) {
                     return list;
                   }());
 
+    // The device, checked before a window opens: --device cuda fails here without a GPU.
+    MethodSpec firstSpec;
+    firstSpec.method = first;
+    RenderDevice device = openRenderDevice(o->device, firstSpec);
+    viewer->gpu = std::move(device.renderer);
+    viewer->mapper->SetDevice(o->device == "cpu"    ? vtkMFAVolumeMapper::DeviceCPU
+                              : o->device == "cuda" ? vtkMFAVolumeMapper::DeviceCUDA
+                                                    : vtkMFAVolumeMapper::DeviceAuto);
+
     // The scene as the render command would draw it, set up in VTK.
     const RenderSettings settings = o->render.settingsFor(scene);
     viewer->data->SetModel(std::make_shared<const Model>(*scene.model));
@@ -294,9 +309,9 @@ Command addViewCommand(CLI::App& app) {
         viewer->window->Finalize();
       }
       writePng(o->screenshot, shot);
-      std::printf("%s: %s, %dx%d, frame %.3f s\n", o->screenshot.c_str(),
+      std::printf("%s: %s, %dx%d, frame %.3f s, on the %s\n", o->screenshot.c_str(),
                   methodName(viewer->methods[viewer->method]).c_str(), settings.width,
-                  settings.height, viewer->mapper->GetTimeToDraw());
+                  settings.height, viewer->mapper->GetTimeToDraw(), device.description.c_str());
       return 0;
     }
 
