@@ -8,6 +8,7 @@
 
 #include "core/analytic/BuiltinFunction.h"
 #include "core/encode/Encoder.h"
+#include "device/RenderDevice.h"
 #include "eval/CsvTable.h"
 #include "eval/EvalRendering.h"
 #include "eval/Experiment.h"
@@ -33,6 +34,10 @@ ExperimentReport runRenderPerformance(const EvalContext& ctx) {
       {"catmull-rom", ReconstructionMethod::CatmullRom},
       {"bspline", ReconstructionMethod::BSpline},
       {"mfa", ReconstructionMethod::Mfa}};
+  // The GPU rows (mfa-cuda, trilinear-cuda: the same scenes on the CUDA backend) when a GPU is
+  // usable here.
+  MethodSpec mfaSpec;
+  const RenderDevice gpu = openRenderDevice("auto", mfaSpec);
 
   auto run = [&](const std::string& family, int n, bool shade) {
     const StructuredGrid grid = sampleBuiltin(*beam, {n, n, n});
@@ -64,6 +69,12 @@ ExperimentReport runRenderPerformance(const EvalContext& ctx) {
       MethodSpec spec;
       spec.method = m;
       add(name, family == "structured" ? voxels : tets, renderOurs(scene, spec, s, repeats));
+      if (gpu.renderer && family == "structured" &&
+          (m == ReconstructionMethod::Mfa || m == ReconstructionMethod::Trilinear)) {
+        ctx.log("performance: " + family + " " + std::to_string(n) + "^3: " + name + "-cuda");
+        spec.device = gpu.renderer.get();
+        add(name + "-cuda", voxels, renderOurs(scene, spec, s, repeats));
+      }
     }
     if (!ctx.vtk()) return;
     const std::vector<VtkMethod> vtkMethods =
@@ -96,7 +107,11 @@ ExperimentReport runRenderPerformance(const EvalContext& ctx) {
         (ctx.threads() ? std::to_string(ctx.threads()) : std::string("all")) +
         " threads for our ray caster; VTK's fixed-point caster uses its own threads, the "
         "tetrahedral renderers one (Bunyk, ZSweep) or the GPU driver (PT; Mesa's software "
-        "rasterizer here).\n\n";
+        "rasterizer here). " +
+        (gpu.renderer ? "Rows `mfa-cuda` and `trilinear-cuda`: the same scenes on the " +
+                            gpu.description + " (frame time with the image's read-back)."
+                      : "No GPU rows: " + gpu.description + ".") +
+        "\n\n";
   md += table.toMarkdown({"family", "method", "size", "cells", "render_seconds", "first_seconds"},
                          {"family", "method", "N", "cells", "render s", "first frame s"}) +
         "\n";
