@@ -10,9 +10,9 @@
 // empty-space flags) and the image's read-back, its kernel time is listed apart. The first GPU
 // frame (model upload, kernel load) is reported separately. Without a usable GPU it says why and
 // measures the CPU alone. Self-contained: scripts/pack-gpu-check.sh bundles it for a GPU machine.
-#include <CLI/CLI.hpp>
 #include <tbb/info.h>
 #include <tbb/parallel_for.h>
+#include <CLI/CLI.hpp>
 
 #include <algorithm>
 #include <chrono>
@@ -41,8 +41,8 @@ Model sampledModel(const BuiltinFunction& f, int n, int degree) {
   tbb::parallel_for(0, n, [&](int k) {
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < n; ++i)
-        ctrl[i + std::size_t(n) * (j + std::size_t(n) * k)] = static_cast<float>(
-            f.value(Vec3d(lo[0] + i * h, lo[1] + j * h, lo[2] + k * h)));
+        ctrl[i + std::size_t(n) * (j + std::size_t(n) * k)] =
+            static_cast<float>(f.value(Vec3d(lo[0] + i * h, lo[1] + j * h, lo[2] + k * h)));
   });
   const KnotVector knots = KnotVector::clampedUniform(degree, n);
   return Model(TensorBSpline({knots, knots, knots}, std::move(ctrl)), DomainBox{lo, hi}, 0.0, 1.0);

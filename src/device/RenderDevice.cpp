@@ -35,12 +35,12 @@ RenderDevice openRenderDevice(const std::string& choice, const MethodSpec& spec)
     throw Error("unknown device '" + choice + "'; choose auto, cpu or cuda");
   const bool required = choice == "cuda";
   if (!deviceRendersMethod(spec)) {
-    const std::string why = "method '" + methodName(spec.method) + "'" +
-                            (spec.gradientFrom || spec.gradient != GradientMode::Analytic
-                                 ? " with this gradient"
-                                 : "") +
-                            " renders on the CPU only (the GPU renders 'mfa' and 'trilinear' "
-                            "with analytic gradients)";
+    const std::string why =
+        "method '" + methodName(spec.method) + "'" +
+        (spec.gradientFrom || spec.gradient != GradientMode::Analytic ? " with this gradient"
+                                                                      : "") +
+        " renders on the CPU only (the GPU renders 'mfa' and 'trilinear' "
+        "with analytic gradients)";
     if (required) throw Error("--device cuda: " + why);
     return cpu(why);
   }

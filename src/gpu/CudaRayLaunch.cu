@@ -95,14 +95,22 @@ void launchForDegree(const ModelLaunch& l, dim3 grid, dim3 block) {
   // Eight kernels per degree, as on the CPU: with and without the mask test, shading, skipping.
   const int key = (l.masked ? 4 : 0) + (l.shade ? 2 : 0) + (l.skip ? 1 : 0);
   switch (key) {
-    case 0: return launchModel<P, false, false, false>(l, grid, block);
-    case 1: return launchModel<P, false, false, true>(l, grid, block);
-    case 2: return launchModel<P, false, true, false>(l, grid, block);
-    case 3: return launchModel<P, false, true, true>(l, grid, block);
-    case 4: return launchModel<P, true, false, false>(l, grid, block);
-    case 5: return launchModel<P, true, false, true>(l, grid, block);
-    case 6: return launchModel<P, true, true, false>(l, grid, block);
-    default: return launchModel<P, true, true, true>(l, grid, block);
+    case 0:
+      return launchModel<P, false, false, false>(l, grid, block);
+    case 1:
+      return launchModel<P, false, false, true>(l, grid, block);
+    case 2:
+      return launchModel<P, false, true, false>(l, grid, block);
+    case 3:
+      return launchModel<P, false, true, true>(l, grid, block);
+    case 4:
+      return launchModel<P, true, false, false>(l, grid, block);
+    case 5:
+      return launchModel<P, true, false, true>(l, grid, block);
+    case 6:
+      return launchModel<P, true, true, false>(l, grid, block);
+    default:
+      return launchModel<P, true, true, true>(l, grid, block);
   }
 }
 
@@ -114,11 +122,16 @@ double launchModelRays(const ModelLaunch& l) {
     const int p = axis[0].degree;
     const bool same = p == axis[1].degree && p == axis[2].degree;
     switch (same ? p : 0) {
-      case 1: return launchForDegree<1>(l, grid, block);
-      case 2: return launchForDegree<2>(l, grid, block);
-      case 3: return launchForDegree<3>(l, grid, block);
-      case 4: return launchForDegree<4>(l, grid, block);
-      default: return launchForDegree<0>(l, grid, block);
+      case 1:
+        return launchForDegree<1>(l, grid, block);
+      case 2:
+        return launchForDegree<2>(l, grid, block);
+      case 3:
+        return launchForDegree<3>(l, grid, block);
+      case 4:
+        return launchForDegree<4>(l, grid, block);
+      default:
+        return launchForDegree<0>(l, grid, block);
     }
   });
 }

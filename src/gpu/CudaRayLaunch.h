@@ -6,8 +6,8 @@
 #include <string>
 
 #include "core/render/kernel/RayParams.h"
-#include "core/render/kernel/TrilinearKernel.h"
 #include "core/render/kernel/SplineRaySampler.h"
+#include "core/render/kernel/TrilinearKernel.h"
 
 namespace mfadvr::gpu {
 

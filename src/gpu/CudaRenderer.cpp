@@ -23,7 +23,9 @@ struct ModelKey {
   bool operator==(const ModelKey&) const = default;
 };
 
-std::size_t knotCount(const KnotAxisView& a) { return std::size_t(a.count) + a.degree + 1; }
+std::size_t knotCount(const KnotAxisView& a) {
+  return std::size_t(a.count) + a.degree + 1;
+}
 std::size_t polyCount(const KnotAxisView& a) {
   return std::size_t(a.count) * (a.degree + 1) * (a.degree + 1);
 }
@@ -48,7 +50,9 @@ ModelKey keyOf(const ModelView& v) {
   return k;
 }
 
-std::string mib(std::size_t bytes) { return std::to_string((bytes + (1 << 20) - 1) >> 20) + " MiB"; }
+std::string mib(std::size_t bytes) {
+  return std::to_string((bytes + (1 << 20) - 1) >> 20) + " MiB";
+}
 
 }  // namespace
 
@@ -72,7 +76,9 @@ CudaRenderer::CudaRenderer() : status_(cudaDeviceStatus()), buffers_(std::make_u
 
 CudaRenderer::~CudaRenderer() = default;
 
-std::string CudaRenderer::description() const { return "CUDA GPU " + status_.describe(); }
+std::string CudaRenderer::description() const {
+  return "CUDA GPU " + status_.describe();
+}
 
 void CudaRenderer::forgetModel() {
   Buffers& b = *buffers_;
@@ -92,10 +98,11 @@ namespace {
 
 // The frame's own arrays: the table, ray ends, the image and the counters; returns the device
 // copy of `params` with its pointers replaced.
-RayParams uploadFrame(const RayParams& params, DeviceArray& tf,
-                      DeviceArray& rayEnd, DeviceArray& image, DeviceArray& counters) {
+RayParams uploadFrame(const RayParams& params, DeviceArray& tf, DeviceArray& rayEnd,
+                      DeviceArray& image, DeviceArray& counters) {
   RayParams d = params;
-  tf.upload(params.tf.entries, std::size_t(params.tf.count) * sizeof(TfEntry), "the transfer-function table");
+  tf.upload(params.tf.entries, std::size_t(params.tf.count) * sizeof(TfEntry),
+            "the transfer-function table");
   d.tf.entries = tf.as<const TfEntry>();
   const std::size_t pixels = std::size_t(params.camera.width) * params.camera.height;
   if (params.rayEnd) {
@@ -108,8 +115,8 @@ RayParams uploadFrame(const RayParams& params, DeviceArray& tf,
   return d;
 }
 
-void readBack(const RayParams& params, DeviceArray& image, const DeviceArray& counters,
-              Image& out, RenderStats* stats) {
+void readBack(const RayParams& params, DeviceArray& image, const DeviceArray& counters, Image& out,
+              RenderStats* stats) {
   image.download(out.rgba.data(), out.rgba.size() * sizeof(float));
   DeviceRayCounters c{};
   counters.download(&c, sizeof c);
@@ -133,8 +140,7 @@ Image CudaRenderer::renderModel(const ModelField& field, const RenderSettings& s
   const ModelKey key = keyOf(host);
   if (!b.haveModel || !(b.modelKey == key)) {
     forgetModel();
-    std::size_t bytes = controlCount(host.spline) * sizeof(float) +
-                        maskNodeCount(host.mask);
+    std::size_t bytes = controlCount(host.spline) * sizeof(float) + maskNodeCount(host.mask);
     for (const KnotAxisView& a : host.spline.axis)
       bytes += knotCount(a) * sizeof(double) + polyCount(a) * sizeof(float) +
                std::size_t(a.count) * sizeof(double);
@@ -172,8 +178,7 @@ Image CudaRenderer::renderModel(const ModelField& field, const RenderSettings& s
     l.view.empty = b.emptyCells.as<const std::uint8_t>();
     l.view.emptyBlocks = b.emptyBlocks.as<const std::uint8_t>();
   }
-  l.params = uploadFrame(setup.params(), b.tf, b.rayEnd, b.image,
-                         b.counters);
+  l.params = uploadFrame(setup.params(), b.tf, b.rayEnd, b.image, b.counters);
   l.masked = setup.masked();
   l.shade = settings.shade;
   l.skip = setup.skips();

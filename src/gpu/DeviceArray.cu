@@ -7,7 +7,9 @@
 
 namespace mfadvr::gpu {
 
-DeviceArray::~DeviceArray() { release(); }
+DeviceArray::~DeviceArray() {
+  release();
+}
 
 DeviceArray::DeviceArray(DeviceArray&& other) noexcept
     : ptr_(std::exchange(other.ptr_, nullptr)), capacity_(std::exchange(other.capacity_, 0)) {}
@@ -39,8 +41,8 @@ void DeviceArray::reserve(std::size_t bytes, const char* what) {
     cudaMemGetInfo(&freeBytes, &totalBytes);
     throw Error(std::string("CUDA: cannot allocate ") + std::to_string(size >> 20) + " MiB for " +
                 what + " (" + std::to_string(freeBytes >> 20) + " of " +
-                std::to_string(totalBytes >> 20) + " MiB free on the GPU): " +
-                cudaGetErrorString(status));
+                std::to_string(totalBytes >> 20) +
+                " MiB free on the GPU): " + cudaGetErrorString(status));
   }
   capacity_ = size;
 }

@@ -108,7 +108,9 @@ RenderSettings settingsFor(const Vec3d& lo, const Vec3d& hi, const TransferFunct
   return s;
 }
 
-double psnr(const Image& a, const Image& b) { return compareImages(toImage8(a), toImage8(b)).psnr; }
+double psnr(const Image& a, const Image& b) {
+  return compareImages(toImage8(a), toImage8(b)).psnr;
+}
 
 void expectCountsAgree(const RenderStats& gpu, const RenderStats& cpu) {
   EXPECT_EQ(gpu.rays, cpu.rays);
@@ -162,8 +164,9 @@ TEST_F(Gpu, EveryTransferFunctionWithAndWithoutSkipping) {
       for (bool skip : {true, false}) {
         RenderSettings s = settingsFor(m->domain().min, m->domain().max, tf, true);
         s.skipEmptySpace = skip;
-        compareModel(*m, s, std::string(m->mask().empty() ? "unmasked" : "masked") +
-                                (skip ? ", skipping" : ", no skipping"));
+        compareModel(*m, s,
+                     std::string(m->mask().empty() ? "unmasked" : "masked") +
+                         (skip ? ", skipping" : ", no skipping"));
       }
   EXPECT_EQ(compared_, 24);
 }
@@ -206,7 +209,8 @@ TEST_F(Gpu, EarlyTerminationAndRayEnds) {
 TEST_F(Gpu, ModelIsKeptBetweenFramesAndReplacedByAnother) {
   const Model& a = mlModel(2);
   const Model& b = mlModel(3);
-  const RenderSettings s = settingsFor(a.domain().min, a.domain().max, transferFunctions()[0], true);
+  const RenderSettings s =
+      settingsFor(a.domain().min, a.domain().max, transferFunctions()[0], true);
   const Image a1 = renderer_->renderModel(ModelField(a), s, nullptr);
   const Image b1 = renderer_->renderModel(ModelField(b), s, nullptr);
   const Image a2 = renderer_->renderModel(ModelField(a), s, nullptr);
@@ -217,9 +221,8 @@ TEST_F(Gpu, ModelIsKeptBetweenFramesAndReplacedByAnother) {
 TEST_F(Gpu, TrilinearMatchesTheCpu) {
   const GridField<TrilinearFilter> field(mlGrid());
   for (bool shade : {false, true}) {
-    const RenderSettings s = settingsFor(field.boxMin(), field.boxMax(), transferFunctions()[5]
-                                             .resolved(-0.1, 1.1),
-                                         shade);
+    const RenderSettings s = settingsFor(field.boxMin(), field.boxMax(),
+                                         transferFunctions()[5].resolved(-0.1, 1.1), shade);
     RenderStats cpuStats, gpuStats;
     const Image cpu = renderVolume(field, s, &cpuStats);
     const Image gpu = renderer_->renderTrilinear(field.grid(), s, &gpuStats);

@@ -303,9 +303,8 @@ TEST(VolumeMapper, DeviceChoiceIsReportedAndCudaWithoutAGpuDrawsNothing) {
   int errors = 0;
   vtkNew<vtkCallbackCommand> onError;
   onError->SetClientData(&errors);
-  onError->SetCallback([](vtkObject*, unsigned long, void* count, void*) {
-    ++*static_cast<int*>(count);
-  });
+  onError->SetCallback(
+      [](vtkObject*, unsigned long, void* count, void*) { ++*static_cast<int*>(count); });
   scene.mapper->AddObserver(vtkCommand::ErrorEvent, onError);
   scene.mapper->SetDeviceToCUDA();
   const Image8 cuda = scene.render();

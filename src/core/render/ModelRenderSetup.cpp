@@ -38,8 +38,7 @@ ModelRenderSetup::ModelRenderSetup(const ModelField& field, const RenderSettings
       for (int a = 0; a < 3; ++a) view_.blocks[a] = flags_->blockCounts[a];
     }
   }
-  setupSeconds_ =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  setupSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 }  // namespace mfadvr

@@ -33,12 +33,12 @@
 #include "VtkModelImage.h"
 #include "VtkSceneConversion.h"
 #include "core/field/ModelField.h"
-#include "device/RenderDevice.h"
 #include "core/image/ImageResize.h"
 #include "core/model/Model.h"
 #include "core/render/EmptySpaceGrid.h"
 #include "core/render/PieceCompositor.h"
 #include "core/render/RayCaster.h"
+#include "device/RenderDevice.h"
 
 vtkStandardNewMacro(vtkMFAVolumeMapper);
 
@@ -117,8 +117,8 @@ void vtkMFAVolumeMapper::PrintSelf(ostream& os, vtkIndent indent) {
   os << indent << "EarlyRayTerminationOpacity: " << this->EarlyRayTerminationOpacity << "\n";
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
   os << indent << "Device: " << this->Device << "\n";
-  os << indent << "LastDevice: " << this->LastDevice << " ("
-     << this->Internal->DeviceDescription << ")\n";
+  os << indent << "LastDevice: " << this->LastDevice << " (" << this->Internal->DeviceDescription
+     << ")\n";
 }
 
 const char* vtkMFAVolumeMapper::GetLastDeviceDescription() {

@@ -130,12 +130,7 @@ class VTKMFA_EXPORT vtkMFAVolumeMapper : public vtkVolumeMapper {
    * volume drawn, when no GPU is usable). GPU and CPU images differ only by float rounding.
    * Each model is uploaded to the GPU once and kept for the next frames.
    */
-  enum DeviceType
-  {
-    DeviceAuto = 0,
-    DeviceCPU = 1,
-    DeviceCUDA = 2
-  };
+  enum DeviceType { DeviceAuto = 0, DeviceCPU = 1, DeviceCUDA = 2 };
   vtkSetClampMacro(Device, int, DeviceAuto, DeviceCUDA);
   vtkGetMacro(Device, int);
   void SetDeviceToAuto() { this->SetDevice(DeviceAuto); }

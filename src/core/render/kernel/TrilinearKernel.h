@@ -26,7 +26,7 @@ MFADVR_HD MFADVR_INLINE const float* gridCell(const GridView& g, const double x[
   for (int a = 0; a < 3; ++a) {
     double u = (x[a] - g.origin[a]) * g.inverseSpacing[a];
     const double hi = static_cast<double>(g.dims[a] - 1);
-    u = u > 0.0 ? (u < hi ? u : hi) : 0.0;  // NaN -> 0
+    u = u > 0.0 ? (u < hi ? u : hi) : 0.0;          // NaN -> 0
     std::int64_t i = static_cast<std::int64_t>(u);  // u >= 0, so truncation is floor
     if (i > g.dims[a] - 2) i = g.dims[a] - 2;
     c[a] = i;
