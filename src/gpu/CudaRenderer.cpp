@@ -1,7 +1,6 @@
 #include "gpu/CudaRenderer.h"
 
 #include <chrono>
-#include <cstring>
 
 #include "core/field/PaddedGrid.h"
 #include "core/render/ModelRenderSetup.h"
@@ -66,8 +65,11 @@ struct CudaRenderer::Buffers {
   const float* gridData = nullptr;
   std::size_t gridSize = 0;
   DeviceArray grid;
+  // The empty-space flags, kept while the field's cache hands out the same ones.
+  std::shared_ptr<const EmptySpaceFlags> flags;
+  DeviceArray emptyCells, emptyBlocks;
   // Per frame.
-  DeviceArray tf, emptyCells, emptyBlocks, rayEnd, image, counters;
+  DeviceArray tf, rayEnd, image, counters;
 };
 
 CudaRenderer::CudaRenderer() : status_(cudaDeviceStatus()), buffers_(std::make_unique<Buffers>()) {
@@ -92,6 +94,7 @@ void CudaRenderer::forgetModel() {
   }
   b.gridData = nullptr;
   b.grid.release();
+  b.flags = nullptr;
 }
 
 namespace {
@@ -172,9 +175,15 @@ Image CudaRenderer::renderModel(const ModelField& field, const RenderSettings& s
     l.view.spline.axis[a].inverseLength = b.inverseLength[a].as<const double>();
   }
   if (host.mask.nodes) l.view.mask.nodes = b.mask.as<const std::uint8_t>();
-  if (const EmptySpaceFlags* flags = setup.emptySpaceFlags()) {
-    b.emptyCells.upload(flags->cells.data(), flags->cells.size(), "the empty-space flags");
-    b.emptyBlocks.upload(flags->blocks.data(), flags->blocks.size(), "the empty-space flags");
+  if (const auto flags = setup.emptySpaceFlags()) {
+    // Held here, so that the same address is the same flags: a viewer's frames upload them
+    // once per transfer function.
+    if (flags != b.flags) {
+      b.flags = nullptr;
+      b.emptyCells.upload(flags->cells.data(), flags->cells.size(), "the empty-space flags");
+      b.emptyBlocks.upload(flags->blocks.data(), flags->blocks.size(), "the empty-space flags");
+      b.flags = flags;
+    }
     l.view.empty = b.emptyCells.as<const std::uint8_t>();
     l.view.emptyBlocks = b.emptyBlocks.as<const std::uint8_t>();
   }
