@@ -8,6 +8,7 @@
 #include "core/util/Error.h"
 #include "gpu/CudaRayLaunch.h"
 #include "gpu/DeviceArray.h"
+#include "gpu/DeviceArrays.h"
 
 namespace mfadvr::gpu {
 
@@ -15,61 +16,49 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// What identifies an uploaded model: the addresses and sizes of its arrays.
-struct ModelKey {
-  const void* pointers[11] = {};
-  std::int64_t sizes[6] = {};
-  bool operator==(const ModelKey&) const = default;
-};
-
-std::size_t knotCount(const KnotAxisView& a) {
-  return std::size_t(a.count) + a.degree + 1;
-}
-std::size_t polyCount(const KnotAxisView& a) {
-  return std::size_t(a.count) * (a.degree + 1) * (a.degree + 1);
-}
-std::size_t maskNodeCount(const MaskView& m) {
-  return m.nodes ? std::size_t(m.dims[0] * m.dims[1] * m.dims[2]) : 0;
-}
-std::size_t controlCount(const SplineView& v) {
-  return std::size_t(v.axis[0].count) * v.axis[1].count * v.axis[2].count;
-}
-
-ModelKey keyOf(const ModelView& v) {
-  ModelKey k;
-  k.pointers[0] = v.spline.ctrl;
-  for (int a = 0; a < 3; ++a) {
-    k.pointers[1 + 3 * a] = v.spline.axis[a].knots;
-    k.pointers[2 + 3 * a] = v.spline.axis[a].poly;
-    k.pointers[3 + 3 * a] = v.spline.axis[a].inverseLength;
-    k.sizes[a] = v.spline.axis[a].count;
-    k.sizes[3 + a] = v.spline.axis[a].degree;
-  }
-  k.pointers[10] = v.mask.nodes;
-  return k;
-}
-
 std::string mib(std::size_t bytes) {
   return std::to_string((bytes + (1 << 20) - 1) >> 20) + " MiB";
+}
+
+// Copies `arrays` into `copies` (grown to match); returns the device addresses, in order.
+std::vector<const void*> upload(const std::vector<HostArray>& arrays,
+                                std::vector<DeviceArray>& copies) {
+  if (copies.size() < arrays.size()) copies.resize(arrays.size());
+  std::vector<const void*> addresses;
+  for (std::size_t i = 0; i < arrays.size(); ++i) {
+    copies[i].upload(arrays[i].data, arrays[i].bytes, arrays[i].what);
+    addresses.push_back(copies[i].data());
+  }
+  return addresses;
+}
+
+// The model's arrays as a key: a model is the same while they are (see forgetModel()).
+bool sameArrays(const std::vector<HostArray>& a, const std::vector<HostArray>& b) {
+  if (a.size() != b.size()) return false;
+  for (std::size_t i = 0; i < a.size(); ++i)
+    if (a[i].data != b[i].data || a[i].bytes != b[i].bytes) return false;
+  return true;
 }
 
 }  // namespace
 
 struct CudaRenderer::Buffers {
-  // The model, kept between frames.
-  ModelKey modelKey;
-  bool haveModel = false;
-  DeviceArray ctrl, mask;
-  DeviceArray knots[3], poly[3], inverseLength[3];
+  // The model, kept between frames, and the view relocated onto it.
+  std::vector<HostArray> modelKey;
+  std::vector<DeviceArray> model;
+  std::vector<const void*> modelCopies;
+  // The empty-space flags, kept while the field's cache hands out the same ones (held here,
+  // so that the same address is the same flags).
+  std::shared_ptr<const EmptySpaceFlags> flags;
+  std::vector<DeviceArray> flagCopies;
+  std::vector<const void*> flagAddresses;
   // The trilinear grid, kept between frames.
   const float* gridData = nullptr;
   std::size_t gridSize = 0;
   DeviceArray grid;
-  // The empty-space flags, kept while the field's cache hands out the same ones.
-  std::shared_ptr<const EmptySpaceFlags> flags;
-  DeviceArray emptyCells, emptyBlocks;
   // Per frame.
-  DeviceArray tf, rayEnd, image, counters;
+  std::vector<DeviceArray> frame;
+  DeviceArray image, counters;
 };
 
 CudaRenderer::CudaRenderer() : status_(cudaDeviceStatus()), buffers_(std::make_unique<Buffers>()) {
@@ -84,34 +73,22 @@ std::string CudaRenderer::description() const {
 
 void CudaRenderer::forgetModel() {
   Buffers& b = *buffers_;
-  b.haveModel = false;
-  b.ctrl.release();
-  b.mask.release();
-  for (int a = 0; a < 3; ++a) {
-    b.knots[a].release();
-    b.poly[a].release();
-    b.inverseLength[a].release();
-  }
+  b.modelKey.clear();
+  b.model.clear();
+  b.modelCopies.clear();
+  b.flags = nullptr;
+  b.flagCopies.clear();
   b.gridData = nullptr;
   b.grid.release();
-  b.flags = nullptr;
 }
 
 namespace {
 
-// The frame's own arrays: the table, ray ends, the image and the counters; returns the device
-// copy of `params` with its pointers replaced.
-RayParams uploadFrame(const RayParams& params, DeviceArray& tf, DeviceArray& rayEnd,
-                      DeviceArray& image, DeviceArray& counters) {
-  RayParams d = params;
-  tf.upload(params.tf.entries, std::size_t(params.tf.count) * sizeof(TfEntry),
-            "the transfer-function table");
-  d.tf.entries = tf.as<const TfEntry>();
+// The frame's arrays, image and counters; returns `params` relocated onto the device.
+RayParams uploadFrame(const RayParams& params, std::vector<DeviceArray>& frame, DeviceArray& image,
+                      DeviceArray& counters) {
+  const RayParams d = relocateFrame(params, upload(frameArrays(params), frame));
   const std::size_t pixels = std::size_t(params.camera.width) * params.camera.height;
-  if (params.rayEnd) {
-    rayEnd.upload(params.rayEnd, pixels * sizeof(float), "the ray ends");
-    d.rayEnd = rayEnd.as<const float>();
-  }
   image.reserve(pixels * 4 * sizeof(float), "the image");
   counters.reserve(sizeof(DeviceRayCounters), "counters");
   counters.zero(sizeof(DeviceRayCounters));
@@ -139,55 +116,30 @@ Image CudaRenderer::renderModel(const ModelField& field, const RenderSettings& s
   const auto start = Clock::now();
   const ModelRenderSetup setup(field, settings);
   Buffers& b = *buffers_;
-  const ModelView& host = setup.view();
-  const ModelKey key = keyOf(host);
-  if (!b.haveModel || !(b.modelKey == key)) {
+  const std::vector<HostArray> arrays = modelArrays(setup.view());
+  if (!sameArrays(arrays, b.modelKey)) {
     forgetModel();
-    std::size_t bytes = controlCount(host.spline) * sizeof(float) + maskNodeCount(host.mask);
-    for (const KnotAxisView& a : host.spline.axis)
-      bytes += knotCount(a) * sizeof(double) + polyCount(a) * sizeof(float) +
-               std::size_t(a.count) * sizeof(double);
+    const std::size_t bytes = totalBytes(arrays);
     const CudaDeviceStatus now = cudaDeviceStatus();
     if (bytes > now.freeMemory)
       throw Error("the model needs " + mib(bytes) + " of GPU memory; " + status_.name + " has " +
                   mib(now.freeMemory) + " free of " + mib(now.totalMemory) +
-                  " (render it with --device cpu, or encode fewer control points)");
-    b.ctrl.upload(host.spline.ctrl, controlCount(host.spline) * sizeof(float),
-                  "the control points");
-    for (int a = 0; a < 3; ++a) {
-      const KnotAxisView& axis = host.spline.axis[a];
-      b.knots[a].upload(axis.knots, knotCount(axis) * sizeof(double), "the knots");
-      b.poly[a].upload(axis.poly, polyCount(axis) * sizeof(float), "the basis polynomials");
-      b.inverseLength[a].upload(axis.inverseLength, std::size_t(axis.count) * sizeof(double),
-                                "the knot spans");
-    }
-    if (host.mask.nodes) b.mask.upload(host.mask.nodes, maskNodeCount(host.mask), "the mask");
-    b.modelKey = key;
-    b.haveModel = true;
+                  " (render it on the CPU, or encode fewer control points)");
+    b.modelCopies = upload(arrays, b.model);
+    b.modelKey = arrays;
   }
 
   ModelLaunch l;
-  l.view = host;
-  l.view.spline.ctrl = b.ctrl.as<const float>();
-  for (int a = 0; a < 3; ++a) {
-    l.view.spline.axis[a].knots = b.knots[a].as<const double>();
-    l.view.spline.axis[a].poly = b.poly[a].as<const float>();
-    l.view.spline.axis[a].inverseLength = b.inverseLength[a].as<const double>();
-  }
-  if (host.mask.nodes) l.view.mask.nodes = b.mask.as<const std::uint8_t>();
+  l.view = relocateModel(setup.view(), b.modelCopies);
   if (const auto flags = setup.emptySpaceFlags()) {
-    // Held here, so that the same address is the same flags: a viewer's frames upload them
-    // once per transfer function.
     if (flags != b.flags) {
       b.flags = nullptr;
-      b.emptyCells.upload(flags->cells.data(), flags->cells.size(), "the empty-space flags");
-      b.emptyBlocks.upload(flags->blocks.data(), flags->blocks.size(), "the empty-space flags");
+      b.flagAddresses = upload(flagArrays(*flags), b.flagCopies);
       b.flags = flags;
     }
-    l.view.empty = b.emptyCells.as<const std::uint8_t>();
-    l.view.emptyBlocks = b.emptyBlocks.as<const std::uint8_t>();
+    l.view = relocateFlags(l.view, b.flagAddresses);
   }
-  l.params = uploadFrame(setup.params(), b.tf, b.rayEnd, b.image, b.counters);
+  l.params = uploadFrame(setup.params(), b.frame, b.image, b.counters);
   l.masked = setup.masked();
   l.shade = settings.shade;
   l.skip = setup.skips();
@@ -220,7 +172,7 @@ Image CudaRenderer::renderTrilinear(const PaddedGrid& grid, const RenderSettings
   GridLaunch l;
   l.grid = host;
   l.grid.data = b.grid.as<const float>();
-  l.params = uploadFrame(params, b.tf, b.rayEnd, b.image, b.counters);
+  l.params = uploadFrame(params, b.frame, b.image, b.counters);
   l.shade = settings.shade;
   l.image = b.image.as<float>();
   l.counters = b.counters.as<DeviceRayCounters>();

@@ -6,13 +6,11 @@
 
 namespace mfadvr {
 
-Image renderModel(const ModelField& field, const RenderSettings& settings, RenderStats* stats) {
-  const ModelRenderSetup setup(field, settings);
-  const RayParams& params = setup.params();
-  const ModelView& view = setup.view();
+Image renderModelView(const RenderSettings& settings, const RayParams& params,
+                      const ModelView& view, RenderStats* stats) {
   Image image(settings.width, settings.height);
-  const bool masked = setup.masked();
-  const bool skip = setup.skips();
+  const bool masked = view.mask.nodes != nullptr;
+  const bool skip = view.empty != nullptr;
   splineDegreeSwitch(view.spline, [&]<int P>() {
     auto cast = [&]<bool Masked, bool Shade, bool Skip>() {
       castRays<Masked, Shade>(
@@ -36,6 +34,12 @@ Image renderModel(const ModelField& field, const RenderSettings& settings, Rende
     else
       withShade.template operator()<false>();
   });
+  return image;
+}
+
+Image renderModel(const ModelField& field, const RenderSettings& settings, RenderStats* stats) {
+  const ModelRenderSetup setup(field, settings);
+  Image image = renderModelView(settings, setup.params(), setup.view(), stats);
   if (stats) stats->seconds += setup.setupSeconds();
   return image;
 }

@@ -55,6 +55,12 @@ void castRays(const RenderSettings& settings, const RayParams& params, const Mak
 Image renderModel(const ModelField& field, const RenderSettings& settings,
                   RenderStats* stats = nullptr);
 
+struct ModelView;
+// The same from the plain structs of a render (ModelRenderSetup.h), or copies of them: the one
+// switch on degree, mask (view.mask.nodes), shading and skipping (view.empty) per render.
+Image renderModelView(const RenderSettings& settings, const RayParams& params,
+                      const ModelView& view, RenderStats* stats = nullptr);
+
 // Renders `field` with `settings`; stats (optional) receive the timing and counts.
 template <Field F>
 Image renderVolume(const F& field, const RenderSettings& settings, RenderStats* stats = nullptr) {

@@ -1,0 +1,85 @@
+#include "gpu/DeviceArrays.h"
+
+#include "core/util/Error.h"
+
+namespace mfadvr::gpu {
+
+namespace {
+
+void expectCopies(const std::vector<HostArray>& arrays, const std::vector<const void*>& copies) {
+  if (arrays.size() != copies.size())
+    throw Error("device arrays: " + std::to_string(copies.size()) + " copies for " +
+                std::to_string(arrays.size()) + " arrays");
+}
+
+}  // namespace
+
+std::size_t totalBytes(const std::vector<HostArray>& arrays) {
+  std::size_t sum = 0;
+  for (const HostArray& a : arrays) sum += a.bytes;
+  return sum;
+}
+
+std::vector<HostArray> modelArrays(const ModelView& v) {
+  const SplineView& s = v.spline;
+  std::vector<HostArray> out;
+  out.push_back({s.ctrl,
+                 std::size_t(s.axis[0].count) * s.axis[1].count * s.axis[2].count * sizeof(float),
+                 "the control points"});
+  for (const KnotAxisView& a : s.axis) {
+    const std::size_t count = std::size_t(a.count), width = std::size_t(a.degree) + 1;
+    out.push_back({a.knots, (count + width) * sizeof(double), "the knots"});
+    out.push_back({a.poly, count * width * width * sizeof(float), "the basis polynomials"});
+    out.push_back({a.inverseLength, count * sizeof(double), "the knot spans"});
+  }
+  if (v.mask.nodes)
+    out.push_back({v.mask.nodes, std::size_t(v.mask.dims[0] * v.mask.dims[1] * v.mask.dims[2]),
+                   "the domain mask"});
+  return out;
+}
+
+ModelView relocateModel(const ModelView& view, const std::vector<const void*>& copies) {
+  expectCopies(modelArrays(view), copies);
+  ModelView v = view;
+  std::size_t i = 0;
+  v.spline.ctrl = static_cast<const float*>(copies[i++]);
+  for (KnotAxisView& a : v.spline.axis) {
+    a.knots = static_cast<const double*>(copies[i++]);
+    a.poly = static_cast<const float*>(copies[i++]);
+    a.inverseLength = static_cast<const double*>(copies[i++]);
+  }
+  if (v.mask.nodes) v.mask.nodes = static_cast<const std::uint8_t*>(copies[i++]);
+  return v;
+}
+
+std::vector<HostArray> flagArrays(const EmptySpaceFlags& flags) {
+  return {{flags.cells.data(), flags.cells.size(), "the empty-space flags"},
+          {flags.blocks.data(), flags.blocks.size(), "the empty-space blocks"}};
+}
+
+ModelView relocateFlags(const ModelView& view, const std::vector<const void*>& copies) {
+  if (copies.size() != 2) throw Error("device arrays: the flags need 2 copies");
+  ModelView v = view;
+  v.empty = static_cast<const std::uint8_t*>(copies[0]);
+  v.emptyBlocks = static_cast<const std::uint8_t*>(copies[1]);
+  return v;
+}
+
+std::vector<HostArray> frameArrays(const RayParams& p) {
+  std::vector<HostArray> out{
+      {p.tf.entries, std::size_t(p.tf.count) * sizeof(TfEntry), "the transfer-function table"}};
+  if (p.rayEnd)
+    out.push_back(
+        {p.rayEnd, std::size_t(p.camera.width) * p.camera.height * sizeof(float), "the ray ends"});
+  return out;
+}
+
+RayParams relocateFrame(const RayParams& params, const std::vector<const void*>& copies) {
+  expectCopies(frameArrays(params), copies);
+  RayParams p = params;
+  p.tf.entries = static_cast<const TfEntry*>(copies[0]);
+  if (p.rayEnd) p.rayEnd = static_cast<const float*>(copies[1]);
+  return p;
+}
+
+}  // namespace mfadvr::gpu
