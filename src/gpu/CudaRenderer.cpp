@@ -109,6 +109,19 @@ void readBack(const RayParams& params, DeviceArray& image, const DeviceArray& co
   }
 }
 
+// One frame: its arrays up, `launch(params, image, counters)` on the relocated parameters, the
+// image and counters back.
+template <class Launch>
+Image renderFrame(const RayParams& hostParams, std::vector<DeviceArray>& frame, DeviceArray& image,
+                  DeviceArray& counters, Launch&& launch, RenderStats* stats,
+                  double& kernelSeconds) {
+  const RayParams params = uploadFrame(hostParams, frame, image, counters);
+  kernelSeconds = launch(params, image.as<float>(), counters.as<DeviceRayCounters>());
+  Image out(params.camera.width, params.camera.height);
+  readBack(params, image, counters, out, stats);
+  return out;
+}
+
 }  // namespace
 
 Image CudaRenderer::renderModel(const ModelField& field, const RenderSettings& settings,
@@ -129,26 +142,29 @@ Image CudaRenderer::renderModel(const ModelField& field, const RenderSettings& s
     b.modelKey = arrays;
   }
 
-  ModelLaunch l;
-  l.view = relocateModel(setup.view(), b.modelCopies);
+  ModelView view = relocateModel(setup.view(), b.modelCopies);
   if (const auto flags = setup.emptySpaceFlags()) {
     if (flags != b.flags) {
       b.flags = nullptr;
       b.flagAddresses = upload(flagArrays(*flags), b.flagCopies);
       b.flags = flags;
     }
-    l.view = relocateFlags(l.view, b.flagAddresses);
+    view = relocateFlags(view, b.flagAddresses);
   }
-  l.params = uploadFrame(setup.params(), b.frame, b.image, b.counters);
-  l.masked = setup.masked();
-  l.shade = settings.shade;
-  l.skip = setup.skips();
-  l.image = b.image.as<float>();
-  l.counters = b.counters.as<DeviceRayCounters>();
-  lastKernelSeconds_ = launchModelRays(l);
-
-  Image image(settings.width, settings.height);
-  readBack(l.params, b.image, b.counters, image, stats);
+  Image image = renderFrame(
+      setup.params(), b.frame, b.image, b.counters,
+      [&](const RayParams& params, float* pixels, DeviceRayCounters* counters) {
+        ModelLaunch l;
+        l.params = params;
+        l.view = view;
+        l.masked = setup.masked();
+        l.shade = settings.shade;
+        l.skip = setup.skips();
+        l.image = pixels;
+        l.counters = counters;
+        return launchModelRays(l);
+      },
+      stats, lastKernelSeconds_);
   if (stats) stats->seconds = std::chrono::duration<double>(Clock::now() - start).count();
   return image;
 }
@@ -169,17 +185,19 @@ Image CudaRenderer::renderTrilinear(const PaddedGrid& grid, const RenderSettings
       settings.transferFunction,
       OpacityCorrection(settings.sampleDistance / settings.opacityUnitDistance));
   const RayParams params = compileRayParams(settings, table, grid.boxMin(), grid.boxMax());
-  GridLaunch l;
-  l.grid = host;
-  l.grid.data = b.grid.as<const float>();
-  l.params = uploadFrame(params, b.frame, b.image, b.counters);
-  l.shade = settings.shade;
-  l.image = b.image.as<float>();
-  l.counters = b.counters.as<DeviceRayCounters>();
-  lastKernelSeconds_ = launchGridRays(l);
-
-  Image image(settings.width, settings.height);
-  readBack(l.params, b.image, b.counters, image, stats);
+  Image image = renderFrame(
+      params, b.frame, b.image, b.counters,
+      [&](const RayParams& relocated, float* pixels, DeviceRayCounters* counters) {
+        GridLaunch l;
+        l.params = relocated;
+        l.grid = host;
+        l.grid.data = b.grid.as<const float>();
+        l.shade = settings.shade;
+        l.image = pixels;
+        l.counters = counters;
+        return launchGridRays(l);
+      },
+      stats, lastKernelSeconds_);
   if (stats) stats->seconds = std::chrono::duration<double>(Clock::now() - start).count();
   return image;
 }
