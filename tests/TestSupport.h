@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include "core/mask/DomainMask.h"
 #include "core/util/Error.h"
 
 namespace mfadvr::test {
@@ -44,6 +45,18 @@ void expectError(F&& f, const std::vector<std::string>& parts) {
       EXPECT_NE(std::string(e.what()).find(p), std::string::npos)
           << "missing '" << p << "' in: " << e.what();
   }
+}
+
+// A domain mask of 17^3 nodes: the ball of radius 7 nodes about the centre is inside.
+inline DomainMask ballMask() {
+  const Index3 dims{17, 17, 17};
+  std::vector<std::uint8_t> nodes(17 * 17 * 17);
+  for (int k = 0; k < 17; ++k)
+    for (int j = 0; j < 17; ++j)
+      for (int i = 0; i < 17; ++i)
+        nodes[i + 17 * (j + 17 * k)] =
+            (i - 8) * (i - 8) + (j - 8) * (j - 8) + (k - 8) * (k - 8) <= 49 ? 1 : 0;
+  return DomainMask(MaskKind::PointCoverage, dims, nodes);
 }
 
 }  // namespace mfadvr::test

@@ -4,6 +4,7 @@
 // program must run on a machine without data files.
 #include <map>
 
+#include "TestSupport.h"
 #include "core/analytic/BuiltinFunction.h"
 #include "core/encode/StructuredEncoder.h"
 #include "core/model/Model.h"
@@ -44,14 +45,7 @@ inline const Model& mixedDegreeModel() {
 inline const Model& maskedModel() {
   static const Model m = [] {
     Model copy = mlModel(3);
-    const Index3 dims{17, 17, 17};
-    std::vector<std::uint8_t> nodes(17 * 17 * 17);
-    for (int k = 0; k < 17; ++k)
-      for (int j = 0; j < 17; ++j)
-        for (int i = 0; i < 17; ++i)
-          nodes[i + 17 * (j + 17 * k)] =
-              (i - 8) * (i - 8) + (j - 8) * (j - 8) + (k - 8) * (k - 8) <= 49 ? 1 : 0;
-    copy.setMask(DomainMask(MaskKind::PointCoverage, dims, nodes));
+    copy.setMask(test::ballMask());
     return copy;
   }();
   return m;
