@@ -199,7 +199,7 @@ Command addRenderCommand(CLI::App& app) {
     const auto start = Clock::now();
     if (const auto vtk = findVtkMethod(o->method)) {
       if (o->device == "cuda")
-        throw Error("--device cuda: " + o->method +
+        throw Error("device 'cuda': " + o->method +
                     " is VTK's own renderer and runs where VTK runs it; use --device auto or cpu");
       return renderWithVtk(*o, *vtk, start);
     }

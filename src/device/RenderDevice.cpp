@@ -19,6 +19,8 @@ bool buildHasCuda() {
 
 namespace {
 
+const std::string kCudaRequired = "device 'cuda': ";
+
 RenderDevice cpu(const std::string& why) {
   RenderDevice d;
   d.name = "cpu";
@@ -35,19 +37,13 @@ RenderDevice openRenderDevice(const std::string& choice, const MethodSpec& spec)
     throw Error("unknown device '" + choice + "'; choose auto, cpu or cuda");
   const bool required = choice == "cuda";
   if (!deviceRendersMethod(spec)) {
-    const std::string why =
-        "method '" + methodName(spec.method) + "'" +
-        (spec.gradientFrom || spec.gradient != GradientMode::Analytic ? " with this gradient"
-                                                                      : "") +
-        " renders on the CPU only (the GPU renders 'mfa' and 'trilinear' "
-        "with analytic gradients)";
-    if (required) throw Error("--device cuda: " + why);
-    return cpu(why);
+    if (required) throw Error(kCudaRequired + whyNotOnDevice(spec));
+    return cpu(whyNotOnDevice(spec));
   }
 #if defined(MFADVR_HAVE_CUDA)
   const gpu::CudaDeviceStatus status = gpu::cudaDeviceStatus();
   if (!status.usable) {
-    if (required) throw Error("--device cuda: " + status.describe());
+    if (required) throw Error(kCudaRequired + status.describe());
     return cpu(status.describe());
   }
   RenderDevice d;
@@ -58,7 +54,7 @@ RenderDevice openRenderDevice(const std::string& choice, const MethodSpec& spec)
 #else
   const std::string why =
       "this mfadvr was built without the CUDA backend (no nvcc when it was configured)";
-  if (required) throw Error("--device cuda: " + why);
+  if (required) throw Error(kCudaRequired + why);
   return cpu(why);
 #endif
 }

@@ -53,7 +53,7 @@ TEST(CliDevice, CudaFailsCleanlyWithoutAGpuAndMatchesTheCpuWithOne) {
   const auto r = runMfadvr(kScene + " --device cuda -o " + png.string());
   if (!gpu) {
     EXPECT_EQ(r.status, 1);
-    EXPECT_NE(r.err.find("--device cuda"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("device 'cuda'"), std::string::npos) << r.err;
     EXPECT_FALSE(std::filesystem::exists(png));
   } else {
     ASSERT_EQ(r.status, 0) << r.err;
@@ -72,7 +72,7 @@ TEST(CliDevice, MethodsTheGpuDoesNotRenderAreRefusedOrFallBack) {
        {"--method tricubic", "--gradient central", "--method vtk-fixedpoint"}) {
     const auto r = runMfadvr(kScene + " --device cuda " + args + " -o " + png.string());
     EXPECT_EQ(r.status, 1) << args;
-    EXPECT_NE(r.err.find("--device cuda"), std::string::npos) << args << ": " << r.err;
+    EXPECT_NE(r.err.find("device 'cuda'"), std::string::npos) << args << ": " << r.err;
     EXPECT_FALSE(std::filesystem::exists(png)) << args;
   }
   const auto fallback = runMfadvr(kScene + " --device auto --method tricubic -o " + png.string());

@@ -88,23 +88,27 @@ bool isGridMethod(ReconstructionMethod m) {
   return m != ReconstructionMethod::Mfa && m != ReconstructionMethod::Truth;
 }
 
+std::string whyNotOnDevice(const MethodSpec& spec) {
+  if ((spec.method == ReconstructionMethod::Mfa ||
+       spec.method == ReconstructionMethod::Trilinear) &&
+      spec.gradient == GradientMode::Analytic && !spec.gradientFrom)
+    return {};
+  return "method '" + methodName(spec.method) + "'" +
+         (spec.gradientFrom || spec.gradient != GradientMode::Analytic ? " with this gradient"
+                                                                       : "") +
+         " renders on the CPU only (the GPU renders 'mfa' and 'trilinear' with analytic "
+         "gradients)";
+}
+
 bool deviceRendersMethod(const MethodSpec& spec) {
-  return (spec.method == ReconstructionMethod::Mfa ||
-          spec.method == ReconstructionMethod::Trilinear) &&
-         spec.gradient == GradientMode::Analytic && !spec.gradientFrom;
+  return whyNotOnDevice(spec).empty();
 }
 
 Image renderMethod(const SceneData& scene, const MethodSpec& spec, const RenderSettings& settings,
                    MethodRenderStats* stats) {
   settings.validate();
   if (spec.device && !deviceRendersMethod(spec))
-    throw Error("the " + spec.device->description() +
-                " renders methods 'mfa' and 'trilinear' with analytic gradients; '" +
-                methodName(spec.method) + "'" +
-                (spec.gradientFrom || spec.gradient != GradientMode::Analytic
-                     ? " with this gradient"
-                     : "") +
-                " renders on the CPU only");
+    throw Error(spec.device->description() + ": " + whyNotOnDevice(spec));
   if (spec.gradient == GradientMode::CentralDifference &&
       !(scene.differenceStep.array() > 0.0).all())
     throw Error("central differences need a positive step");

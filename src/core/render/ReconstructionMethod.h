@@ -58,9 +58,10 @@ struct MethodRenderStats : RenderStats {
   double setupSeconds = 0.0;  // building the field (padding, prefiltering); 0 for mfa and truth
 };
 
-// Whether `device` can render `spec` (method mfa or trilinear, analytic gradients, no gradient
-// test).
+// Whether a DeviceRenderer can render `spec` (method mfa or trilinear, analytic gradients, no
+// gradient test), and if not, why (a sentence for messages; empty when it can).
 bool deviceRendersMethod(const MethodSpec& spec);
+std::string whyNotOnDevice(const MethodSpec& spec);
 
 // Throws mfadvr::Error when the scene lacks what the method needs.
 Image renderMethod(const SceneData& scene, const MethodSpec& spec, const RenderSettings& settings,
