@@ -34,6 +34,7 @@ class PaddedGrid {
     return data_.data() + ((i + 1) + sy_ * (j + 1) + sz_ * (k + 1));
   }
   std::int64_t strideY() const { return sy_; }
+  std::int64_t strideZ() const { return sz_; }
   // The plain view of the trilinear kernel (render/kernel/TrilinearKernel.h); valid while this
   // grid lives.
   GridView view() const {
@@ -50,26 +51,17 @@ class PaddedGrid {
   }
   // Number of floats in the padded array (view().data).
   size_t paddedSize() const { return data_.size(); }
-  std::int64_t strideZ() const { return sz_; }
 
-  // Continuous index of physical point x, clamped to [0, n-1] per axis.
+  // Continuous index of physical point x, clamped to [0, n-1] per axis (the lookup of
+  // render/kernel/TrilinearKernel.h, shared with the GPU).
   [[gnu::always_inline]] Vec3d continuousIndex(const Vec3d& x) const {
-    Vec3d u = (x - origin_).cwiseProduct(invSpacing_);
-    // Ternaries rather than std::fmin/fmax, which are library calls when NaN rules apply.
-    for (int a = 0; a < 3; ++a) {
-      const double hi = double(dims_[a] - 1);
-      u[a] = u[a] > 0.0 ? (u[a] < hi ? u[a] : hi) : 0.0;
-    }
+    Vec3d u;
+    for (int a = 0; a < 3; ++a) u[a] = gridIndex(x[a], origin_[a], invSpacing_[a], dims_[a]);
     return u;
   }
   // Cell of a continuous index: i in [0, n-2] and the fraction t in [0, 1].
   [[gnu::always_inline]] void cell(const Vec3d& u, std::int64_t i[3], double t[3]) const {
-    for (int a = 0; a < 3; ++a) {
-      std::int64_t c = static_cast<std::int64_t>(u[a]);  // u >= 0, so truncation is floor
-      if (c > dims_[a] - 2) c = dims_[a] - 2;
-      i[a] = c;
-      t[a] = u[a] - static_cast<double>(c);
-    }
+    for (int a = 0; a < 3; ++a) gridCellOf(u[a], dims_[a], i[a], t[a]);
   }
 
  private:

@@ -25,7 +25,6 @@ class ModelRenderSetup {
 
   const RayParams& params() const { return params_; }
   const ModelView& view() const { return view_; }
-  const TransferFunctionTable& table() const { return table_; }
   bool masked() const { return view_.mask.nodes != nullptr; }
   // Whether the view carries empty-space flags (skipping on and something to skip).
   bool skips() const { return view_.empty != nullptr; }

@@ -19,19 +19,28 @@ struct GridView {
   double inverseSpacing[3] = {1.0, 1.0, 1.0};
 };
 
-// The cell of physical point x (its continuous index clamped to [0, n-1]): pointer to its first
-// corner and the fractions t in [0, 1].
+// One axis of the grid lookup, shared by every grid filter (PaddedGrid.h) and the GPU: the
+// continuous index of coordinate x on an axis of n samples, clamped to [0, n-1] (NaN -> 0;
+// ternaries rather than fmin/fmax, which are library calls when NaN rules apply) ...
+MFADVR_HD MFADVR_INLINE double gridIndex(double x, double origin, double inverseSpacing,
+                                         std::int64_t n) {
+  const double u = (x - origin) * inverseSpacing;
+  const double hi = static_cast<double>(n - 1);
+  return u > 0.0 ? (u < hi ? u : hi) : 0.0;
+}
+// ... and its cell i in [0, n-2] with the fraction t in [0, 1].
+MFADVR_HD MFADVR_INLINE void gridCellOf(double u, std::int64_t n, std::int64_t& i, double& t) {
+  i = static_cast<std::int64_t>(u);  // u >= 0, so truncation is floor
+  if (i > n - 2) i = n - 2;
+  t = u - static_cast<double>(i);
+}
+
+// The cell of physical point x: pointer to its first corner and the fractions t.
 MFADVR_HD MFADVR_INLINE const float* gridCell(const GridView& g, const double x[3], double t[3]) {
   std::int64_t c[3];
-  for (int a = 0; a < 3; ++a) {
-    double u = (x[a] - g.origin[a]) * g.inverseSpacing[a];
-    const double hi = static_cast<double>(g.dims[a] - 1);
-    u = u > 0.0 ? (u < hi ? u : hi) : 0.0;          // NaN -> 0
-    std::int64_t i = static_cast<std::int64_t>(u);  // u >= 0, so truncation is floor
-    if (i > g.dims[a] - 2) i = g.dims[a] - 2;
-    c[a] = i;
-    t[a] = u - static_cast<double>(i);
-  }
+  for (int a = 0; a < 3; ++a)
+    gridCellOf(gridIndex(x[a], g.origin[a], g.inverseSpacing[a], g.dims[a]), g.dims[a], c[a],
+               t[a]);
   return g.data + ((c[0] + 1) + g.sy * (c[1] + 1) + g.sz * (c[2] + 1));
 }
 
