@@ -9,14 +9,6 @@
 
 namespace mfadvr {
 
-bool buildHasCuda() {
-#if defined(MFADVR_HAVE_CUDA)
-  return true;
-#else
-  return false;
-#endif
-}
-
 namespace {
 
 const std::string kCudaRequired = "device 'cuda': ";

@@ -21,7 +21,4 @@ struct RenderDevice {
 // `spec`, and for any other word.
 RenderDevice openRenderDevice(const std::string& choice, const MethodSpec& spec);
 
-// Whether this build has the CUDA backend.
-bool buildHasCuda();
-
 }  // namespace mfadvr

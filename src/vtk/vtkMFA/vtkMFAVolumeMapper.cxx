@@ -68,38 +68,40 @@ struct vtkMFAVolumeMapper::Internals {
   // Empty-space flags of the current model and transfer function, kept between frames.
   mfadvr::EmptySpaceCache EmptySpace;
   // GPU renderers, one per model rendered (the single model, or each carried one), so that each
-  // keeps its model in GPU memory; made for the Device in GpuFor.
+  // keeps its model in GPU memory; made for the Device in GpuFor. With DeviceAuto and no usable
+  // GPU the answer is remembered until the Device changes.
   std::vector<std::unique_ptr<mfadvr::DeviceRenderer>> Gpu;
   int GpuFor = -1;
+  bool NoGpu = false;
   std::string DeviceDescription;
 
-  // The renderer for model `i` under `device`, or null for the CPU; throws for DeviceCUDA
-  // without a usable GPU.
-  mfadvr::DeviceRenderer* GpuRenderer(int device, size_t i) {
+  // Renders model `i` (0 for a single model) on `device`; `used` receives DeviceCPU or
+  // DeviceCUDA. Throws for DeviceCUDA without a usable GPU.
+  mfadvr::Image RenderModel(int device, size_t i, const mfadvr::ModelField& field,
+                            const mfadvr::RenderSettings& settings, int& used) {
     if (device != this->GpuFor) {
       this->Gpu.clear();
       this->GpuFor = device;
-      this->DeviceDescription.clear();
+      this->NoGpu = device == vtkMFAVolumeMapper::DeviceCPU;
+      this->DeviceDescription = this->NoGpu ? "CPU" : "";
     }
-    if (device == vtkMFAVolumeMapper::DeviceCPU) {
-      this->DeviceDescription = "CPU";
-      return nullptr;
+    if (!this->NoGpu && (i >= this->Gpu.size() || !this->Gpu[i])) {
+      mfadvr::MethodSpec spec;  // the model, analytic gradients
+      mfadvr::RenderDevice opened = mfadvr::openRenderDevice(
+          device == vtkMFAVolumeMapper::DeviceCUDA ? "cuda" : "auto", spec);
+      this->DeviceDescription = opened.description;
+      this->NoGpu = !opened.renderer;
+      if (opened.renderer) {
+        this->Gpu.resize(std::max(this->Gpu.size(), i + 1));
+        this->Gpu[i] = std::move(opened.renderer);
+      }
     }
-    if (i < this->Gpu.size() && this->Gpu[i]) {
-      return this->Gpu[i].get();
+    if (this->NoGpu) {
+      used = vtkMFAVolumeMapper::DeviceCPU;
+      return mfadvr::renderVolume(field, settings);
     }
-    mfadvr::MethodSpec spec;  // the model, analytic gradients
-    mfadvr::RenderDevice opened =
-        mfadvr::openRenderDevice(device == vtkMFAVolumeMapper::DeviceCUDA ? "cuda" : "auto", spec);
-    this->DeviceDescription = opened.description;
-    if (!opened.renderer) {
-      return nullptr;
-    }
-    if (this->Gpu.size() <= i) {
-      this->Gpu.resize(i + 1);
-    }
-    this->Gpu[i] = std::move(opened.renderer);
-    return this->Gpu[i].get();
+    used = vtkMFAVolumeMapper::DeviceCUDA;
+    return this->Gpu[i]->renderModel(field, settings, nullptr);
   }
 };
 
@@ -354,23 +356,14 @@ void vtkMFAVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol) {
       for (const auto& c : in.Carried) regions.push_back(c.region);
       image = mfadvr::renderPieces(
           s, regions, [&](size_t i, const mfadvr::RenderSettings& piece, mfadvr::RenderStats*) {
-            const mfadvr::ModelField field(*in.Carried[i].model, &in.CarriedEmptySpace[i]);
-            if (mfadvr::DeviceRenderer* gpu = in.GpuRenderer(this->Device, i)) {
-              this->LastDevice = DeviceCUDA;
-              return gpu->renderModel(field, piece, nullptr);
-            }
-            this->LastDevice = DeviceCPU;
-            return mfadvr::renderVolume(field, piece);
+            return in.RenderModel(
+                this->Device, i, mfadvr::ModelField(*in.Carried[i].model, &in.CarriedEmptySpace[i]),
+                piece, this->LastDevice);
           });
     } else {
-      const mfadvr::ModelField field(*model, &this->Internal->EmptySpace);
-      if (mfadvr::DeviceRenderer* gpu = this->Internal->GpuRenderer(this->Device, 0)) {
-        this->LastDevice = DeviceCUDA;
-        image = gpu->renderModel(field, s, nullptr);
-      } else {
-        this->LastDevice = DeviceCPU;
-        image = mfadvr::renderVolume(field, s);
-      }
+      image = this->Internal->RenderModel(this->Device, 0,
+                                          mfadvr::ModelField(*model, &this->Internal->EmptySpace),
+                                          s, this->LastDevice);
     }
     if (image.width != rw || image.height != rh) {
       throw std::runtime_error("the field renderer returned an image of the wrong size");
