@@ -32,33 +32,20 @@ __device__ void addCounters(const RayCounters& c, DeviceRayCounters* total) {
   }
 }
 
-template <int P, bool Masked, bool Shade, bool Skip>
+// One ray per thread with a Sampler made from `view` (ModelView for the model, GridView for the
+// trilinear grid), as the CPU driver's tiles do it.
+template <bool Masked, bool Shade, class Sampler, class View>
 __global__ void __launch_bounds__(kBlockX* kBlockY)
-    modelRaysKernel(RayParams params, ModelView view, float* image, DeviceRayCounters* counters) {
+    raysKernel(RayParams params, View view, float* image, DeviceRayCounters* counters) {
   const int x = blockIdx.x * blockDim.x + threadIdx.x;
   const int y = blockIdx.y * blockDim.y + threadIdx.y;
   RayCounters c;
   // Threads outside the image still take part in the block's counter sums.
   if (x < params.camera.width && y < params.camera.height) {
-    SplineRaySampler<P, Skip, Shade> sampler(view);
+    Sampler sampler(view);
     integrateRay<Masked, Shade>(params, sampler, x, y,
                                 image + 4 * (static_cast<long long>(y) * params.camera.width + x),
                                 c);
-  }
-  addCounters(c, counters);
-}
-
-template <bool Shade>
-__global__ void __launch_bounds__(kBlockX* kBlockY)
-    gridRaysKernel(RayParams params, GridView grid, float* image, DeviceRayCounters* counters) {
-  const int x = blockIdx.x * blockDim.x + threadIdx.x;
-  const int y = blockIdx.y * blockDim.y + threadIdx.y;
-  RayCounters c;
-  if (x < params.camera.width && y < params.camera.height) {
-    TrilinearRaySampler<Shade> sampler(grid);
-    integrateRay<false, Shade>(params, sampler, x, y,
-                               image + 4 * (static_cast<long long>(y) * params.camera.width + x),
-                               c);
   }
   addCounters(c, counters);
 }
@@ -87,7 +74,8 @@ double timedLaunch(const CameraRays& camera, Launch&& launch) {
 
 template <int P, bool Masked, bool Shade, bool Skip>
 void launchModel(const ModelLaunch& l, dim3 grid, dim3 block) {
-  modelRaysKernel<P, Masked, Shade, Skip><<<grid, block>>>(l.params, l.view, l.image, l.counters);
+  raysKernel<Masked, Shade, SplineRaySampler<P, Skip, Shade>, ModelView>
+      <<<grid, block>>>(l.params, l.view, l.image, l.counters);
 }
 
 template <int P>
@@ -139,16 +127,18 @@ double launchModelRays(const ModelLaunch& l) {
 double launchGridRays(const GridLaunch& l) {
   return timedLaunch(l.params.camera, [&](dim3 grid, dim3 block) {
     if (l.shade)
-      gridRaysKernel<true><<<grid, block>>>(l.params, l.grid, l.image, l.counters);
+      raysKernel<false, true, TrilinearRaySampler<true>, GridView>
+          <<<grid, block>>>(l.params, l.grid, l.image, l.counters);
     else
-      gridRaysKernel<false><<<grid, block>>>(l.params, l.grid, l.image, l.counters);
+      raysKernel<false, false, TrilinearRaySampler<false>, GridView>
+          <<<grid, block>>>(l.params, l.grid, l.image, l.counters);
   });
 }
 
 std::string kernelImageProblem() {
   cudaFuncAttributes attributes;
-  const cudaError_t status =
-      cudaFuncGetAttributes(&attributes, modelRaysKernel<3, false, true, true>);
+  const cudaError_t status = cudaFuncGetAttributes(
+      &attributes, raysKernel<false, true, SplineRaySampler<3, true, true>, ModelView>);
   if (status == cudaSuccess) return {};
   cudaGetLastError();
   if (status == cudaErrorNoKernelImageForDevice)
