@@ -29,7 +29,8 @@ std::vector<HostArray> modelArrays(const ModelView& v) {
   for (const KnotAxisView& a : s.axis) {
     const std::size_t count = std::size_t(a.count), width = std::size_t(a.degree) + 1;
     out.push_back({a.knots, (count + width) * sizeof(double), "the knots"});
-    out.push_back({a.poly, count * width * width * sizeof(float), "the basis polynomials"});
+    out.push_back({a.poly, (count * width * width + kSplineRowPadding) * sizeof(float),
+                   "the basis polynomials"});
     out.push_back({a.inverseLength, count * sizeof(double), "the knot spans"});
   }
   if (v.mask.nodes)

@@ -21,7 +21,7 @@ TransferFunctionTable::TransferFunctionTable(const TransferFunction& tf,
     const double x = i == kEntries - 1 ? hi : lo + (hi - lo) * i / double(kEntries - 1);
     const Vec3f rgb = tf.colorAt(x);
     const float alpha = tf.opacityAt(x);
-    entries_[i] = {rgb[0], rgb[1], rgb[2], alpha, correction.full(alpha)};
+    entries_[i] = {rgb[0], rgb[1], rgb[2], alpha, correction.full(alpha), {}};
   }
   visibleBefore_.assign(kEntries + 1, 0);
   for (int i = 0; i < kEntries; ++i)

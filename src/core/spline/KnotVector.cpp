@@ -66,7 +66,8 @@ KnotAxisView KnotVector::view() const {
 // for high degrees (at the left end, degree 7 lost a few more bits).
 void KnotVector::buildBasisPolynomials() {
   const int p = degree_, w = p + 1, n = controlCount();
-  poly_.assign(static_cast<size_t>(n) * w * w, 0.0f);
+  // The padding lets the kernel load any row as one full SIMD vector (SplineKernel.h).
+  poly_.assign(static_cast<size_t>(n) * w * w + kSplineRowPadding, 0.0f);
   inverseLength_.assign(static_cast<size_t>(n), 0.0);
   double ders[(kMaxDegree + 1) * (kMaxDegree + 1)];
   for (int s = p; s < n; ++s) {

@@ -68,15 +68,32 @@ MFADVR_INLINE V loadLanesOf(const float* x, int n) {
   }
   return v;
 }
-template <int W>
-MFADVR_INLINE LaneVector<W> loadLanes(const float* x) {
-  return loadLanesOf<LaneVector<W>>(x, W);
+// A whole vector from x: its lanes past the p+1 a row uses read the floats that follow, which
+// the arrays provide (kSplineRowPadding, gatherBlock) and no sum reads.
+template <class V>
+MFADVR_INLINE V loadWhole(const float* x) {
+  V v;
+  __builtin_memcpy(&v, x, sizeof(V));
+  return v;
 }
-template <int W>
-MFADVR_INLINE void storeLanes(const LaneVector<W>& v, float* x) {
-  for (int i = 0; i < W; ++i) x[i] = v[i];
+template <class V>
+MFADVR_INLINE void storeWhole(const V& v, float* x) {
+  __builtin_memcpy(x, &v, sizeof(V));
 }
 #endif
+
+// Floats per basis row: a whole SIMD vector on the vector path (its lanes past p+1 are never
+// summed), else the array bound.
+template <int P>
+struct BasisWidth {
+#if defined(MFADVR_KERNEL_VECTOR_LANES)
+  static constexpr int value = Lanes<P + 1, (P > 0)>::kVector
+                                   ? static_cast<int>(sizeof(LaneVector<P + 1>) / sizeof(float))
+                                   : SplineDegree<P>::kWidth;
+#else
+  static constexpr int value = SplineDegree<P>::kWidth;
+#endif
+};
 
 // Where a parametric coordinate falls on one axis: its span and local coordinate in [-1/2, 1/2]
 // (measured from the span's midpoint, as KnotAxisView::poly expects).
@@ -92,7 +109,8 @@ MFADVR_HD MFADVR_INLINE AxisLocation locateOnAxis(const KnotAxisView& a, double 
 }
 
 // The p+1 non-zero basis functions at `loc` (N), and with Order >= 1 their first, with Order 2
-// also their second derivatives with respect to u (D1, D2).
+// also their second derivatives with respect to u (D1, D2). Each array holds BasisWidth<P>
+// floats.
 template <int P, int Order>
 MFADVR_HD MFADVR_INLINE void axisBasis(const KnotAxisView& a, AxisLocation loc, float* N, float* D1,
                                        float* D2) {
@@ -105,20 +123,21 @@ MFADVR_HD MFADVR_INLINE void axisBasis(const KnotAxisView& a, AxisLocation loc, 
   if constexpr (Lanes<P + 1, (P > 0)>::kVector) {
     // Horner's rule on all p+1 functions at once; d/du = d/dtau / (span length).
     constexpr int V = P + 1;
-    LaneVector<V> n = loadLanes<V>(c + P * V), d1 = {}, d2 = {};
+    using Vec = LaneVector<V>;
+    Vec n = loadWhole<Vec>(c + P * V), d1 = {}, d2 = {};
     if constexpr (Order >= 1) d1 = float(P) * n;
     if constexpr (Order >= 2) d2 = float(P * (P - 1)) * n;
     for (int k = P - 1; k >= 0; --k) {
-      const LaneVector<V> ck = loadLanes<V>(c + k * V);
+      const Vec ck = loadWhole<Vec>(c + k * V);
       n = n * t + ck;
       if constexpr (Order >= 1)
         if (k >= 1) d1 = d1 * t + float(k) * ck;
       if constexpr (Order >= 2)
         if (k >= 2) d2 = d2 * t + float(k * (k - 1)) * ck;
     }
-    storeLanes<V>(n, N);
-    if constexpr (Order >= 1) storeLanes<V>(d1 * inv, D1);
-    if constexpr (Order >= 2) storeLanes<V>(d2 * (inv * inv), D2);
+    storeWhole(n, N);
+    if constexpr (Order >= 1) storeWhole(d1 * inv, D1);
+    if constexpr (Order >= 2) storeWhole(d2 * (inv * inv), D2);
     return;
   }
 #endif
@@ -147,7 +166,7 @@ MFADVR_HD MFADVR_INLINE void axisBasis(const KnotAxisView& a, AxisLocation loc, 
 // The basis of all three axes at one point.
 template <int P, int Order>
 struct PointBasis {
-  static constexpr int W = SplineDegree<P>::kWidth;
+  static constexpr int W = BasisWidth<P>::value;
   int p[3];
   float N[3][W];
   float D1[3][Order >= 1 ? W : 1];
@@ -223,11 +242,10 @@ template <class V>
 MFADVR_INLINE void rowFma(V& acc, float w, const V& r, int) {
   acc += w * r;
 }
+// basis: a whole vector (BasisWidth).
 template <class V>
 MFADVR_INLINE float rowDot(const V& r, const float* basis, int n) {
-  V b;
-  rowLoad(b, basis, n);
-  const V m = r * b;
+  const V m = r * loadWhole<V>(basis);
   float s = 0.0f;
   for (int i = 0; i < n; ++i) s += m[i];
   return s;
@@ -261,6 +279,19 @@ MFADVR_HD MFADVR_INLINE void gatherBlock(const SplineView& v, const AxisLocation
   const int p0 = SplineDegree<P>::of(v.axis[0].degree), p1 = SplineDegree<P>::of(v.axis[1].degree),
             p2 = SplineDegree<P>::of(v.axis[2].degree);
   const float* src = v.ctrl + blockOffset<P>(v, loc);
+#if defined(MFADVR_KERNEL_VECTOR_LANES)
+  if constexpr (Lanes<P + 1, (P > 0)>::kVector) {
+    // Whole-vector rows read on into the next control points, except where the block's last
+    // row ends the array: the last cells take the loads of p+1 floats below.
+    const float* lastRow = src + n0 * (p1 + n1 * p2);
+    if (lastRow + sizeof(Row<P>) / sizeof(float) <= v.ctrl + n0 * n1 * v.axis[2].count) {
+      for (int k = 0; k <= p2; ++k)
+        for (int j = 0; j <= p1; ++j)
+          block.rows[j + W * k] = loadWhole<Row<P>>(src + n0 * (j + n1 * k));
+      return;
+    }
+  }
+#endif
   for (int k = 0; k <= p2; ++k)
     for (int j = 0; j <= p1; ++j) rowLoad(block.rows[j + W * k], src + n0 * (j + n1 * k), p0 + 1);
 }

@@ -9,6 +9,9 @@
 
 namespace mfadvr {
 
+// Floats a SIMD row load may read past the p+1 it uses (8-lane vectors, rows of 2 or more).
+inline constexpr int kSplineRowPadding = 8;
+
 // One parametric axis: a clamped knot vector on [0,1] and its per-span basis polynomials.
 struct KnotAxisView {
   const double* knots = nullptr;  // count + degree + 1 knots
@@ -16,7 +19,8 @@ struct KnotAxisView {
   // functions N_{s-p+r}, r = 0..p, as polynomials in the span's local coordinate
   // tau = (u - knots[s]) / (knots[s+1] - knots[s]) - 1/2 in [-1/2, 1/2]: coefficient of tau^k
   // of function r at poly[(s * (p+1) + k) * (p+1) + r] (k-major, so Horner's rule runs over all
-  // r at once).
+  // r at once). The array holds kSplineRowPadding floats more after the last span, so that a
+  // row can be read as one whole SIMD vector.
   const float* poly = nullptr;
   const double* inverseLength = nullptr;  // per span: 1 / (knots[s+1] - knots[s]), 0 if empty
   int degree = 0;

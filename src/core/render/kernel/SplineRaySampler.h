@@ -2,9 +2,10 @@
 // The MFA model as a ray sampler (RayIntegrator.h), host and device, for a compile-time degree P
 // (0: per-axis degrees at run time).
 //
-// Span coherence: consecutive samples of a ray mostly stay in one knot-span cell, whose
-// (p+1)^3 control points are gathered once into a local block; a sample then costs the span
-// lookup, Horner's rule for the basis and the contraction over that block (SplineKernel.h).
+// A sample costs the span lookup, Horner's rule for the basis, the gather of its cell's
+// (p+1)^3 control points into a local block and the contraction over that block
+// (SplineKernel.h). Where rows are plain arrays (device, mixed degrees) consecutive samples in
+// one knot-span cell reuse the block; with SIMD rows every sample gathers (kGatherEverySample).
 // The value comes first; a gradient, asked for only when the sample is visible, reuses the
 // value's z contraction.
 //
@@ -117,7 +118,8 @@ class SplineRaySampler {
       locatePoint(m_.spline, u, loc_);
     }
     located_ = false;
-    if (loc_[0].span != cached_[0] || loc_[1].span != cached_[1] || loc_[2].span != cached_[2]) {
+    if (kGatherEverySample || loc_[0].span != cached_[0] || loc_[1].span != cached_[1] ||
+        loc_[2].span != cached_[2]) {
       gatherBlock<P>(m_.spline, loc_, block_);
       for (int a = 0; a < 3; ++a) cached_[a] = loc_[a].span;
     }
@@ -147,6 +149,10 @@ class SplineRaySampler {
   AxisLocation loc_[3];
   double uo_[3] = {0.0, 0.0, 0.0}, ud_[3] = {0.0, 0.0, 0.0}, invUd_[3] = {0.0, 0.0, 0.0};
   static constexpr int kOrder = Shade ? 1 : 0;
+  // With SIMD rows a gather is (p+1)^2 vector loads; doing it for every sample lets the
+  // compiler keep the block in registers, and measured faster than reusing it, even at 16
+  // samples per cell (docs/benchmarks.md). The scalar and device paths keep the cached block.
+  static constexpr bool kGatherEverySample = Lanes<P + 1, (P > 0)>::kVector;
   ControlBlock<P> block_;
   PointBasis<P, kOrder> basis_;
   Row<P> Tz_[W];

@@ -6,11 +6,14 @@
 
 namespace mfadvr {
 
-struct TfEntry {
+// Padded to 8 floats, so that the host reads and interpolates an entry as one SIMD vector.
+struct alignas(32) TfEntry {
   float r, g, b;
   float alpha;      // opacity per unit distance, from the TF
   float alphaStep;  // opacity of a full step (corrected for the sample distance)
+  float unused[3];
 };
+static_assert(sizeof(TfEntry) == 8 * sizeof(float));
 
 struct TransferFunctionView {
   const TfEntry* entries = nullptr;
@@ -37,11 +40,27 @@ struct TransferFunctionView {
   MFADVR_HD MFADVR_INLINE TfEntry classify(float value) const {
     int i;
     float t;
-    if (!locate(value, i, t)) return {0.0f, 0.0f, 0.0f, 0.0f, 0.0f};
+    if (!locate(value, i, t)) return {0.0f, 0.0f, 0.0f, 0.0f, 0.0f, {}};
     const TfEntry& a = entries[i];
     const TfEntry& b = entries[i + 1];
-    return {a.r + t * (b.r - a.r), a.g + t * (b.g - a.g), a.b + t * (b.b - a.b),
-            a.alpha + t * (b.alpha - a.alpha), a.alphaStep + t * (b.alphaStep - a.alphaStep)};
+#if (defined(__GNUC__) || defined(__clang__)) && !defined(__CUDACC__)
+    // The same a + t (b - a) per channel, all channels at once.
+    typedef float Entry8 __attribute__((vector_size(32)));
+    Entry8 va, vb;
+    __builtin_memcpy(&va, &a, sizeof va);
+    __builtin_memcpy(&vb, &b, sizeof vb);
+    const Entry8 vr = va + t * (vb - va);
+    TfEntry out;
+    __builtin_memcpy(&out, &vr, sizeof out);
+    return out;
+#else
+    return {a.r + t * (b.r - a.r),
+            a.g + t * (b.g - a.g),
+            a.b + t * (b.b - a.b),
+            a.alpha + t * (b.alpha - a.alpha),
+            a.alphaStep + t * (b.alphaStep - a.alphaStep),
+            {}};
+#endif
   }
 };
 
