@@ -3,15 +3,17 @@
 // sampler for the shared per-ray integration (kernel/RayIntegrator.h). Host only.
 //
 // Shaded renders ask the field for value and gradient together at every sample, as the grid
-// filters compute both at once; unshaded ones ask for the value alone.
+// filters compute both at once; unshaded ones ask for the value alone. Batches of kHostBatch
+// points (SampleBatch.h).
 #include <concepts>
 
 #include "core/field/Field.h"
+#include "core/render/kernel/SampleBatch.h"
 
 namespace mfadvr {
 
 template <class S, bool Shade>
-class FieldRaySampler {
+class FieldRaySampler : public PointwiseBatch<FieldRaySampler<S, Shade>, kHostBatch, Shade> {
  public:
   static constexpr bool kSkipsEmptySpace = false;
   static constexpr bool kHasInside = requires(S & s, const Vec3d& x) {
@@ -31,18 +33,12 @@ class FieldRaySampler {
 
   bool emptyAt(const double*, double&) { return false; }
 
-  float value(const double p[3]) {
-    const Vec3d x(p[0], p[1], p[2]);
-    if constexpr (Shade) {
-      last_ = s_.valueGradient(x);
-      return last_.value;
-    } else {
-      return s_.value(x);
-    }
-  }
+  float pointValue(const double p[3]) { return s_.value(Vec3d(p[0], p[1], p[2])); }
 
-  void gradient(float g[3]) const {
-    for (int a = 0; a < 3; ++a) g[a] = last_.gradient[a];
+  float pointValueGradient(const double p[3], float g[3]) {
+    const ValueGradient vg = s_.valueGradient(Vec3d(p[0], p[1], p[2]));
+    for (int a = 0; a < 3; ++a) g[a] = vg.gradient[a];
+    return vg.value;
   }
 
   // Whether samples can fall outside (a sampler without inside() cannot; one with masked()
@@ -58,7 +54,6 @@ class FieldRaySampler {
 
  private:
   S s_;
-  ValueGradient last_;
 };
 
 }  // namespace mfadvr

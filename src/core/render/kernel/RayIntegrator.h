@@ -12,7 +12,8 @@
 // opacity a from the transfer function is corrected for its step length dt as in VTK,
 // a' = 1 - (1 - a)^(dt / unit distance), so the image converges as the step shrinks and a
 // constant medium composites to exactly its Beer-Lambert transmittance. The value comes first;
-// the gradient is asked for only for a visible sample of a shaded render. Colours are
+// the gradient is asked for only for a visible sample of a shaded render (a sampler may have
+// computed it with the value, when that is cheaper). Colours are
 // composited front to back; a ray stops once its opacity reaches the early-termination
 // threshold. The result is composited over the background.
 //
@@ -22,12 +23,18 @@
 //   bool emptyAt(const double p[3], double& tLeave)     only when kSkipsEmptySpace: true when
 //        no value the field can take around p is visible; tLeave: a ray distance up to which
 //        every point of the ray is in that same empty region
-//   float value(const double p[3])     the value at p
-//   void gradient(float g[3])          the physical gradient at the last value()'s point
-// Skipped samples are exactly those that would have been transparent, so the image is the same
-// with and without skipping.
+// and evaluates samples in batches of up to kBatch points (SampleBatch.h):
+//   void stage(int lane, const double p[3])   the lane's point (after inside / emptyAt for p)
+//   void evaluate(int n, float v[])           the values at lanes 0..n-1
+//   void gradient(int lane, float g[3])       the physical gradient at a lane's point
+// A batch's values are independent, so the processor overlaps their evaluations; classifying,
+// shading and compositing then take the lanes in ray order. A ray that terminates inside a
+// batch has evaluated at most kBatch - 1 samples it does not use; the counters and the image
+// are those of one sample at a time. Skipped samples are exactly those that would have been
+// transparent, so the image is the same with and without skipping.
 #include "core/render/kernel/OpacityCorrectionKernel.h"
 #include "core/render/kernel/RayParams.h"
+#include "core/render/kernel/SampleBatch.h"
 
 namespace mfadvr {
 
@@ -57,15 +64,11 @@ MFADVR_HD MFADVR_INLINE void integrateRay(const RayParams& rp, Sampler& sampler,
       prepareRayShading(rp.shading, df, rayShading);
     }
     sampler.beginRay(o, d);
-    // Visible samples are classified and shaded in packets of up to K, then composited: the
-    // samples of a packet are independent, so their evaluations overlap in the processor, and
-    // only the compositing is a chain. A ray that terminates inside a packet has evaluated at
-    // most K - 1 samples it did not need; the image is unchanged.
-    constexpr int K = 4;
+    constexpr int K = Sampler::kBatch;
     std::int64_t k = 0;
     bool done = false;
     while (!done && k < steps) {
-      float pr[K], pg[K], pb[K], pa[K];
+      double lengths[K];
       int n = 0;
       while (n < K && k < steps) {
         double t = t0 + static_cast<double>(k) * dt;
@@ -104,32 +107,32 @@ MFADVR_HD MFADVR_INLINE void integrateRay(const RayParams& rp, Sampler& sampler,
             continue;
           }
         }
-        ++counters.samples;
-        const float v = sampler.value(p);
-        const TfEntry tf = rp.tf.classify(v);
-        if (!(tf.alpha > 0.0f)) continue;
-        pa[n] = length == dt ? tf.alphaStep
-                             : correctOpacity(tf.alpha, rp.correctionExponent * length / dt);
-        if constexpr (Shade) {
-          const float c[3] = {tf.r, tf.g, tf.b};
-          float g[3], shaded[3];
-          sampler.gradient(g);
-          shadeSample(rp.shading, rayShading, c, g, shaded);
-          pr[n] = shaded[0];
-          pg[n] = shaded[1];
-          pb[n] = shaded[2];
-        } else {
-          pr[n] = tf.r;
-          pg[n] = tf.g;
-          pb[n] = tf.b;
-        }
+        sampler.stage(n, p);
+        lengths[n] = length;
         ++n;
       }
+      if (n == 0) continue;
+      float values[K];
+      sampler.evaluate(n, values);
       for (int i = 0; i < n; ++i) {
-        const float w = (1.0f - alpha) * pa[i];
-        red += w * pr[i];
-        green += w * pg[i];
-        blue += w * pb[i];
+        ++counters.samples;
+        const TfEntry tf = rp.tf.classify(values[i]);
+        if (!(tf.alpha > 0.0f)) continue;
+        const double length = lengths[i];
+        const float a = length == dt
+                            ? tf.alphaStep
+                            : correctOpacity(tf.alpha, rp.correctionExponent * length / dt);
+        float c[3] = {tf.r, tf.g, tf.b};
+        if constexpr (Shade) {
+          const float unshaded[3] = {tf.r, tf.g, tf.b};
+          float g[3];
+          sampler.gradient(i, g);
+          shadeSample(rp.shading, rayShading, unshaded, g, c);
+        }
+        const float w = (1.0f - alpha) * a;
+        red += w * c[0];
+        green += w * c[1];
+        blue += w * c[2];
         alpha += w;
         if (alpha >= rp.stopOpacity) {
           ++counters.terminated;

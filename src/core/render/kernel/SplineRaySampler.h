@@ -4,10 +4,11 @@
 //
 // A sample costs the span lookup, Horner's rule for the basis, the gather of its cell's
 // (p+1)^3 control points into a local block and the contraction over that block
-// (SplineKernel.h). Where rows are plain arrays (device, mixed degrees) consecutive samples in
-// one knot-span cell reuse the block; with SIMD rows every sample gathers (kGatherEverySample).
-// The value comes first; a gradient, asked for only when the sample is visible, reuses the
-// value's z contraction.
+// (SplineKernel.h). With SIMD rows (host, one degree) samples are evaluated in batches
+// (SampleBatch.h), every sample gathers its block (kGatherEverySample) and a shaded render
+// computes value and gradient together. Where rows are plain arrays (device, mixed degrees)
+// samples go one at a time, consecutive samples in one knot-span cell reuse the block, and the
+// gradient, asked for only when the sample is visible, reuses the value's z contraction.
 //
 // Exact empty-space skipping (Skip): `empty` flags, per knot-span cell, that no value the spline
 // can take in the cell is visible (EmptySpaceGrid.h: by the B-spline convex-hull property a
@@ -17,6 +18,7 @@
 #include <cstdint>
 
 #include "core/mask/MaskView.h"
+#include "core/render/kernel/SampleBatch.h"
 #include "core/spline/SplineKernel.h"
 
 namespace mfadvr {
@@ -38,13 +40,19 @@ struct ModelView {
 
 inline constexpr int kEmptyBlock = 8;
 
-// Shade: value() also computes the basis derivatives (one Horner pass gives both), which a
-// following gradient() reuses.
+// Shade: evaluate() also computes the basis derivatives (one Horner pass gives both), which
+// gradient() reuses.
 template <int P, bool Skip, bool Shade>
 class SplineRaySampler {
  public:
   static constexpr bool kSkipsEmptySpace = Skip;
   static constexpr int W = SplineDegree<P>::kWidth;
+  // With SIMD rows a gather is (p+1)^2 vector loads; doing it for every sample lets the
+  // compiler keep the block in registers, and measured faster than reusing it, even at 16
+  // samples per cell (docs/benchmarks.md). The scalar and device paths keep the cached block
+  // and take one sample at a time.
+  static constexpr bool kGatherEverySample = Lanes<P + 1, (P > 0)>::kVector;
+  static constexpr int kBatch = kGatherEverySample ? kHostBatch : 1;
 
   MFADVR_HD explicit SplineRaySampler(const ModelView& m) : m_(m) {
     for (int a = 0; a < 3; ++a) {
@@ -111,27 +119,52 @@ class SplineRaySampler {
     return true;
   }
 
-  MFADVR_HD MFADVR_INLINE float value(const double p[3]) {
-    if (!(Skip && located_)) {
+  MFADVR_HD MFADVR_INLINE void stage(int lane, const double p[3]) {
+    if (Skip && located_) {
+      for (int a = 0; a < 3; ++a) locs_[lane][a] = loc_[a];
+    } else {
       double u[3];
       toParameter(p, u);
-      locatePoint(m_.spline, u, loc_);
+      locatePoint(m_.spline, u, locs_[lane]);
     }
     located_ = false;
-    if (kGatherEverySample || loc_[0].span != cached_[0] || loc_[1].span != cached_[1] ||
-        loc_[2].span != cached_[2]) {
-      gatherBlock<P>(m_.spline, loc_, block_);
-      for (int a = 0; a < 3; ++a) cached_[a] = loc_[a].span;
-    }
-    pointBasis<P, kOrder>(m_.spline, loc_, basis_);
-    return contractValue<P, kOrder>(block_, basis_, Tz_);
   }
 
-  // Physical gradient at the last value()'s point; the value's basis and z contraction are
-  // reused.
-  MFADVR_HD MFADVR_INLINE void gradient(float g[3]) const {
+  MFADVR_HD MFADVR_INLINE void evaluate(int n, float v[]) {
+    for (int i = 0; i < n; ++i) {
+      const AxisLocation* loc = locs_[i];
+      if constexpr (kGatherEverySample) {
+        // The block stays in registers. A shaded render takes the gradient here too: measured
+        // faster than keeping each lane's block for the visible lanes' gradients later, also
+        // where most samples are transparent (docs/benchmarks.md).
+        ControlBlock<P> block;
+        PointBasis<P, kOrder> basis;
+        Row<P> Tz[W];
+        gatherBlock<P>(m_.spline, loc, block);
+        pointBasis<P, kOrder>(m_.spline, loc, basis);
+        v[i] = contractValue<P, kOrder>(block, basis, Tz);
+        if constexpr (Shade) contractPartials<P, kOrder>(block, basis, Tz, grads_[i]);
+      } else {
+        // One lane: the block is kept while the ray stays in the cell; value first, the
+        // gradient only when asked for (a visible sample).
+        if (loc[0].span != cached_[0] || loc[1].span != cached_[1] || loc[2].span != cached_[2]) {
+          gatherBlock<P>(m_.spline, loc, block_);
+          for (int a = 0; a < 3; ++a) cached_[a] = loc[a].span;
+        }
+        pointBasis<P, kOrder>(m_.spline, loc, basis_);
+        v[i] = contractValue<P, kOrder>(block_, basis_, Tz_);
+      }
+    }
+  }
+
+  // Physical gradient at a lane's point (one lane: from its value's basis and z contraction).
+  MFADVR_HD MFADVR_INLINE void gradient(int lane, float g[3]) const {
     static_assert(Shade, "gradients need a sampler made for shading");
-    contractPartials<P, kOrder>(block_, basis_, Tz_, g);
+    if constexpr (kGatherEverySample) {
+      for (int a = 0; a < 3; ++a) g[a] = grads_[lane][a];
+    } else {
+      contractPartials<P, kOrder>(block_, basis_, Tz_, g);
+    }
     for (int a = 0; a < 3; ++a) g[a] *= gradientScale_[a];
   }
 
@@ -149,12 +182,11 @@ class SplineRaySampler {
   AxisLocation loc_[3];
   double uo_[3] = {0.0, 0.0, 0.0}, ud_[3] = {0.0, 0.0, 0.0}, invUd_[3] = {0.0, 0.0, 0.0};
   static constexpr int kOrder = Shade ? 1 : 0;
-  // With SIMD rows a gather is (p+1)^2 vector loads; doing it for every sample lets the
-  // compiler keep the block in registers, and measured faster than reusing it, even at 16
-  // samples per cell (docs/benchmarks.md). The scalar and device paths keep the cached block.
-  static constexpr bool kGatherEverySample = Lanes<P + 1, (P > 0)>::kVector;
-  ControlBlock<P> block_;
-  PointBasis<P, kOrder> basis_;
+  // Per-sample state the batch keeps: one lane's worth where samples are gathered one at a time.
+  AxisLocation locs_[kBatch][3];
+  float grads_[Shade ? kBatch : 1][3];  // parametric, per lane (batches)
+  ControlBlock<P> block_;               // one lane: the cell's block, its basis and
+  PointBasis<P, kOrder> basis_;         // z contraction
   Row<P> Tz_[W];
 };
 

@@ -5,6 +5,7 @@
 // device.
 #include <cstdint>
 
+#include "core/render/kernel/SampleBatch.h"
 #include "core/util/HostDevice.h"
 
 namespace mfadvr {
@@ -39,8 +40,7 @@ MFADVR_HD MFADVR_INLINE void gridCellOf(double u, std::int64_t n, std::int64_t& 
 MFADVR_HD MFADVR_INLINE const float* gridCell(const GridView& g, const double x[3], double t[3]) {
   std::int64_t c[3];
   for (int a = 0; a < 3; ++a)
-    gridCellOf(gridIndex(x[a], g.origin[a], g.inverseSpacing[a], g.dims[a]), g.dims[a], c[a],
-               t[a]);
+    gridCellOf(gridIndex(x[a], g.origin[a], g.inverseSpacing[a], g.dims[a]), g.dims[a], c[a], t[a]);
   return g.data + ((c[0] + 1) + g.sy * (c[1] + 1) + g.sz * (c[2] + 1));
 }
 
@@ -80,26 +80,22 @@ MFADVR_HD MFADVR_INLINE float trilinearValueGradient(const GridView& g, const do
 
 // The trilinear grid as a ray sampler (RayIntegrator.h): no mask, no skipping.
 template <bool Shade>
-class TrilinearRaySampler {
+class TrilinearRaySampler : public PointwiseBatch<TrilinearRaySampler<Shade>, kHostBatch, Shade> {
  public:
   static constexpr bool kSkipsEmptySpace = false;
   MFADVR_HD explicit TrilinearRaySampler(const GridView& g) : g_(g) {}
   MFADVR_HD MFADVR_INLINE void beginRay(const double*, const double*) {}
   MFADVR_HD MFADVR_INLINE bool inside(const double*) const { return true; }
   MFADVR_HD MFADVR_INLINE bool emptyAt(const double*, double&) { return false; }
-  MFADVR_HD MFADVR_INLINE float value(const double p[3]) {
-    if constexpr (Shade)
-      return trilinearValueGradient(g_, p, gradient_);
-    else
-      return trilinearValue(g_, p);
+  MFADVR_HD MFADVR_INLINE float pointValue(const double p[3]) const {
+    return trilinearValue(g_, p);
   }
-  MFADVR_HD MFADVR_INLINE void gradient(float g[3]) const {
-    for (int a = 0; a < 3; ++a) g[a] = gradient_[a];
+  MFADVR_HD MFADVR_INLINE float pointValueGradient(const double p[3], float g[3]) const {
+    return trilinearValueGradient(g_, p, g);
   }
 
  private:
   GridView g_;
-  float gradient_[3] = {0.0f, 0.0f, 0.0f};
 };
 
 }  // namespace mfadvr
