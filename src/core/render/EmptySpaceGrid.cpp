@@ -27,14 +27,22 @@ EmptySpaceFlags buildEmptySpaceFlags(const SpanRanges& r, const TransferFunction
   for (int a = 0; a < 3; ++a) out.blockCounts[a] = (r.cells[a] + kEmptyBlock - 1) / kEmptyBlock;
   const int* b = out.blockCounts;
   out.blocks.assign(static_cast<size_t>(b[0]) * b[1] * b[2], 1);
-  for (int k = 0; k < r.cells[2]; ++k)
-    for (int j = 0; j < r.cells[1]; ++j)
-      for (int i = 0; i < r.cells[0]; ++i) {
-        const bool empty = flags[i + std::int64_t(r.cells[0]) * (j + std::int64_t(r.cells[1]) * k)];
-        out.emptyCells += empty ? 1 : 0;
-        if (!empty)
-          out.blocks[i / kEmptyBlock + b[0] * (j / kEmptyBlock + b[1] * (k / kEmptyBlock))] = 0;
-      }
+  // One layer of blocks per task: the layers write disjoint blocks.
+  std::vector<std::int64_t> emptyPerLayer(static_cast<size_t>(b[2]), 0);
+  tbb::parallel_for(0, b[2], [&](int kb) {
+    std::int64_t empties = 0;
+    const int kEnd = std::min(r.cells[2], (kb + 1) * kEmptyBlock);
+    for (int k = kb * kEmptyBlock; k < kEnd; ++k)
+      for (int j = 0; j < r.cells[1]; ++j)
+        for (int i = 0; i < r.cells[0]; ++i) {
+          const bool empty =
+              flags[i + std::int64_t(r.cells[0]) * (j + std::int64_t(r.cells[1]) * k)];
+          empties += empty ? 1 : 0;
+          if (!empty) out.blocks[i / kEmptyBlock + b[0] * (j / kEmptyBlock + b[1] * kb)] = 0;
+        }
+    emptyPerLayer[kb] = empties;
+  });
+  for (const std::int64_t e : emptyPerLayer) out.emptyCells += e;
   return out;
 }
 

@@ -102,9 +102,10 @@ struct AxisLocation {
   float tau;
 };
 
+template <int P = 0>
 MFADVR_HD MFADVR_INLINE AxisLocation locateOnAxis(const KnotAxisView& a, double u) {
   u = !(u > 0.0) ? 0.0 : (u > 1.0 ? 1.0 : u);  // NaN maps to 0: a finite answer
-  const int s = findSpan(a, u);
+  const int s = findSpan<P>(a, u);
   return {s, static_cast<float>((u - a.knots[s]) * a.inverseLength[s] - 0.5)};
 }
 
@@ -375,16 +376,21 @@ MFADVR_HD MFADVR_INLINE void contractHessian(const ControlBlock<P>& B, const Poi
   for (int i = 0; i < 10; ++i) out[i] = static_cast<float>(r[i]);
 }
 
+// P: as for findSpan.
+template <int P = 0>
 MFADVR_HD MFADVR_INLINE void locatePoint(const SplineView& v, const double u[3],
                                          AxisLocation loc[3]) {
-  for (int a = 0; a < 3; ++a) loc[a] = locateOnAxis(v.axis[a], u[a]);
+  // Written out: the compiler keeps a loop over the axes rolled, which serializes them.
+  loc[0] = locateOnAxis<P>(v.axis[0], u[0]);
+  loc[1] = locateOnAxis<P>(v.axis[1], u[1]);
+  loc[2] = locateOnAxis<P>(v.axis[2], u[2]);
 }
 
 // Point queries at a parametric coordinate u (clamped to [0,1]^3).
 template <int P>
 MFADVR_HD MFADVR_INLINE float splineValue(const SplineView& v, const double u[3]) {
   AxisLocation loc[3];
-  locatePoint(v, u, loc);
+  locatePoint<P>(v, u, loc);
   PointBasis<P, 0> b;
   pointBasis<P, 0>(v, loc, b);
   ControlBlock<P> block;
@@ -398,7 +404,7 @@ template <int P>
 MFADVR_HD MFADVR_INLINE void splineValueGradient(const SplineView& v, const double u[3],
                                                  float out[4]) {
   AxisLocation loc[3];
-  locatePoint(v, u, loc);
+  locatePoint<P>(v, u, loc);
   PointBasis<P, 1> b;
   pointBasis<P, 1>(v, loc, b);
   ControlBlock<P> block;
@@ -413,7 +419,7 @@ template <int P>
 MFADVR_HD MFADVR_INLINE void splineValueGradientHessian(const SplineView& v, const double u[3],
                                                         float out[10]) {
   AxisLocation loc[3];
-  locatePoint(v, u, loc);
+  locatePoint<P>(v, u, loc);
   PointBasis<P, 2> b;
   pointBasis<P, 2>(v, loc, b);
   ControlBlock<P> block;

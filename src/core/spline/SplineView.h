@@ -32,9 +32,11 @@ struct KnotAxisView {
 };
 
 // The span s in [p, count-1] with knots[s] <= u < knots[s+1]; u outside (0,1) or NaN maps to
-// the first or last span, and u = 1 belongs to the last non-empty span.
+// the first or last span, and u = 1 belongs to the last non-empty span. P > 0: the degree, known
+// at compile time (it must equal a.degree); 0: read from a.
+template <int P = 0>
 MFADVR_HD MFADVR_INLINE int findSpan(const KnotAxisView& a, double u) {
-  const int p = a.degree;
+  const int p = P > 0 ? P : a.degree;
   if (!(u > 0.0)) return p;  // also NaN
   const int last = a.count - 1;
   if (u >= 1.0) return last;

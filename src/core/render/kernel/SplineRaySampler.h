@@ -81,7 +81,7 @@ class SplineRaySampler {
   MFADVR_HD MFADVR_INLINE bool emptyAt(const double p[3], double& tLeave) {
     double u[3];
     toParameter(p, u);
-    locatePoint(m_.spline, u, loc_);
+    locatePoint<P>(m_.spline, u, loc_);
     located_ = true;
     const std::int64_t cell =
         (loc_[0].span - p_[0]) +
@@ -125,7 +125,7 @@ class SplineRaySampler {
     } else {
       double u[3];
       toParameter(p, u);
-      locatePoint(m_.spline, u, locs_[lane]);
+      locatePoint<P>(m_.spline, u, locs_[lane]);
     }
     located_ = false;
   }
