@@ -11,6 +11,7 @@
 // Basis functions come from per-span polynomials (KnotVector::basisPolynomials, derived from
 // The NURBS Book's A2.3): a point costs a span lookup and Horner's rule in the span's local
 // coordinate, with no divisions and no recurrences.
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <type_traits>
@@ -102,9 +103,23 @@ struct AxisLocation {
   float tau;
 };
 
+//
+// On a regular axis the interior spans p+1 .. count-2 are equally long (to 1e-9 of their
+// length, KnotVector), so a point inside them is located from u alone, without reading knots:
+// the span from floor((u - first interior knot) / spacing), tau from the fraction. Within a
+// rounding error of a knot this may pick the neighbouring span, at its end (|tau| = 1/2 plus a
+// rounding error): the spline is continuous there, and every caller (values, gradients,
+// empty-space cells) sees the same choice. The end spans, and irregular axes, search the knots.
 template <int P = 0>
 MFADVR_HD MFADVR_INLINE AxisLocation locateOnAxis(const KnotAxisView& a, double u) {
   u = !(u > 0.0) ? 0.0 : (u > 1.0 ? 1.0 : u);  // NaN maps to 0: a finite answer
+  if (a.regular) {
+    const int p = P > 0 ? P : a.degree;
+    const double t = (u - a.firstInterior) * a.inverseSpacing;
+    const double f = floor(t);
+    if (f >= 0.0 && f < static_cast<double>(a.count - p - 2))
+      return {p + 1 + static_cast<int>(f), static_cast<float>(t - f - 0.5)};
+  }
   const int s = findSpan<P>(a, u);
   return {s, static_cast<float>((u - a.knots[s]) * a.inverseLength[s] - 0.5)};
 }
