@@ -57,6 +57,7 @@ KnotAxisView KnotVector::view() const {
   v.regular = regular_;
   v.firstInterior = firstInterior_;
   v.inverseSpacing = inverseSpacing_;
+  v.interiorSpans = regular_ ? static_cast<double>(controlCount() - degree_ - 2) : 0.0;
   return v;
 }
 

@@ -117,7 +117,7 @@ MFADVR_HD MFADVR_INLINE AxisLocation locateOnAxis(const KnotAxisView& a, double 
     const int p = P > 0 ? P : a.degree;
     const double t = (u - a.firstInterior) * a.inverseSpacing;
     const double f = floor(t);
-    if (f >= 0.0 && f < static_cast<double>(a.count - p - 2))
+    if (f >= 0.0 && f < a.interiorSpans)
       return {p + 1 + static_cast<int>(f), static_cast<float>(t - f - 0.5)};
   }
   const int s = findSpan<P>(a, u);

@@ -29,6 +29,7 @@ struct KnotAxisView {
   bool regular = false;
   double firstInterior = 1.0;   // knots[p+1]
   double inverseSpacing = 0.0;  // 1 / (knots[p+2] - knots[p+1])
+  double interiorSpans = 0.0;   // count - p - 2: the equally long spans p+1 .. count-2
 };
 
 // The span s in [p, count-1] with knots[s] <= u < knots[s+1]; u outside (0,1) or NaN maps to
