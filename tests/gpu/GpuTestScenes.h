@@ -82,7 +82,8 @@ inline RenderSettings settingsFor(const Vec3d& lo, const Vec3d& hi, const Transf
   s.camera.elevation(15);
   s.sampleDistance = 0.01;
   s.opacityUnitDistance = 0.03;
-  s.transferFunction = tf;
+  // Renders take data-space functions: normalized ones span about the model's values.
+  s.transferFunction = tf.resolved(-0.1, 1.1);
   s.shade = shade;
   s.background = Vec3f(0.1f, 0.1f, 0.15f);
   return s;

@@ -6,8 +6,8 @@
 // exactly the same rays, samples, transfer function, shading and compositing.
 //
 // The MFA model (ModelField) takes its own path (ModelRenderer.h): the spline kernel with its
-// degree fixed at compile time, span-coherent sampling and exact empty-space skipping. Other
-// fields go through FieldRaySampler.
+// degree fixed at compile time, batched sampling and exact empty-space skipping. Other fields
+// go through FieldRaySampler.
 //
 // A field whose sampler has `bool inside(x)` (a model with a domain mask) is empty where it
 // answers false; the ray loop is instantiated with and without that test. Rays may end early,

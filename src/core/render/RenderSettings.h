@@ -65,7 +65,7 @@ struct RenderStats {
   double seconds = 0.0;         // wall time of the ray casting
   std::int64_t rays = 0;        // pixels
   std::int64_t raysHit = 0;     // rays that crossed the box
-  std::int64_t samples = 0;     // field samples taken (not those outside a domain mask)
+  std::int64_t samples = 0;     // field samples used (not those outside a domain mask)
   std::int64_t terminated = 0;  // rays stopped early
   std::int64_t skipped = 0;     // samples passed over by empty-space skipping (MFA models)
 };

@@ -69,6 +69,10 @@ MFADVR_HD MFADVR_INLINE void integrateRay(const RayParams& rp, Sampler& sampler,
     bool done = false;
     while (!done && k < steps) {
       double lengths[K];
+      // Samples skipped before each lane, and after the last: counted as the lanes are used,
+      // so that the counters do not depend on the batch size.
+      std::int64_t skippedBefore[K + 1];
+      std::int64_t skipped = 0;
       int n = 0;
       while (n < K && k < steps) {
         double t = t0 + static_cast<double>(k) * dt;
@@ -102,19 +106,23 @@ MFADVR_HD MFADVR_INLINE void integrateRay(const RayParams& rp, Sampler& sampler,
             if (last >= static_cast<double>(k))
               next = last < static_cast<double>(steps - 1) ? static_cast<std::int64_t>(last) + 1
                                                            : steps;
-            counters.skipped += 1 + (next - k);
+            skipped += 1 + (next - k);
             k = next;
             continue;
           }
         }
         sampler.stage(n, p);
         lengths[n] = length;
+        skippedBefore[n] = skipped;
+        skipped = 0;
         ++n;
       }
-      if (n == 0) continue;
+      skippedBefore[n] = skipped;
       float values[K];
-      sampler.evaluate(n, values);
-      for (int i = 0; i < n; ++i) {
+      if (n > 0) sampler.evaluate(n, values);
+      for (int i = 0; i <= n; ++i) {
+        counters.skipped += skippedBefore[i];
+        if (i == n) break;
         ++counters.samples;
         const TfEntry tf = rp.tf.classify(values[i]);
         if (!(tf.alpha > 0.0f)) continue;
