@@ -103,7 +103,7 @@ struct AxisLocation {
   float tau;
 };
 
-//
+// Where u (clamped to [0,1]) falls on the axis.
 // On a regular axis the interior spans p+1 .. count-2 are equally long (to 1e-9 of their
 // length, KnotVector), so a point inside them is located from u alone, without reading knots:
 // the span from floor((u - first interior knot) / spacing), tau from the fraction. Within a

@@ -11,7 +11,7 @@
 namespace mfadvr {
 
 #if defined(__CUDACC__)
-inline constexpr int kHostBatch = 8;
+inline constexpr int kHostBatch = 1;
 #else
 inline constexpr int kHostBatch = 8;
 #endif

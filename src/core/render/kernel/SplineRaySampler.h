@@ -182,11 +182,10 @@ class SplineRaySampler {
   AxisLocation loc_[3];
   double uo_[3] = {0.0, 0.0, 0.0}, ud_[3] = {0.0, 0.0, 0.0}, invUd_[3] = {0.0, 0.0, 0.0};
   static constexpr int kOrder = Shade ? 1 : 0;
-  // Per-sample state the batch keeps: one lane's worth where samples are gathered one at a time.
-  AxisLocation locs_[kBatch][3];
-  float grads_[Shade ? kBatch : 1][3];  // parametric, per lane (batches)
-  ControlBlock<P> block_;               // one lane: the cell's block, its basis and
-  PointBasis<P, kOrder> basis_;         // z contraction
+  AxisLocation locs_[kBatch][3];        // each lane's point
+  float grads_[Shade ? kBatch : 1][3];  // SIMD path: each lane's parametric gradient
+  ControlBlock<P> block_;               // one-lane path: the current cell's block, and the
+  PointBasis<P, kOrder> basis_;         // last sample's basis and z contraction
   Row<P> Tz_[W];
 };
 
