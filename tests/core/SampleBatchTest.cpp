@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "core/field/ModelField.h"
+#include "core/render/ModelKernelSwitch.h"
 #include "core/render/ModelRenderSetup.h"
 #include "core/render/RayCaster.h"
 #include "gpu/GpuTestScenes.h"
@@ -36,39 +37,21 @@ class OneLane {
   S s_;
 };
 
-// The frame through one-lane batches, dispatched as renderModelView does.
+// The frame through one-lane batches, instantiated as renderModelView does.
 Image renderOneLane(const RenderSettings& s, const ModelRenderSetup& setup, RenderStats* stats) {
   Image image(s.width, s.height);
   const ModelView& view = setup.view();
-  splineDegreeSwitch(view.spline, [&]<int P>() {
-    auto cast = [&]<bool Masked, bool Shade, bool Skip>() {
-      using Batched = SplineRaySampler<P, Skip, Shade>;
-      castRays<Masked, Shade>(
-          s, setup.params(), [&] { return OneLane<Batched>(Batched(view)); }, image, stats);
-    };
-    auto withSkip = [&]<bool Masked, bool Shade>() {
-      if (setup.skips())
-        cast.template operator()<Masked, Shade, true>();
-      else
-        cast.template operator()<Masked, Shade, false>();
-    };
-    auto withShade = [&]<bool Masked>() {
-      if (s.shade)
-        withSkip.template operator()<Masked, true>();
-      else
-        withSkip.template operator()<Masked, false>();
-    };
-    if (setup.masked())
-      withShade.template operator()<true>();
-    else
-      withShade.template operator()<false>();
+  modelKernelSwitch(view, s.shade, [&]<int P, bool Masked, bool Shade, bool Skip>() {
+    using Batched = SplineRaySampler<P, Skip, Shade>;
+    castRays<Masked, Shade>(
+        s, setup.params(), [&] { return OneLane<Batched>(Batched(view)); }, image, stats);
   });
   return image;
 }
 
 TEST(SampleBatch, BatchesRenderTheImageAndCountersOfOneSampleAtATime) {
-  static_assert(SplineRaySampler<2, false, false>::kBatch == kHostBatch);
-  ASSERT_GT(kHostBatch, 1);
+  static_assert(SplineRaySampler<2, false, false>::kBatch == kSampleBatch);
+  ASSERT_GT(kSampleBatch, 1);
   int renders = 0, batched = 0;
   std::int64_t skipped = 0, terminated = 0;
   // An opaque thin shell: rays terminate in it with empty cells right behind, which a batch

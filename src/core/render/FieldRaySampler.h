@@ -3,7 +3,7 @@
 // sampler for the shared per-ray integration (kernel/RayIntegrator.h). Host only.
 //
 // Shaded renders ask the field for value and gradient together at every sample, as the grid
-// filters compute both at once; unshaded ones ask for the value alone. Batches of kHostBatch
+// filters compute both at once; unshaded ones ask for the value alone. Batches of kSampleBatch
 // points (SampleBatch.h).
 #include <concepts>
 
@@ -13,7 +13,7 @@
 namespace mfadvr {
 
 template <class S, bool Shade>
-class FieldRaySampler : public PointwiseBatch<FieldRaySampler<S, Shade>, kHostBatch, Shade> {
+class FieldRaySampler : public PointwiseBatch<FieldRaySampler<S, Shade>, kSampleBatch, Shade> {
  public:
   static constexpr bool kSkipsEmptySpace = false;
   static constexpr bool kHasInside = requires(S & s, const Vec3d& x) {

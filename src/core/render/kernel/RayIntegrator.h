@@ -69,9 +69,10 @@ MFADVR_HD MFADVR_INLINE void integrateRay(const RayParams& rp, Sampler& sampler,
     bool done = false;
     while (!done && k < steps) {
       double lengths[K];
-      // Samples skipped before each lane, and after the last: counted as the lanes are used,
-      // so that the counters do not depend on the batch size.
-      std::int64_t skippedBefore[K + 1];
+      // Samples skipped before each lane, counted as the lanes are used (and those after the
+      // last lane unless the ray stops first), so that the counters do not depend on the batch
+      // size.
+      std::int64_t skippedBefore[K];
       std::int64_t skipped = 0;
       int n = 0;
       while (n < K && k < steps) {
@@ -117,12 +118,11 @@ MFADVR_HD MFADVR_INLINE void integrateRay(const RayParams& rp, Sampler& sampler,
         skipped = 0;
         ++n;
       }
-      skippedBefore[n] = skipped;
       float values[K];
       if (n > 0) sampler.evaluate(n, values);
-      for (int i = 0; i <= n; ++i) {
+      bool stopped = false;
+      for (int i = 0; i < n && !stopped; ++i) {
         counters.skipped += skippedBefore[i];
-        if (i == n) break;
         ++counters.samples;
         const TfEntry tf = rp.tf.classify(values[i]);
         if (!(tf.alpha > 0.0f)) continue;
@@ -144,10 +144,10 @@ MFADVR_HD MFADVR_INLINE void integrateRay(const RayParams& rp, Sampler& sampler,
         alpha += w;
         if (alpha >= rp.stopOpacity) {
           ++counters.terminated;
-          done = true;
-          break;
+          stopped = done = true;
         }
       }
+      if (!stopped) counters.skipped += skipped;
     }
   }
   const float behind = 1.0f - alpha;

@@ -11,9 +11,9 @@
 namespace mfadvr {
 
 #if defined(__CUDACC__)
-inline constexpr int kHostBatch = 1;
+inline constexpr int kSampleBatch = 1;
 #else
-inline constexpr int kHostBatch = 8;
+inline constexpr int kSampleBatch = 8;
 #endif
 
 // The batch interface for samplers that evaluate one point at a time. Derived provides

@@ -52,7 +52,7 @@ class SplineRaySampler {
   // samples per cell (docs/benchmarks.md). The scalar and device paths keep the cached block
   // and take one sample at a time.
   static constexpr bool kGatherEverySample = Lanes<P + 1, (P > 0)>::kVector;
-  static constexpr int kBatch = kGatherEverySample ? kHostBatch : 1;
+  static constexpr int kBatch = kGatherEverySample ? kSampleBatch : 1;
 
   MFADVR_HD explicit SplineRaySampler(const ModelView& m) : m_(m) {
     for (int a = 0; a < 3; ++a) {

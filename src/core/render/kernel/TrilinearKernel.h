@@ -80,7 +80,7 @@ MFADVR_HD MFADVR_INLINE float trilinearValueGradient(const GridView& g, const do
 
 // The trilinear grid as a ray sampler (RayIntegrator.h): no mask, no skipping.
 template <bool Shade>
-class TrilinearRaySampler : public PointwiseBatch<TrilinearRaySampler<Shade>, kHostBatch, Shade> {
+class TrilinearRaySampler : public PointwiseBatch<TrilinearRaySampler<Shade>, kSampleBatch, Shade> {
  public:
   static constexpr bool kSkipsEmptySpace = false;
   MFADVR_HD explicit TrilinearRaySampler(const GridView& g) : g_(g) {}
