@@ -119,6 +119,57 @@ TEST(TransferFunctionTable, TransparentOverAgreesWithClassification) {
   EXPECT_TRUE(step.transparentOver(0.0f, 0.45f));
 }
 
+// The whole-range test behind the shortcut of buildEmptySpaceFlags: a range with a
+// transparent value is always reported, and one that touches only visible entries never is.
+TEST(TransferFunctionTable, MayBeTransparentOverFindsEveryTransparentRange) {
+  for (const TransferFunction& tf : testTransferFunctions()) {
+    const TransferFunctionTable table(tf, OpacityCorrection(0.5));
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> uni(-0.2f, 1.2f);
+    for (int t = 0; t < 2000; ++t) {
+      float lo = uni(rng), hi = uni(rng);
+      if (lo > hi) std::swap(lo, hi);
+      if (table.transparentOver(lo, hi)) EXPECT_TRUE(table.mayBeTransparentOver(lo, hi));
+      bool zeroInside = false;
+      for (int i = 0; i <= 256; ++i)
+        zeroInside |= table.classify(lo + (hi - lo) * static_cast<float>(i) / 256.0f).alpha == 0;
+      if (zeroInside) EXPECT_TRUE(table.mayBeTransparentOver(lo, hi)) << lo << ".." << hi;
+    }
+  }
+  const TransferFunctionTable step(testTransferFunctions()[0], OpacityCorrection(0.5));
+  EXPECT_FALSE(step.mayBeTransparentOver(0.6f, 0.9f));  // entirely above the step
+  EXPECT_TRUE(step.mayBeTransparentOver(0.4f, 0.9f));
+  EXPECT_TRUE(step.mayBeTransparentOver(NAN, 0.9f));
+}
+
+// Flags built with the whole-range shortcut equal the per-cell pass: for transfer functions
+// that hide part of the range and those that hide nothing the model takes.
+TEST(EmptySpaceFlags, NoCellEmptyWhenTheWholeRangeIsVisible) {
+  const Model& m = marschnerLobb();
+  const SpanRanges& r = *m.spline().spanRanges();
+  EXPECT_LE(r.lowest, r.highest);
+  std::vector<TransferFunction> tfs = testTransferFunctions();
+  // Transparent only below the model's values: nothing can be skipped.
+  tfs.push_back(tfWith({{r.lowest - 1.0, 0.0f}, {r.lowest - 0.5, 0.4f}, {r.highest + 1.0, 1.0f}}));
+  int shortcuts = 0;
+  for (const TransferFunction& tf : tfs) {
+    const TransferFunctionTable table(tf, OpacityCorrection(0.5));
+    const EmptySpaceFlags f = buildEmptySpaceFlags(r, table);
+    std::int64_t empty = 0;
+    for (std::size_t i = 0; i < r.min.size(); ++i) {
+      const float pad = static_cast<float>(r.relativeRounding) *
+                        std::max(std::abs(r.min[i]), std::abs(r.max[i])) * 2.0f;
+      empty += table.transparentOver(r.min[i] - pad, r.max[i] + pad) ? 1 : 0;
+    }
+    EXPECT_EQ(f.emptyCells, empty);
+    if (f.cells.empty()) {
+      ++shortcuts;
+      EXPECT_EQ(empty, 0);
+    }
+  }
+  EXPECT_GE(shortcuts, 1);
+}
+
 void expectIdenticalWithAndWithoutSkipping(const Model& m) {
   int skippedSomewhere = 0;
   for (const TransferFunction& tf : testTransferFunctions())

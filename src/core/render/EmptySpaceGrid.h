@@ -23,7 +23,8 @@ namespace mfadvr {
 
 // One flag per cell, x fastest over SpanRanges::cells (non-zero: skip), and one per block of
 // kEmptyBlock^3 cells (non-zero: every cell of the block is empty), for a ray to cross large
-// empty regions a block at a time.
+// empty regions a block at a time. When the transfer function leaves every value of the whole
+// spline visible, no cell can be empty: emptyCells is 0 and no flags are made.
 struct EmptySpaceFlags {
   std::vector<std::uint8_t> cells;
   std::vector<std::uint8_t> blocks;

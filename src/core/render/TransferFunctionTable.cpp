@@ -38,4 +38,14 @@ bool TransferFunctionTable::transparentOver(float lo, float hi) const {
   return visibleBefore_[last + 1] - visibleBefore_[i0] == 0;
 }
 
+bool TransferFunctionTable::mayBeTransparentOver(float lo, float hi) const {
+  const TransferFunctionView v = view();
+  int i0, i1;
+  float t;
+  if (!v.locate(lo, i0, t) || !v.locate(hi, i1, t)) return true;
+  const int last = std::min(i1 + 1, kEntries - 1);
+  const int touched = last + 1 - i0;
+  return visibleBefore_[last + 1] - visibleBefore_[i0] < touched;
+}
+
 }  // namespace mfadvr

@@ -40,6 +40,9 @@ class TransferFunctionTable {
   // True when every value in [lo, hi] classifies to opacity exactly 0 (empty-space skipping):
   // the entries such values interpolate between are all transparent. O(1).
   bool transparentOver(float lo, float hi) const;
+  // True when some value in [lo, hi] may classify to opacity exactly 0: [lo, hi] touches a
+  // transparent entry (NaN ends: true). O(1).
+  bool mayBeTransparentOver(float lo, float hi) const;
 
  private:
   float lo_ = 0.0f, scale_ = 0.0f;

@@ -65,6 +65,16 @@ SpanRanges SpanRanges::compute(const SplineView& v) {
   dims[1] = r.cells[1];
   slideAxis(lo2.data(), hi2.data(), dims, 2, v.axis[2].degree + 1, r.min, r.max);
 
+  if (!r.min.empty()) {
+    r.lowest = r.min[0];
+    r.highest = r.max[0];
+    for (size_t i = 0; i < r.min.size(); ++i) {
+      // Written so that a NaN anywhere makes the result NaN (std::min would drop it).
+      r.lowest = r.min[i] < r.lowest || r.min[i] != r.min[i] ? r.min[i] : r.lowest;
+      r.highest = r.max[i] > r.highest || r.max[i] != r.max[i] ? r.max[i] : r.highest;
+    }
+  }
+
   // Float rounding of the kernel: each basis value carries about (p+2) roundings of partial
   // sums bounded by the coefficient sum S, and the contraction (p+1)^3 roundings of sums bounded
   // by M (1 + e)^3; a factor 4 on top keeps the bound safe.

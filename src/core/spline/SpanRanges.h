@@ -13,6 +13,9 @@ namespace mfadvr {
 struct SpanRanges {
   int cells[3] = {0, 0, 0};     // count - degree per axis; cell (c0, c1, c2) is spans (c + p)
   std::vector<float> min, max;  // x fastest
+  // The least of `min` and the greatest of `max`: the spline's range over the whole domain
+  // (NaN control points make them NaN).
+  float lowest = 0.0f, highest = 0.0f;
   // Bound on the relative error of the evaluation kernel's float arithmetic: a computed value
   // in a cell lies within [min - r M, max + r M], M = max(|min|, |max|) of that cell.
   double relativeRounding = 0.0;
