@@ -124,6 +124,46 @@ MFADVR_HD MFADVR_INLINE AxisLocation locateOnAxis(const KnotAxisView& a, double 
   return {s, static_cast<float>((u - a.knots[s]) * a.inverseLength[s] - 0.5)};
 }
 
+#if defined(MFADVR_KERNEL_VECTOR_LANES)
+typedef double LaneDouble8 __attribute__((vector_size(64)));
+typedef std::int64_t LaneMask8 __attribute__((vector_size(64)));
+typedef std::int32_t LaneInt8 __attribute__((vector_size(32)));
+
+// locateOnAxis for 8 points at once (host SIMD path): x[i] are physical coordinates, mapped to
+// the parameter u = (x - boxMin) * inverseExtent first. The interior spans of a regular axis
+// are located for all lanes as vectors; the others (end spans, irregular axes) take
+// locateOnAxis one lane at a time. Each lane gets exactly what locateOnAxis gives its u,
+// whatever the other lanes hold (for t >= 0, floor is the truncation the conversion does);
+// lanes from n on are computed but not finished.
+template <int P>
+MFADVR_INLINE void locateLanesOnAxis(const KnotAxisView& a, double boxMin, double inverseExtent,
+                                     const double* x, int n, int* span, float* tau) {
+  const int p = P > 0 ? P : a.degree;
+  LaneMask8 interior = {};
+  if (a.regular) {
+    LaneDouble8 u;
+    __builtin_memcpy(&u, x, sizeof u);
+    u = (u - boxMin) * inverseExtent;
+    u = u > 0.0 ? u : 0.0;  // also NaN
+    u = u > 1.0 ? 1.0 : u;
+    const LaneDouble8 t = (u - a.firstInterior) * a.inverseSpacing;
+    interior = (t >= 0.0) & (t < a.interiorSpans);
+    const LaneInt8 i = __builtin_convertvector(interior ? t : 0.0, LaneInt8);
+    const LaneDouble8 f = __builtin_convertvector(i, LaneDouble8);
+    const LaneInt8 s = i + (p + 1);
+    const LaneVector8 tl = __builtin_convertvector(t - f - 0.5, LaneVector8);
+    __builtin_memcpy(span, &s, sizeof s);
+    __builtin_memcpy(tau, &tl, sizeof tl);
+  }
+  for (int i = 0; i < n; ++i)
+    if (!interior[i]) {
+      const AxisLocation l = locateOnAxis<P>(a, (x[i] - boxMin) * inverseExtent);
+      span[i] = l.span;
+      tau[i] = l.tau;
+    }
+}
+#endif
+
 // The p+1 non-zero basis functions at `loc` (N), and with Order >= 1 their first, with Order 2
 // also their second derivatives with respect to u (D1, D2). Each array holds BasisWidth<P>
 // floats.

@@ -120,6 +120,11 @@ class SplineRaySampler {
   }
 
   MFADVR_HD MFADVR_INLINE void stage(int lane, const double p[3]) {
+    if constexpr (kGatherEverySample) {
+      // Located for the whole batch in evaluate().
+      for (int a = 0; a < 3; ++a) x_[a][lane] = p[a];
+      return;
+    }
     if (Skip && located_) {
       for (int a = 0; a < 3; ++a) locs_[lane][a] = loc_[a];
     } else {
@@ -131,9 +136,21 @@ class SplineRaySampler {
   }
 
   MFADVR_HD MFADVR_INLINE void evaluate(int n, float v[]) {
+#if defined(MFADVR_KERNEL_VECTOR_LANES)
+    if constexpr (kGatherEverySample) {
+      static_assert(kBatch == 8, "lanes are located as 8-lane vectors");
+      // The lanes' spans and local coordinates, axis by axis, as vectors.
+      for (int a = 0; a < 3; ++a)
+        locateLanesOnAxis<P>(m_.spline.axis[a], m_.boxMin[a], m_.inverseExtent[a], x_[a], n,
+                             span_[a], tau_[a]);
+    }
+#endif
     for (int i = 0; i < n; ++i) {
       const AxisLocation* loc = locs_[i];
       if constexpr (kGatherEverySample) {
+        const AxisLocation lane[3] = {
+            {span_[0][i], tau_[0][i]}, {span_[1][i], tau_[1][i]}, {span_[2][i], tau_[2][i]}};
+        loc = lane;
         // The block stays in registers. A shaded render takes the gradient here too: measured
         // faster than keeping each lane's block for the visible lanes' gradients later, also
         // where most samples are transparent (docs/benchmarks.md).
@@ -182,7 +199,11 @@ class SplineRaySampler {
   AxisLocation loc_[3];
   double uo_[3] = {0.0, 0.0, 0.0}, ud_[3] = {0.0, 0.0, 0.0}, invUd_[3] = {0.0, 0.0, 0.0};
   static constexpr int kOrder = Shade ? 1 : 0;
-  AxisLocation locs_[kBatch][3];        // each lane's point
+  AxisLocation locs_[kBatch][3];        // one-lane path: each lane's location
+  // SIMD path: each lane's point, and its spans and local coordinates, axis by axis.
+  double x_[3][kBatch] = {};
+  int span_[3][kBatch] = {};
+  float tau_[3][kBatch] = {};
   float grads_[Shade ? kBatch : 1][3];  // SIMD path: each lane's parametric gradient
   ControlBlock<P> block_;               // one-lane path: the current cell's block, and the
   PointBasis<P, kOrder> basis_;         // last sample's basis and z contraction
