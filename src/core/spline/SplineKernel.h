@@ -341,9 +341,13 @@ MFADVR_HD MFADVR_INLINE void gatherBlock(const SplineView& v, const AxisLocation
     // row ends the array: the last cells take the loads of p+1 floats below.
     const float* lastRow = src + n0 * (p1 + n1 * p2);
     if (lastRow + sizeof(Row<P>) / sizeof(float) <= v.ctrl + n0 * n1 * v.axis[2].count) {
-      for (int k = 0; k <= p2; ++k)
-        for (int j = 0; j <= p1; ++j)
-          block.rows[j + W * k] = loadWhole<Row<P>>(src + n0 * (j + n1 * k));
+      // Row pointers stepped by the strides rather than indexed: the indexed form made the
+      // compiler keep (p+1)^2 precomputed offsets, spilled to the stack.
+      const float* slab = src;
+      for (int k = 0; k <= p2; ++k, slab += n0 * n1) {
+        const float* row = slab;
+        for (int j = 0; j <= p1; ++j, row += n0) block.rows[j + W * k] = loadWhole<Row<P>>(row);
+      }
       return;
     }
   }
