@@ -129,11 +129,15 @@ TEST(TransferFunctionTable, MayBeTransparentOverFindsEveryTransparentRange) {
     for (int t = 0; t < 2000; ++t) {
       float lo = uni(rng), hi = uni(rng);
       if (lo > hi) std::swap(lo, hi);
-      if (table.transparentOver(lo, hi)) EXPECT_TRUE(table.mayBeTransparentOver(lo, hi));
+      if (table.transparentOver(lo, hi)) {
+        EXPECT_TRUE(table.mayBeTransparentOver(lo, hi));
+      }
       bool zeroInside = false;
       for (int i = 0; i <= 256; ++i)
         zeroInside |= table.classify(lo + (hi - lo) * static_cast<float>(i) / 256.0f).alpha == 0;
-      if (zeroInside) EXPECT_TRUE(table.mayBeTransparentOver(lo, hi)) << lo << ".." << hi;
+      if (zeroInside) {
+        EXPECT_TRUE(table.mayBeTransparentOver(lo, hi)) << lo << ".." << hi;
+      }
     }
   }
   const TransferFunctionTable step(testTransferFunctions()[0], OpacityCorrection(0.5));

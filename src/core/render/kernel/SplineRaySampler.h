@@ -53,6 +53,10 @@ class SplineRaySampler {
   // and take one sample at a time.
   static constexpr bool kGatherEverySample = Lanes<P + 1, (P > 0)>::kVector;
   static constexpr int kBatch = kGatherEverySample ? kSampleBatch : 1;
+  // Without skipping, a batch's points are located together as vectors (locateLanesOnAxis);
+  // with skipping, emptyAt() has located every point before it is staged, and stage() keeps
+  // that (measured faster than locating the batch again).
+  static constexpr bool kLocateLanes = kGatherEverySample && !Skip;
 
   MFADVR_HD explicit SplineRaySampler(const ModelView& m) : m_(m) {
     for (int a = 0; a < 3; ++a) {
@@ -120,7 +124,7 @@ class SplineRaySampler {
   }
 
   MFADVR_HD MFADVR_INLINE void stage(int lane, const double p[3]) {
-    if constexpr (kGatherEverySample) {
+    if constexpr (kLocateLanes) {
       // Located for the whole batch in evaluate().
       for (int a = 0; a < 3; ++a) x_[a][lane] = p[a];
       return;
@@ -137,7 +141,7 @@ class SplineRaySampler {
 
   MFADVR_HD MFADVR_INLINE void evaluate(int n, float v[]) {
 #if defined(MFADVR_KERNEL_VECTOR_LANES)
-    if constexpr (kGatherEverySample) {
+    if constexpr (kLocateLanes) {
       static_assert(kBatch == 8, "lanes are located as 8-lane vectors");
       // The lanes' spans and local coordinates, axis by axis, as vectors.
       for (int a = 0; a < 3; ++a)
@@ -147,10 +151,12 @@ class SplineRaySampler {
 #endif
     for (int i = 0; i < n; ++i) {
       const AxisLocation* loc = locs_[i];
-      if constexpr (kGatherEverySample) {
-        const AxisLocation lane[3] = {
-            {span_[0][i], tau_[0][i]}, {span_[1][i], tau_[1][i]}, {span_[2][i], tau_[2][i]}};
+      AxisLocation lane[3];
+      if constexpr (kLocateLanes) {
+        for (int a = 0; a < 3; ++a) lane[a] = {span_[a][i], tau_[a][i]};
         loc = lane;
+      }
+      if constexpr (kGatherEverySample) {
         // The block stays in registers. A shaded render takes the gradient here too: measured
         // faster than keeping each lane's block for the visible lanes' gradients later, also
         // where most samples are transparent (docs/benchmarks.md).
@@ -199,8 +205,8 @@ class SplineRaySampler {
   AxisLocation loc_[3];
   double uo_[3] = {0.0, 0.0, 0.0}, ud_[3] = {0.0, 0.0, 0.0}, invUd_[3] = {0.0, 0.0, 0.0};
   static constexpr int kOrder = Shade ? 1 : 0;
-  AxisLocation locs_[kBatch][3];        // one-lane path: each lane's location
-  // SIMD path: each lane's point, and its spans and local coordinates, axis by axis.
+  AxisLocation locs_[kBatch][3];  // each lane's location, unless kLocateLanes
+  // kLocateLanes: each lane's point, and its spans and local coordinates, axis by axis.
   double x_[3][kBatch] = {};
   int span_[3][kBatch] = {};
   float tau_[3][kBatch] = {};
