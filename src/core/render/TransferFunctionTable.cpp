@@ -28,24 +28,26 @@ TransferFunctionTable::TransferFunctionTable(const TransferFunction& tf,
     visibleBefore_[i + 1] = visibleBefore_[i] + (entries_[i].alpha != 0.0f ? 1 : 0);
 }
 
-bool TransferFunctionTable::transparentOver(float lo, float hi) const {
+bool TransferFunctionTable::touchedEntries(float lo, float hi, int& first, int& last) const {
   const TransferFunctionView v = view();
-  int i0, i1;
+  int i1;
   float t;
-  // locate() is monotone in the value, so [lo, hi] touches entries i0 .. i1 + 1 only.
-  if (!v.locate(lo, i0, t) || !v.locate(hi, i1, t)) return false;
-  const int last = std::min(i1 + 1, kEntries - 1);
-  return visibleBefore_[last + 1] - visibleBefore_[i0] == 0;
+  // locate() is monotone in the value, so [lo, hi] touches entries first .. i1 + 1 only.
+  if (!v.locate(lo, first, t) || !v.locate(hi, i1, t)) return false;
+  last = std::min(i1 + 1, kEntries - 1);
+  return true;
+}
+
+bool TransferFunctionTable::transparentOver(float lo, float hi) const {
+  int first, last;
+  if (!touchedEntries(lo, hi, first, last)) return false;
+  return visibleBefore_[last + 1] - visibleBefore_[first] == 0;
 }
 
 bool TransferFunctionTable::mayBeTransparentOver(float lo, float hi) const {
-  const TransferFunctionView v = view();
-  int i0, i1;
-  float t;
-  if (!v.locate(lo, i0, t) || !v.locate(hi, i1, t)) return true;
-  const int last = std::min(i1 + 1, kEntries - 1);
-  const int touched = last + 1 - i0;
-  return visibleBefore_[last + 1] - visibleBefore_[i0] < touched;
+  int first, last;
+  if (!touchedEntries(lo, hi, first, last)) return true;
+  return visibleBefore_[last + 1] - visibleBefore_[first] < last + 1 - first;
 }
 
 }  // namespace mfadvr

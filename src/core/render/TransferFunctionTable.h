@@ -45,6 +45,9 @@ class TransferFunctionTable {
   bool mayBeTransparentOver(float lo, float hi) const;
 
  private:
+  // The entries first .. last that values in [lo, hi] interpolate between; false for a NaN end.
+  bool touchedEntries(float lo, float hi, int& first, int& last) const;
+
   float lo_ = 0.0f, scale_ = 0.0f;
   std::vector<TfEntry> entries_;
   std::vector<int> visibleBefore_;  // [i]: entries before i with non-zero opacity
