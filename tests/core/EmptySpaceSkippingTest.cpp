@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <random>
+#include <utility>
+#include <vector>
 
 #include "TestSupport.h"
 #include "core/analytic/BuiltinFunction.h"
@@ -96,15 +98,25 @@ TEST(SpanRanges, BoundEveryValueOfTheCell) {
   EXPECT_LT(r.relativeRounding, 1e-3);  // a bound, not a guess: it should stay small
 }
 
+// 2000 value ranges [lo, hi] around the test functions' [0, 1], every third one narrow (as most
+// cells' ranges are).
+std::vector<std::pair<float, float>> randomRanges(unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> uni(-0.2f, 1.2f);
+  std::vector<std::pair<float, float>> out;
+  for (int t = 0; t < 2000; ++t) {
+    float lo = uni(rng), hi = uni(rng);
+    if (lo > hi) std::swap(lo, hi);
+    if (t % 3 == 0) hi = lo + 1e-3f * (hi - lo);
+    out.emplace_back(lo, hi);
+  }
+  return out;
+}
+
 TEST(TransferFunctionTable, TransparentOverAgreesWithClassification) {
   for (const TransferFunction& tf : testTransferFunctions()) {
     const TransferFunctionTable table(tf, OpacityCorrection(0.5));
-    std::mt19937 rng(3);
-    std::uniform_real_distribution<float> uni(-0.2f, 1.2f);
-    for (int t = 0; t < 2000; ++t) {
-      float lo = uni(rng), hi = uni(rng);
-      if (lo > hi) std::swap(lo, hi);
-      if (t % 3 == 0) hi = lo + 1e-3f * (hi - lo);  // narrow ranges, as most cells have
+    for (const auto& [lo, hi] : randomRanges(3)) {
       if (!table.transparentOver(lo, hi)) continue;
       // Claimed transparent: every value in between classifies to opacity 0.
       for (int i = 0; i <= 64; ++i) {
@@ -120,15 +132,11 @@ TEST(TransferFunctionTable, TransparentOverAgreesWithClassification) {
 }
 
 // The whole-range test behind the shortcut of buildEmptySpaceFlags: a range with a
-// transparent value is always reported, and one that touches only visible entries never is.
+// transparent value is always reported; a range clear of the transparent entries is not.
 TEST(TransferFunctionTable, MayBeTransparentOverFindsEveryTransparentRange) {
   for (const TransferFunction& tf : testTransferFunctions()) {
     const TransferFunctionTable table(tf, OpacityCorrection(0.5));
-    std::mt19937 rng(5);
-    std::uniform_real_distribution<float> uni(-0.2f, 1.2f);
-    for (int t = 0; t < 2000; ++t) {
-      float lo = uni(rng), hi = uni(rng);
-      if (lo > hi) std::swap(lo, hi);
+    for (const auto& [lo, hi] : randomRanges(5)) {
       if (table.transparentOver(lo, hi)) {
         EXPECT_TRUE(table.mayBeTransparentOver(lo, hi));
       }
@@ -161,8 +169,7 @@ TEST(EmptySpaceFlags, NoCellEmptyWhenTheWholeRangeIsVisible) {
     const EmptySpaceFlags f = buildEmptySpaceFlags(r, table);
     std::int64_t empty = 0;
     for (std::size_t i = 0; i < r.min.size(); ++i) {
-      const float pad = static_cast<float>(r.relativeRounding) *
-                        std::max(std::abs(r.min[i]), std::abs(r.max[i])) * 2.0f;
+      const float pad = skippingMargin(r, r.min[i], r.max[i]);
       empty += table.transparentOver(r.min[i] - pad, r.max[i] + pad) ? 1 : 0;
     }
     EXPECT_EQ(f.emptyCells, empty);

@@ -13,19 +13,17 @@ namespace mfadvr {
 EmptySpaceFlags buildEmptySpaceFlags(const SpanRanges& r, const TransferFunctionTable& table) {
   const std::int64_t n = std::int64_t(r.cells[0]) * r.cells[1] * r.cells[2];
   EmptySpaceFlags out;
-  const float rel = static_cast<float>(r.relativeRounding);
   // A cell's widened range lies within the whole spline's, widened by at least as much, and
   // the entries a range touches grow with it: when the whole range touches no transparent
   // entry, no cell is empty, and the per-cell pass (a sizeable part of a frame) is not needed.
-  const float wholePad = rel * std::max(std::abs(r.lowest), std::abs(r.highest)) * 2.0f;
+  const float wholePad = skippingMargin(r, r.lowest, r.highest);
   if (!table.mayBeTransparentOver(r.lowest - wholePad, r.highest + wholePad)) return out;
   std::vector<std::uint8_t>& flags = out.cells;
   flags.assign(static_cast<size_t>(n), 0);
   tbb::parallel_for(tbb::blocked_range<std::int64_t>(0, n, 1 << 14), [&](const auto& range) {
     for (std::int64_t i = range.begin(); i < range.end(); ++i) {
       const float lo = r.min[i], hi = r.max[i];
-      // Equal control points of 0 give exactly 0; otherwise widen by the rounding bound.
-      const float pad = rel * std::max(std::abs(lo), std::abs(hi)) * 2.0f;
+      const float pad = skippingMargin(r, lo, hi);
       flags[i] = table.transparentOver(lo - pad, hi + pad) ? 1 : 0;
     }
   });

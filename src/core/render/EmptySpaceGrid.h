@@ -11,6 +11,8 @@
 // The flags depend on the model and on which table entries are transparent; the cache rebuilds
 // them only when either changes (a colour change or an opacity change that keeps the zero set
 // keeps them), so an interactive session pays once per transfer-function edit.
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <memory>
 #include <mutex>
@@ -31,6 +33,13 @@ struct EmptySpaceFlags {
   int blockCounts[3] = {0, 0, 0};
   std::int64_t emptyCells = 0;
 };
+
+// How far a range [lo, hi] of computed values is widened before the table is asked: twice the
+// kernel's rounding bound (SpanRanges::relativeRounding), for safety. Equal control points of 0
+// give exactly 0 and no margin.
+inline float skippingMargin(const SpanRanges& r, float lo, float hi) {
+  return static_cast<float>(r.relativeRounding) * std::max(std::abs(lo), std::abs(hi)) * 2.0f;
+}
 
 EmptySpaceFlags buildEmptySpaceFlags(const SpanRanges& ranges, const TransferFunctionTable& table);
 
