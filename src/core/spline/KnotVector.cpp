@@ -58,6 +58,8 @@ KnotAxisView KnotVector::view() const {
   v.firstInterior = firstInterior_;
   v.inverseSpacing = inverseSpacing_;
   v.interiorSpans = regular_ ? static_cast<double>(controlCount() - degree_ - 2) : 0.0;
+  v.sharedFirst = sharedFirst_;
+  v.sharedLast = sharedLast_;
   return v;
 }
 
@@ -82,6 +84,21 @@ void KnotVector::buildBasisPolynomials() {
         poly_[(static_cast<size_t>(s) * w + k) * w + r] =
             static_cast<float>(ders[k * w + r] * scale);
       scale *= h / (k + 1);
+    }
+  }
+  // On a regular axis, spans 2p+1 .. n-p-2 see only equally spaced knots: their polynomials in
+  // the local coordinate are the same function (the uniform B-spline's), and differ here only
+  // by the rounding of each span's own knots (a float ulp). One copy, the first span's, makes
+  // them equal bit for bit, so that every evaluation path reads identical coefficients.
+  if (regular_ && 2 * p + 1 <= n - p - 2) {
+    sharedFirst_ = 2 * p + 1;
+    sharedLast_ = n - p - 2;
+    const size_t block = static_cast<size_t>(w) * w;
+    const auto first = poly_.begin() + static_cast<std::ptrdiff_t>(sharedFirst_ * block);
+    for (int s = sharedFirst_ + 1; s <= sharedLast_; ++s) {
+      std::copy(first, first + static_cast<std::ptrdiff_t>(block),
+                poly_.begin() + static_cast<std::ptrdiff_t>(s * block));
+      inverseLength_[s] = inverseLength_[sharedFirst_];
     }
   }
 }

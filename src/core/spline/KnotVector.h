@@ -67,6 +67,7 @@ class KnotVector {
   std::vector<double> reciprocals_;
   std::vector<float> poly_;
   std::vector<double> inverseLength_;
+  int sharedFirst_ = 1, sharedLast_ = 0;  // KnotAxisView::sharedFirst / sharedLast
 };
 
 }  // namespace mfadvr

@@ -18,6 +18,10 @@
 
 #include "core/spline/SplineView.h"
 
+#if (defined(__GNUC__) || defined(__clang__)) && !defined(__CUDACC__) && defined(__AVX__)
+#include <immintrin.h>
+#endif
+
 namespace mfadvr {
 
 inline constexpr int kSplineMaxDegree = 7;  // = kMaxDegree of KnotVector.h
@@ -54,6 +58,38 @@ typedef float LaneVector4 __attribute__((vector_size(16)));
 typedef float LaneVector8 __attribute__((vector_size(32)));
 template <int W>
 using LaneVector = std::conditional_t<(W <= 4), LaneVector4, LaneVector8>;
+
+// x in every lane (also -0: `V{} + x` would make it +0).
+template <class V>
+MFADVR_INLINE V splatLanes(float x) {
+#if defined(__AVX__)
+  if constexpr (sizeof(V) == 32) return reinterpret_cast<V>(_mm256_set1_ps(x));
+#endif
+  V v;
+  for (unsigned i = 0; i < sizeof(V) / sizeof(float); ++i) v[i] = x;
+  return v;
+}
+
+// a * b + c for vectors of 4 or 8 floats, rounded once where the target has FMA and twice
+// otherwise, whatever the optimizer would contract. Every multiply-add of the vector paths goes
+// through here, so that the per-point kernel and the eight-lane kernel (SplineLaneKernel.h)
+// round each lane alike; left to the compiler, which product of `a * b + c * d` it fuses
+// depends on the shape of the code around it.
+template <class V>
+MFADVR_INLINE V fusedMultiplyAdd(V a, V b, V c) {
+#if defined(__FMA__)
+  if constexpr (sizeof(V) == 16)
+    return reinterpret_cast<V>(_mm_fmadd_ps(
+        reinterpret_cast<__m128>(a), reinterpret_cast<__m128>(b), reinterpret_cast<__m128>(c)));
+  else
+    return reinterpret_cast<V>(_mm256_fmadd_ps(
+        reinterpret_cast<__m256>(a), reinterpret_cast<__m256>(b), reinterpret_cast<__m256>(c)));
+#else
+  V product = a * b;
+  asm("" : "+x"(product));  // no contraction: two roundings, as in the eight-lane kernel
+  return product + c;
+#endif
+}
 
 // n floats into a vector of type V (unused lanes zero). Full vectors are copied whole; shorter
 // ones are built lane by lane, since a narrow copy into a wide stack value stalls the load that
@@ -125,6 +161,7 @@ MFADVR_HD MFADVR_INLINE AxisLocation locateOnAxis(const KnotAxisView& a, double 
 }
 
 #if defined(MFADVR_KERNEL_VECTOR_LANES)
+typedef double LaneDouble4 __attribute__((vector_size(32)));
 typedef double LaneDouble8 __attribute__((vector_size(64)));
 typedef std::int64_t LaneMask8 __attribute__((vector_size(64)));
 typedef std::int32_t LaneInt8 __attribute__((vector_size(32)));
@@ -137,13 +174,11 @@ typedef std::int32_t LaneInt8 __attribute__((vector_size(32)));
 // lanes from n on are computed but not finished.
 template <int P>
 MFADVR_INLINE void locateLanesOnAxis(const KnotAxisView& a, double boxMin, double inverseExtent,
-                                     const double* x, int n, int* span, float* tau) {
+                                     LaneDouble8 x, int n, int* span, float* tau) {
   const int p = P > 0 ? P : a.degree;
   LaneMask8 interior = {};
   if (a.regular) {
-    LaneDouble8 u;
-    __builtin_memcpy(&u, x, sizeof u);
-    u = (u - boxMin) * inverseExtent;
+    LaneDouble8 u = (x - boxMin) * inverseExtent;
     u = u > 0.0 ? u : 0.0;  // also NaN
     u = u > 1.0 ? 1.0 : u;
     const LaneDouble8 t = (u - a.firstInterior) * a.inverseSpacing;
@@ -161,6 +196,23 @@ MFADVR_INLINE void locateLanesOnAxis(const KnotAxisView& a, double boxMin, doubl
       span[i] = l.span;
       tau[i] = l.tau;
     }
+}
+
+// Eight points, each stored as one vector {x, y, z, unused}, as three vectors of coordinates.
+// Each point is written and read whole: building the coordinate vectors from lane-by-lane
+// stores would make the processor wait for those stores (no store forwarding) on every batch.
+MFADVR_INLINE void transposePoints(const LaneDouble4 points[8], LaneDouble8 xyz[3]) {
+  LaneDouble8 q[4];  // q[i] = points i and i + 4
+  for (int i = 0; i < 4; ++i)
+    q[i] = __builtin_shufflevector(points[i], points[i + 4], 0, 1, 2, 3, 4, 5, 6, 7);
+  // Even coordinates (x, z) and odd ones (y) of points {0, 1, 4, 5} and {2, 3, 6, 7}.
+  const LaneDouble8 even01 = __builtin_shufflevector(q[0], q[1], 0, 8, 2, 10, 4, 12, 6, 14);
+  const LaneDouble8 even23 = __builtin_shufflevector(q[2], q[3], 0, 8, 2, 10, 4, 12, 6, 14);
+  const LaneDouble8 odd01 = __builtin_shufflevector(q[0], q[1], 1, 9, 3, 11, 5, 13, 7, 15);
+  const LaneDouble8 odd23 = __builtin_shufflevector(q[2], q[3], 1, 9, 3, 11, 5, 13, 7, 15);
+  xyz[0] = __builtin_shufflevector(even01, even23, 0, 1, 8, 9, 4, 5, 12, 13);
+  xyz[1] = __builtin_shufflevector(odd01, odd23, 0, 1, 8, 9, 4, 5, 12, 13);
+  xyz[2] = __builtin_shufflevector(even01, even23, 2, 3, 10, 11, 6, 7, 14, 15);
 }
 #endif
 
@@ -181,15 +233,16 @@ MFADVR_HD MFADVR_INLINE void axisBasis(const KnotAxisView& a, AxisLocation loc, 
     constexpr int V = P + 1;
     using Vec = LaneVector<V>;
     Vec n = loadWhole<Vec>(c + P * V), d1 = {}, d2 = {};
+    const Vec tv = splatLanes<Vec>(t);
     if constexpr (Order >= 1) d1 = float(P) * n;
     if constexpr (Order >= 2) d2 = float(P * (P - 1)) * n;
     for (int k = P - 1; k >= 0; --k) {
       const Vec ck = loadWhole<Vec>(c + k * V);
-      n = n * t + ck;
+      n = fusedMultiplyAdd(n, tv, ck);
       if constexpr (Order >= 1)
-        if (k >= 1) d1 = d1 * t + float(k) * ck;
+        if (k >= 1) d1 = fusedMultiplyAdd(d1, tv, float(k) * ck);
       if constexpr (Order >= 2)
-        if (k >= 2) d2 = d2 * t + float(k * (k - 1)) * ck;
+        if (k >= 2) d2 = fusedMultiplyAdd(d2, tv, float(k * (k - 1)) * ck);
     }
     storeWhole(n, N);
     if constexpr (Order >= 1) storeWhole(d1 * inv, D1);
@@ -296,7 +349,7 @@ MFADVR_INLINE void rowScale(V& acc, float w, const V& r, int) {
 }
 template <class V>
 MFADVR_INLINE void rowFma(V& acc, float w, const V& r, int) {
-  acc += w * r;
+  acc = fusedMultiplyAdd(splatLanes<V>(w), r, acc);
 }
 // basis: a whole vector (BasisWidth).
 template <class V>

@@ -30,6 +30,12 @@ struct KnotAxisView {
   double firstInterior = 1.0;   // knots[p+1]
   double inverseSpacing = 0.0;  // 1 / (knots[p+2] - knots[p+1])
   double interiorSpans = 0.0;   // count - p - 2: the equally long spans p+1 .. count-2
+  // Spans sharedFirst .. sharedLast (none when sharedLast < sharedFirst) have the same basis
+  // polynomials and inverse length, bit for bit: on a regular axis the spans whose p+1 basis
+  // functions see only equally spaced knots (2p+1 .. count-p-2). Eight-lane evaluation
+  // (SplineLaneKernel.h) then takes their basis from one set of coefficients.
+  int sharedFirst = 1;
+  int sharedLast = 0;
 };
 
 // The span s in [p, count-1] with knots[s] <= u < knots[s+1]; u outside (0,1) or NaN maps to

@@ -20,6 +20,7 @@
 #include "core/mask/MaskView.h"
 #include "core/render/kernel/SampleBatch.h"
 #include "core/spline/SplineKernel.h"
+#include "core/spline/SplineLaneKernel.h"
 
 namespace mfadvr {
 
@@ -57,6 +58,10 @@ class SplineRaySampler {
   // with skipping, emptyAt() has located every point before it is staged, and stage() keeps
   // that (measured faster than locating the batch again).
   static constexpr bool kLocateLanes = kGatherEverySample && !Skip;
+  // Degrees 1..3 on an AVX2 host evaluate a batch with one SIMD lane per sample
+  // (SplineLaneKernel.h), the same values bit for bit.
+  static constexpr bool kLaneKernel = kGatherEverySample && SplineLaneKernel<P>::kAvailable;
+  static constexpr bool kLaneLocations = kLocateLanes || kLaneKernel;
 
   MFADVR_HD explicit SplineRaySampler(const ModelView& m) : m_(m) {
     for (int a = 0; a < 3; ++a) {
@@ -126,33 +131,53 @@ class SplineRaySampler {
   MFADVR_HD MFADVR_INLINE void stage(int lane, const double p[3]) {
     if constexpr (kLocateLanes) {
       // Located for the whole batch in evaluate().
-      for (int a = 0; a < 3; ++a) x_[a][lane] = p[a];
+#if defined(MFADVR_KERNEL_VECTOR_LANES)
+      points_[lane] = LaneDouble4{p[0], p[1], p[2], 0.0};
+#endif
       return;
     }
+    AxisLocation* loc = locs_[lane];
     if (Skip && located_) {
-      for (int a = 0; a < 3; ++a) locs_[lane][a] = loc_[a];
+      loc = loc_;
     } else {
       double u[3];
       toParameter(p, u);
-      locatePoint<P>(m_.spline, u, locs_[lane]);
+      locatePoint<P>(m_.spline, u, loc);
+    }
+    if constexpr (kLaneLocations) {
+      for (int a = 0; a < 3; ++a) {
+        span_[a][lane] = loc[a].span;
+        tau_[a][lane] = loc[a].tau;
+      }
+    } else if (loc != locs_[lane]) {
+      for (int a = 0; a < 3; ++a) locs_[lane][a] = loc[a];
     }
     located_ = false;
   }
 
+  // v has room for kBatch values.
   MFADVR_HD MFADVR_INLINE void evaluate(int n, float v[]) {
 #if defined(MFADVR_KERNEL_VECTOR_LANES)
     if constexpr (kLocateLanes) {
       static_assert(kBatch == 8, "lanes are located as 8-lane vectors");
       // The lanes' spans and local coordinates, axis by axis, as vectors.
+      LaneDouble8 x[3];
+      transposePoints(points_, x);
       for (int a = 0; a < 3; ++a)
-        locateLanesOnAxis<P>(m_.spline.axis[a], m_.boxMin[a], m_.inverseExtent[a], x_[a], n,
+        locateLanesOnAxis<P>(m_.spline.axis[a], m_.boxMin[a], m_.inverseExtent[a], x[a], n,
                              span_[a], tau_[a]);
+    }
+#endif
+#if defined(MFADVR_SPLINE_LANE_KERNEL)
+    if constexpr (kLaneKernel) {
+      static_assert(kBatch == 8, "the lane kernel takes 8 samples");
+      if (evaluateLanes<P, kOrder>(m_.spline, span_, tau_, n, v, grads_)) return;
     }
 #endif
     for (int i = 0; i < n; ++i) {
       const AxisLocation* loc = locs_[i];
       AxisLocation lane[3];
-      if constexpr (kLocateLanes) {
+      if constexpr (kLaneLocations) {
         for (int a = 0; a < 3; ++a) lane[a] = {span_[a][i], tau_[a][i]};
         loc = lane;
       }
@@ -166,7 +191,11 @@ class SplineRaySampler {
         gatherBlock<P>(m_.spline, loc, block);
         pointBasis<P, kOrder>(m_.spline, loc, basis);
         v[i] = contractValue<P, kOrder>(block, basis, Tz);
-        if constexpr (Shade) contractPartials<P, kOrder>(block, basis, Tz, grads_[i]);
+        if constexpr (Shade) {
+          float g[3];
+          contractPartials<P, kOrder>(block, basis, Tz, g);
+          for (int a = 0; a < 3; ++a) grads_[a][i] = g[a];
+        }
       } else {
         // One lane: the block is kept while the ray stays in the cell; value first, the
         // gradient only when asked for (a visible sample).
@@ -184,7 +213,7 @@ class SplineRaySampler {
   MFADVR_HD MFADVR_INLINE void gradient(int lane, float g[3]) const {
     static_assert(Shade, "gradients need a sampler made for shading");
     if constexpr (kGatherEverySample) {
-      for (int a = 0; a < 3; ++a) g[a] = grads_[lane][a];
+      for (int a = 0; a < 3; ++a) g[a] = grads_[a][lane];
     } else {
       contractPartials<P, kOrder>(block_, basis_, Tz_, g);
     }
@@ -205,14 +234,17 @@ class SplineRaySampler {
   AxisLocation loc_[3];
   double uo_[3] = {0.0, 0.0, 0.0}, ud_[3] = {0.0, 0.0, 0.0}, invUd_[3] = {0.0, 0.0, 0.0};
   static constexpr int kOrder = Shade ? 1 : 0;
-  AxisLocation locs_[kBatch][3];  // each lane's location, unless kLocateLanes
-  // kLocateLanes: each lane's point, and its spans and local coordinates, axis by axis.
-  double x_[3][kBatch] = {};
+  AxisLocation locs_[kBatch][3];  // each lane's location, unless kLaneLocations
+  // kLocateLanes: each lane's point; kLaneLocations: its spans and local coordinates, axis by
+  // axis.
+#if defined(MFADVR_KERNEL_VECTOR_LANES)
+  LaneDouble4 points_[kBatch] = {};
+#endif
   int span_[3][kBatch] = {};
   float tau_[3][kBatch] = {};
-  float grads_[Shade ? kBatch : 1][3];  // SIMD path: each lane's parametric gradient
-  ControlBlock<P> block_;               // one-lane path: the current cell's block, and the
-  PointBasis<P, kOrder> basis_;         // last sample's basis and z contraction
+  float grads_[3][kBatch];       // SIMD path: each lane's parametric gradient
+  ControlBlock<P> block_;        // one-lane path: the current cell's block, and the
+  PointBasis<P, kOrder> basis_;  // last sample's basis and z contraction
   Row<P> Tz_[W];
 };
 
