@@ -64,6 +64,7 @@ template <class V>
 MFADVR_INLINE V splatLanes(float x) {
 #if defined(__AVX__)
   if constexpr (sizeof(V) == 32) return reinterpret_cast<V>(_mm256_set1_ps(x));
+  if constexpr (sizeof(V) == 16) return reinterpret_cast<V>(_mm_set1_ps(x));
 #endif
   V v;
   for (unsigned i = 0; i < sizeof(V) / sizeof(float); ++i) v[i] = x;

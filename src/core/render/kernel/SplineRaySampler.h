@@ -58,9 +58,12 @@ class SplineRaySampler {
   // with skipping, emptyAt() has located every point before it is staged, and stage() keeps
   // that (measured faster than locating the batch again).
   static constexpr bool kLocateLanes = kGatherEverySample && !Skip;
-  // Degrees 1..3 on an AVX2 host evaluate a batch with one SIMD lane per sample
-  // (SplineLaneKernel.h), the same values bit for bit.
-  static constexpr bool kLaneKernel = kGatherEverySample && SplineLaneKernel<P>::kAvailable;
+  // Shaded renders of degrees 1..3 on an AVX2 host evaluate a batch with one SIMD lane per
+  // sample (SplineLaneKernel.h), the same values and gradients bit for bit: 1.13x faster frames
+  // shaded; unshaded it measured no faster than the per-point kernel, which stays there
+  // (docs/benchmarks.md).
+  static constexpr bool kLaneKernel =
+      Shade && kGatherEverySample && SplineLaneKernel<P>::kAvailable;
   static constexpr bool kLaneLocations = kLocateLanes || kLaneKernel;
 
   MFADVR_HD explicit SplineRaySampler(const ModelView& m) : m_(m) {
