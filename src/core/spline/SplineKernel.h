@@ -86,10 +86,27 @@ MFADVR_INLINE V fusedMultiplyAdd(V a, V b, V c) {
     return reinterpret_cast<V>(_mm256_fmadd_ps(
         reinterpret_cast<__m256>(a), reinterpret_cast<__m256>(b), reinterpret_cast<__m256>(c)));
 #else
-  V product = a * b;
-  asm("" : "+x"(product));  // no contraction: two roundings, as in the eight-lane kernel
-  return product + c;
+  return a * b + c;  // no FMA on x86: two roundings; the eight-lane kernel needs FMA anyway
 #endif
+}
+
+// Horner's rule for basis polynomials held as vectors: c[k] holds coefficients of tau^k
+// (k = 0..P), t the local coordinate; n gets the values, d1 and d2 (Order >= 1, 2) the first
+// and second derivatives with respect to tau. The per-point kernel holds an axis's p+1
+// functions in one vector, the eight-lane kernel one function at eight points: both call this.
+template <int P, int Order, class V>
+MFADVR_INLINE void hornerBasis(const V c[P + 1], V t, V& n, V& d1, V& d2) {
+  n = c[P];
+  if constexpr (Order >= 1) d1 = float(P) * n;
+  if constexpr (Order >= 2) d2 = float(P * (P - 1)) * n;
+#pragma GCC unroll 8
+  for (int k = P - 1; k >= 0; --k) {
+    n = fusedMultiplyAdd(n, t, c[k]);
+    if constexpr (Order >= 1)
+      if (k >= 1) d1 = fusedMultiplyAdd(d1, t, float(k) * c[k]);
+    if constexpr (Order >= 2)
+      if (k >= 2) d2 = fusedMultiplyAdd(d2, t, float(k * (k - 1)) * c[k]);
+  }
 }
 
 // n floats into a vector of type V (unused lanes zero). Full vectors are copied whole; shorter
@@ -233,18 +250,9 @@ MFADVR_HD MFADVR_INLINE void axisBasis(const KnotAxisView& a, AxisLocation loc, 
     // Horner's rule on all p+1 functions at once; d/du = d/dtau / (span length).
     constexpr int V = P + 1;
     using Vec = LaneVector<V>;
-    Vec n = loadWhole<Vec>(c + P * V), d1 = {}, d2 = {};
-    const Vec tv = splatLanes<Vec>(t);
-    if constexpr (Order >= 1) d1 = float(P) * n;
-    if constexpr (Order >= 2) d2 = float(P * (P - 1)) * n;
-    for (int k = P - 1; k >= 0; --k) {
-      const Vec ck = loadWhole<Vec>(c + k * V);
-      n = fusedMultiplyAdd(n, tv, ck);
-      if constexpr (Order >= 1)
-        if (k >= 1) d1 = fusedMultiplyAdd(d1, tv, float(k) * ck);
-      if constexpr (Order >= 2)
-        if (k >= 2) d2 = fusedMultiplyAdd(d2, tv, float(k * (k - 1)) * ck);
-    }
+    Vec coefficients[V], n, d1 = {}, d2 = {};
+    for (int k = 0; k < V; ++k) coefficients[k] = loadWhole<Vec>(c + k * V);
+    hornerBasis<P, Order>(coefficients, splatLanes<Vec>(t), n, d1, d2);
     storeWhole(n, N);
     if constexpr (Order >= 1) storeWhole(d1 * inv, D1);
     if constexpr (Order >= 2) storeWhole(d2 * (inv * inv), D2);

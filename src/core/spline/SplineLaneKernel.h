@@ -67,13 +67,13 @@ MFADVR_INLINE void transposeRows(const float* const rows[8], std::int64_t offset
 // The basis of one axis at eight located points: N[r] (and D1[r] with Order 1) holds function
 // r (derivative) at every lane. When every lane lies in the axis's shared spans the
 // coefficients are broadcast from one span; otherwise each lane's are loaded and transposed like
-// control rows. Horner's rule then runs as in axisBasis, per function over the lanes.
+// control rows. Horner's rule (hornerBasis, as in axisBasis) then runs per function over the lanes.
 template <int P, int Order>
 MFADVR_INLINE void laneBasis(const KnotAxisView& a, LaneInt8 s, Lanes8 t, Lanes8 N[P + 1],
                              Lanes8 D1[P + 1]) {
   constexpr int V = P + 1;
   const LaneInt8 outside = (s < a.sharedFirst) | (s > a.sharedLast);
-  Lanes8 C[V][4];  // C[k][r]: the coefficient of tau^k of function r
+  Lanes8 C[V][4];  // C[k][r]: the coefficients of tau^k of function r
   Lanes8 inv;      // d tau / du
   if (_mm256_movemask_ps(reinterpret_cast<__m256>(outside)) == 0) {
     const float* c = a.poly + static_cast<std::int64_t>(a.sharedFirst) * V * V;
@@ -97,15 +97,10 @@ MFADVR_INLINE void laneBasis(const KnotAxisView& a, LaneInt8 s, Lanes8 t, Lanes8
   }
 #pragma GCC unroll 8
   for (int r = 0; r < V; ++r) {
-    Lanes8 n = C[P][r], d1 = {};
-    if constexpr (Order >= 1) d1 = float(P) * n;
+    Lanes8 c[V], d1 = {}, unused = {};
 #pragma GCC unroll 8
-    for (int k = P - 1; k >= 0; --k) {
-      n = fusedMultiplyAdd(n, t, C[k][r]);
-      if constexpr (Order >= 1)
-        if (k >= 1) d1 = fusedMultiplyAdd(d1, t, float(k) * C[k][r]);
-    }
-    N[r] = n;
+    for (int k = 0; k < V; ++k) c[k] = C[k][r];
+    hornerBasis<P, Order>(c, t, N[r], d1, unused);
     if constexpr (Order >= 1) D1[r] = d1 * inv;
   }
 }

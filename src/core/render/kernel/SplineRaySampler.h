@@ -6,7 +6,8 @@
 // (p+1)^3 control points into a local block and the contraction over that block
 // (SplineKernel.h). With SIMD rows (host, one degree) samples are evaluated in batches
 // (SampleBatch.h), every sample gathers its block (kGatherEverySample) and a shaded render
-// computes value and gradient together. Where rows are plain arrays (device, mixed degrees)
+// computes value and gradient together, for degrees 1..3 with one SIMD lane per sample
+// (SplineLaneKernel.h). Where rows are plain arrays (device, mixed degrees)
 // samples go one at a time, consecutive samples in one knot-span cell reuse the block, and the
 // gradient, asked for only when the sample is visible, reuses the value's z contraction.
 //
