@@ -13,7 +13,9 @@
 // answers false; the ray loop is instantiated with and without that test. Rays may end early,
 // per pixel (RenderSettings::rayEnd): opaque geometry in a VTK scene.
 //
-// Pixels are computed independently, so the image is bit-identical for any thread count.
+// Pixels are computed independently, so the image is bit-identical for any thread count. Where
+// the sampler takes them, rows of a tile go eight rays at a time (kernel/RayPacketIntegrator.h),
+// with the same result per pixel as one ray at a time.
 #include <functional>
 
 #include "core/field/Field.h"
@@ -23,6 +25,7 @@
 #include "core/render/RenderSettings.h"
 #include "core/render/TransferFunctionTable.h"
 #include "core/render/kernel/RayIntegrator.h"
+#include "core/render/kernel/RayPacketIntegrator.h"
 #include "core/render/kernel/RayParams.h"
 
 namespace mfadvr {
@@ -44,9 +47,22 @@ void castRays(const RenderSettings& settings, const RayParams& params, const Mak
       settings,
       [&](int x0, int y0, int x1, int y1, RayCounters& counters) {
         auto sampler = make();
-        for (int y = y0; y < y1; ++y)
-          for (int x = x0; x < x1; ++x)
+        for (int y = y0; y < y1; ++y) {
+          int x = x0;
+#if defined(MFADVR_SPLINE_LANE_KERNEL)
+          // Eight rays at a time where the sampler takes packets; the same pixels either way.
+          if constexpr (!Masked && takesRayPackets<decltype(sampler)>()) {
+            for (; x + kRayPacket <= x1; x += kRayPacket) {
+              float rgba[kRayPacket][4];
+              integratePacket<Shade>(params, sampler, x, y, rgba, counters);
+              for (int l = 0; l < kRayPacket; ++l)
+                for (int c = 0; c < 4; ++c) image.pixel(x + l, y)[c] = rgba[l][c];
+            }
+          }
+#endif
+          for (; x < x1; ++x)
             integrateRay<Masked, Shade>(params, sampler, x, y, image.pixel(x, y), counters);
+        }
       },
       stats);
 }

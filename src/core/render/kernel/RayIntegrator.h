@@ -32,32 +32,102 @@
 // batch has evaluated at most kBatch - 1 samples it does not use; the counters and the image
 // are those of one sample at a time. Skipped samples are exactly those that would have been
 // transparent, so the image is the same with and without skipping.
+#include <type_traits>
+
 #include "core/render/kernel/OpacityCorrectionKernel.h"
 #include "core/render/kernel/RayParams.h"
 #include "core/render/kernel/SampleBatch.h"
 
 namespace mfadvr {
 
-template <bool Masked, bool Shade, class Sampler>
-MFADVR_HD MFADVR_INLINE void integrateRay(const RayParams& rp, Sampler& sampler, int x, int y,
-                                          float out[4], RayCounters& counters) {
+// The formulas of one ray step and one compositing step, written once for a ray (D = double,
+// F = float) and for a packet of rays as SIMD lanes (vector types, RayPacketIntegrator.h), so
+// both compute every sample operation for operation alike.
+
+// Step k of a ray whose steps start at t0 (before tEnter for an aligned ray: its first step is
+// cut to begin at tEnter) and end at tExit: returns the step's start; length: its length (the
+// last one cut to tExit; not above zero: the ray has no step k).
+template <class D>
+MFADVR_HD MFADVR_INLINE D rayStep(D k, D t0, D tEnter, D tExit, double dt, D& length) {
+  const D t = t0 + k * dt;
+  const D rest = tExit - t;
+  const D full = dt < rest ? dt : rest;
+  if constexpr (std::is_arithmetic_v<D>) {
+    if (!(t < tEnter)) {  // one ray: all steps but an aligned ray's first take this branch
+      length = full;
+      return t;
+    }
+  }
+  const D room = tExit - tEnter;
+  D cut = t + dt - tEnter;
+  cut = cut > room ? room : cut;
+  const auto first = t < tEnter;
+  length = first ? cut : full;
+  return first ? tEnter : t;
+}
+
+// Front-to-back compositing of a sample of colour c and step opacity a (zero: no change).
+template <class F>
+MFADVR_HD MFADVR_INLINE void compositeSample(F& red, F& green, F& blue, F& alpha, F a,
+                                             const F c[3]) {
+  const F w = (1.0f - alpha) * a;
+  red += w * c[0];
+  green += w * c[1];
+  blue += w * c[2];
+  alpha += w;
+}
+
+// The part of the ray through pixel (x, y) that is sampled: origin o, unit direction d, the
+// segment [tEnter, tExit] inside the box (and before the pixel's ray end), where step 0 starts
+// (t0) and the number of steps. False when the ray does not cross the box.
+struct RaySegment {
   double o[3], d[3];
-  primaryRay(rp.camera, x, y, o, d);
-  float red = 0.0f, green = 0.0f, blue = 0.0f, alpha = 0.0f;
+  double tEnter = 0.0, tExit = 0.0, t0 = 0.0;
+  std::int64_t steps = 0;
+};
+
+MFADVR_HD MFADVR_INLINE bool raySegment(const RayParams& rp, int x, int y, RaySegment& r) {
+  primaryRay(rp.camera, x, y, r.o, r.d);
   double tEnter, tExit;
-  const bool crosses = intersectBox(o, d, rp.boxMin, rp.boxMax, tEnter, tExit);
+  const bool crosses = intersectBox(r.o, r.d, rp.boxMin, rp.boxMax, tEnter, tExit);
   if (crosses && rp.rayEnd) {
     const double end = rp.rayEnd[static_cast<std::int64_t>(y) * rp.camera.width + x];
     if (end < tExit) tExit = end;
   }
-  if (crosses && tExit > (tEnter > 0.0 ? tEnter : 0.0)) {
+  if (!(crosses && tExit > (tEnter > 0.0 ? tEnter : 0.0))) return false;
+  if (tEnter < 0.0) tEnter = 0.0;
+  const double dt = rp.sampleDistance;
+  r.tEnter = tEnter;
+  r.tExit = tExit;
+  // Where step 0 starts (before tEnter when aligned: that step is cut to begin at tEnter).
+  r.t0 = rp.alignSteps ? floor(tEnter / dt) * dt : tEnter;
+  // The tolerance keeps a rounding error from adding a step of zero length.
+  r.steps = static_cast<std::int64_t>(ceil((tExit - r.t0) / dt - 1e-6));
+  return true;
+}
+
+// The composited colour over the background: the pixel's RGBA.
+MFADVR_HD MFADVR_INLINE void overBackground(const RayParams& rp, float red, float green, float blue,
+                                            float alpha, float out[4]) {
+  const float behind = 1.0f - alpha;
+  out[0] = red + behind * rp.background[0];
+  out[1] = green + behind * rp.background[1];
+  out[2] = blue + behind * rp.background[2];
+  out[3] = alpha;
+}
+
+template <bool Masked, bool Shade, class Sampler>
+MFADVR_HD MFADVR_INLINE void integrateRay(const RayParams& rp, Sampler& sampler, int x, int y,
+                                          float out[4], RayCounters& counters) {
+  float red = 0.0f, green = 0.0f, blue = 0.0f, alpha = 0.0f;
+  RaySegment ray;
+  if (raySegment(rp, x, y, ray)) {
     ++counters.hits;
-    if (tEnter < 0.0) tEnter = 0.0;
+    const double* o = ray.o;
+    const double* d = ray.d;
+    const double tEnter = ray.tEnter, tExit = ray.tExit, t0 = ray.t0;
+    const std::int64_t steps = ray.steps;
     const double dt = rp.sampleDistance;
-    // Where step 0 starts (before tEnter when aligned: that step is cut to begin at tEnter).
-    const double t0 = rp.alignSteps ? floor(tEnter / dt) * dt : tEnter;
-    // The tolerance keeps a rounding error from adding a step of zero length.
-    const std::int64_t steps = static_cast<std::int64_t>(ceil((tExit - t0) / dt - 1e-6));
     RayShading rayShading;
     if constexpr (Shade) {
       const float df[3] = {float(d[0]), float(d[1]), float(d[2])};
@@ -76,16 +146,8 @@ MFADVR_HD MFADVR_INLINE void integrateRay(const RayParams& rp, Sampler& sampler,
       std::int64_t skipped = 0;
       int n = 0;
       while (n < K && k < steps) {
-        double t = t0 + static_cast<double>(k) * dt;
         double length;
-        if (t < tEnter) {  // the first step of an aligned ray
-          length = t + dt - tEnter;
-          t = tEnter;
-          if (length > tExit - t) length = tExit - t;
-        } else {
-          const double rest = tExit - t;
-          length = dt < rest ? dt : rest;
-        }
+        const double t = rayStep(static_cast<double>(k), t0, tEnter, tExit, dt, length);
         if (!(length > 0.0)) {
           done = true;
           break;
@@ -137,11 +199,7 @@ MFADVR_HD MFADVR_INLINE void integrateRay(const RayParams& rp, Sampler& sampler,
           sampler.gradient(i, g);
           shadeSample(rp.shading, rayShading, unshaded, g, c);
         }
-        const float w = (1.0f - alpha) * a;
-        red += w * c[0];
-        green += w * c[1];
-        blue += w * c[2];
-        alpha += w;
+        compositeSample(red, green, blue, alpha, a, c);
         if (alpha >= rp.stopOpacity) {
           ++counters.terminated;
           stopped = done = true;
@@ -150,11 +208,7 @@ MFADVR_HD MFADVR_INLINE void integrateRay(const RayParams& rp, Sampler& sampler,
       if (!stopped) counters.skipped += skipped;
     }
   }
-  const float behind = 1.0f - alpha;
-  out[0] = red + behind * rp.background[0];
-  out[1] = green + behind * rp.background[1];
-  out[2] = blue + behind * rp.background[2];
-  out[3] = alpha;
+  overBackground(rp, red, green, blue, alpha, out);
 }
 
 }  // namespace mfadvr

@@ -66,6 +66,9 @@ class SplineRaySampler {
   static constexpr bool kLaneKernel =
       Shade && kGatherEverySample && SplineLaneKernel<P>::kAvailable;
   static constexpr bool kLaneLocations = kLocateLanes || kLaneKernel;
+  // Eight rays at once, one lane per ray (RayPacketIntegrator.h): evaluatePacket() locates
+  // and evaluates one sample of each, through the lane kernel for value (and gradient).
+  static constexpr bool kRayPackets = kLocateLanes && SplineLaneKernel<P>::kAvailable;
 
   MFADVR_HD explicit SplineRaySampler(const ModelView& m) : m_(m) {
     for (int a = 0; a < 3; ++a) {
@@ -178,6 +181,35 @@ class SplineRaySampler {
       if (evaluateLanes<P, kOrder>(m_.spline, span_, tau_, n, v, grads_)) return;
     }
 #endif
+    evaluateEach(n, v);
+  }
+
+#if defined(MFADVR_SPLINE_LANE_KERNEL)
+  // A packet's eight points, as coordinate vectors (physical, x[axis][lane]): their values, and
+  // for shading their gradients (gradient()). Every lane is evaluated.
+  MFADVR_INLINE void evaluatePacket(const LaneDouble8 x[3], float v[8]) {
+    static_assert(kRayPackets && kBatch == 8, "a sampler made for ray packets");
+    for (int a = 0; a < 3; ++a)
+      locateLanesOnAxis<P>(m_.spline.axis[a], m_.boxMin[a], m_.inverseExtent[a], x[a], 8, span_[a],
+                           tau_[a]);
+    if (!evaluateLanes<P, kOrder>(m_.spline, span_, tau_, 8, v, grads_)) evaluateEach(8, v);
+  }
+#endif
+
+  // Physical gradient at a lane's point (one lane: from its value's basis and z contraction).
+  MFADVR_HD MFADVR_INLINE void gradient(int lane, float g[3]) const {
+    static_assert(Shade, "gradients need a sampler made for shading");
+    if constexpr (kGatherEverySample) {
+      for (int a = 0; a < 3; ++a) g[a] = grads_[a][lane];
+    } else {
+      contractPartials<P, kOrder>(block_, basis_, Tz_, g);
+    }
+    for (int a = 0; a < 3; ++a) g[a] *= gradientScale_[a];
+  }
+
+ private:
+  // Lanes 0..n-1 one point at a time, each located (locs_, or span_ / tau_).
+  MFADVR_HD MFADVR_INLINE void evaluateEach(int n, float v[]) {
     for (int i = 0; i < n; ++i) {
       const AxisLocation* loc = locs_[i];
       AxisLocation lane[3];
@@ -213,18 +245,6 @@ class SplineRaySampler {
     }
   }
 
-  // Physical gradient at a lane's point (one lane: from its value's basis and z contraction).
-  MFADVR_HD MFADVR_INLINE void gradient(int lane, float g[3]) const {
-    static_assert(Shade, "gradients need a sampler made for shading");
-    if constexpr (kGatherEverySample) {
-      for (int a = 0; a < 3; ++a) g[a] = grads_[a][lane];
-    } else {
-      contractPartials<P, kOrder>(block_, basis_, Tz_, g);
-    }
-    for (int a = 0; a < 3; ++a) g[a] *= gradientScale_[a];
-  }
-
- private:
   MFADVR_HD MFADVR_INLINE void toParameter(const double p[3], double u[3]) const {
     for (int a = 0; a < 3; ++a) u[a] = (p[a] - m_.boxMin[a]) * m_.inverseExtent[a];
   }

@@ -1,0 +1,94 @@
+// Ray packets (kernel/RayPacketIntegrator.h) change how rays share the processor, never what a
+// ray computes: the renderer, which takes rows of eight pixels as one packet where it can, gives
+// the image of integrateRay called pixel by pixel bit for bit, and the same counters, for every
+// degree with a lane kernel, shaded and unshaded, perspective and parallel cameras, steps from
+// the box or aligned to the camera, ray ends, image widths that leave pixels outside any packet,
+// and transfer functions that make rays terminate early or never.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/field/ModelField.h"
+#include "core/render/ModelKernelSwitch.h"
+#include "core/render/ModelRenderSetup.h"
+#include "core/render/RayCaster.h"
+#include "gpu/GpuTestScenes.h"
+
+namespace mfadvr {
+namespace {
+
+using namespace test;
+
+// The frame one ray at a time, with the sampler renderModelView would use.
+Image renderRayByRay(const RenderSettings& s, const ModelRenderSetup& setup, RenderStats& stats) {
+  Image image(s.width, s.height);
+  RayCounters counters;
+  const ModelView& view = setup.view();
+  modelKernelSwitch(view, s.shade, [&]<int P, bool Masked, bool Shade, bool Skip>() {
+    SplineRaySampler<P, Skip, Shade> sampler(view);
+    for (int y = 0; y < s.height; ++y)
+      for (int x = 0; x < s.width; ++x)
+        integrateRay<Masked, Shade>(setup.params(), sampler, x, y, image.pixel(x, y), counters);
+  });
+  stats.samples = counters.samples;
+  stats.terminated = counters.terminated;
+  stats.raysHit = counters.hits;
+  return image;
+}
+
+TEST(RayPacket, PacketsRenderTheImageAndCountersOfOneRayAtATime) {
+#if !defined(MFADVR_SPLINE_LANE_KERNEL)
+  GTEST_SKIP() << "this build has no lane kernel (needs AVX2 and FMA): no ray packets";
+#else
+  static_assert(takesRayPackets<SplineRaySampler<1, false, false> >());
+  static_assert(takesRayPackets<SplineRaySampler<2, false, true> >());
+  static_assert(takesRayPackets<SplineRaySampler<3, false, true> >());
+  // Skipping and masks take one ray at a time.
+  static_assert(!takesRayPackets<SplineRaySampler<2, true, false> >());
+  int renders = 0;
+  std::int64_t terminated = 0, samples = 0;
+  const std::vector<TransferFunction> tfs = transferFunctions();
+  for (int degree : {1, 2, 3})
+    for (std::size_t f = 0; f < tfs.size(); ++f)
+      for (bool shade : {false, true}) {
+        const Model& m = mlModel(degree);
+        RenderSettings s = settingsFor(m.domain().min, m.domain().max, tfs[f], shade);
+        s.skipEmptySpace = false;  // else the renderer takes one ray at a time
+        // Vary what a packet must get right, one variation per render.
+        const int variant = renders % 4;
+        s.width = variant == 0 ? 61 : 48;  // 61: a tile's last pixels go one at a time
+        s.height = 36;
+        if (variant == 1) s.alignSamplesToCamera = true;
+        if (variant == 2) {
+          s.camera.parallelProjection = true;
+          s.camera.parallelScale = 1.2;
+          s.camera.validate();
+        }
+        if (variant == 3) {  // ray ends on every third pixel, some before the box
+          s.rayEnd.assign(std::size_t(s.width) * s.height, INFINITY);
+          for (std::size_t i = 0; i < s.rayEnd.size(); i += 3) s.rayEnd[i] = i % 2 ? 2.5f : 0.1f;
+        }
+        if (f == 0) s.sampleDistance = 0.037;  // steps that do not divide the segments
+        const ModelField field(m);
+        const ModelRenderSetup setup(field, s);
+        ASSERT_EQ(setup.view().empty, nullptr);
+        RenderStats packetStats, rayStats;
+        const Image packets = renderModelView(s, setup.params(), setup.view(), &packetStats);
+        const Image rays = renderRayByRay(s, setup, rayStats);
+        EXPECT_EQ(packets.rgba, rays.rgba) << "render " << renders;
+        EXPECT_EQ(packetStats.samples, rayStats.samples) << "render " << renders;
+        EXPECT_EQ(packetStats.terminated, rayStats.terminated) << "render " << renders;
+        EXPECT_EQ(packetStats.raysHit, rayStats.raysHit) << "render " << renders;
+        terminated += rayStats.terminated;
+        samples += rayStats.samples;
+        ++renders;
+      }
+  EXPECT_EQ(renders, 36);
+  // The scenes exercise early termination (lanes ending before their packet).
+  EXPECT_GT(terminated, 0);
+  EXPECT_GT(samples, 0);
+#endif
+}
+
+}  // namespace
+}  // namespace mfadvr
