@@ -16,3 +16,22 @@
 #define MFADVR_HD
 #define MFADVR_INLINE inline
 #endif
+
+#include <type_traits>
+
+namespace mfadvr {
+
+// Number conversion for a scalar (static_cast) or, on the host, a GCC vector
+// (__builtin_convertvector): formulas written once for one value and for SIMD lanes use it.
+template <class To, class From>
+MFADVR_HD MFADVR_INLINE To convertLanes(From x) {
+  if constexpr (std::is_arithmetic_v<From>) {
+    return static_cast<To>(x);
+  } else {
+#if !defined(__CUDACC__)
+    return __builtin_convertvector(x, To);
+#endif
+  }
+}
+
+}  // namespace mfadvr

@@ -39,6 +39,39 @@ constexpr bool takesRayPackets() {
 
 #if defined(MFADVR_SPLINE_LANE_KERNEL)
 
+// classify() of eight values: entries {r, g, b, alpha, alphaStep} as vectors over the lanes.
+MFADVR_INLINE void classifyPacket(const TransferFunctionView& tf, LaneVector8 value,
+                                  LaneVector8 channel[5]) {
+  LaneInt8 i;
+  LaneVector8 t;
+  tf.position(value, i, t);
+  LaneVector8 e[8];  // each lane's interpolated entry
+  for (int l = 0; l < 8; ++l) {
+    LaneVector8 a, b;
+    __builtin_memcpy(&a, &tf.entries[i[l]], sizeof a);
+    __builtin_memcpy(&b, &tf.entries[i[l] + 1], sizeof b);
+    e[l] = interpolate(a, b, t[l]);
+  }
+  // Transpose lanes of entries into channels of lanes: pairs of lanes, then quadruples. w[c]
+  // ends with channel c of lanes 0..3 in its low half and channel c + 4 in its high half,
+  // w[4 + c] the same for lanes 4..7.
+  LaneVector8 u[8], w[8];
+  for (int l = 0; l < 8; l += 2) {
+    u[l] = __builtin_shufflevector(e[l], e[l + 1], 0, 8, 1, 9, 4, 12, 5, 13);
+    u[l + 1] = __builtin_shufflevector(e[l], e[l + 1], 2, 10, 3, 11, 6, 14, 7, 15);
+  }
+  for (int l = 0; l < 8; l += 4)
+    for (int h = 0; h < 2; ++h) {
+      w[l + 2 * h] = __builtin_shufflevector(u[l + h], u[l + h + 2], 0, 1, 8, 9, 4, 5, 12, 13);
+      w[l + 2 * h + 1] =
+          __builtin_shufflevector(u[l + h], u[l + h + 2], 2, 3, 10, 11, 6, 7, 14, 15);
+    }
+  for (int c = 0; c < 4; ++c)
+    channel[c] = __builtin_shufflevector(w[c], w[4 + c], 0, 1, 2, 3, 8, 9, 10, 11);
+  channel[4] = __builtin_shufflevector(w[0], w[4], 4, 5, 6, 7, 12, 13, 14, 15);
+  for (int c = 0; c < 5; ++c) channel[c] = value == value ? channel[c] : 0.0f;  // NaN: clear
+}
+
 // The rays of pixels (x0 + lane, y), lane = 0..7; out[lane] receives the pixel's RGBA.
 template <bool Shade, class Sampler>
 MFADVR_INLINE void integratePacket(const RayParams& rp, Sampler& sampler, int x0, int y,
@@ -85,34 +118,33 @@ MFADVR_INLINE void integratePacket(const RayParams& rp, Sampler& sampler, int x0
     const LaneDouble8 m = t + 0.5 * length;
     LaneDouble8 x[3];
     for (int a = 0; a < 3; ++a) x[a] = o[a] + m * d[a];
-    float values[K];
-    sampler.evaluatePacket(x, values);
+    LaneVector8 values;
+    sampler.evaluatePacket(x, reinterpret_cast<float*>(&values));
+    samples += __builtin_popcount(live);
+    const LaneInt8 laneBit = {1, 2, 4, 8, 16, 32, 64, 128};
+    const auto isLive = (laneBit & static_cast<int>(live)) != 0;
 
-    // Classification (and shading) per lane; lanes without a visible sample composite a zero
-    // opacity, which leaves them unchanged.
-    float opacity[K] = {}, colour[3][K] = {};
-    for (int l = 0; l < K; ++l) {
-      if (!(live >> l & 1u)) continue;
-      ++samples;
-      const TfEntry tf = rp.tf.classify(values[l]);
-      float a = tf.alphaStep;
-      if (length[l] != dt) [[unlikely]]
-        a = correctOpacity(tf.alpha, rp.correctionExponent * length[l] / dt);
-      float c[3] = {tf.r, tf.g, tf.b};
-      if constexpr (Shade) {
-        if (tf.alpha > 0.0f) {
-          const float unshaded[3] = {tf.r, tf.g, tf.b};
-          float g[3];
-          sampler.gradient(l, g);
-          shadeSample(rp.shading, rayShading[l], unshaded, g, c);
-        }
+    // Classification (and shading); lanes without a visible sample composite a zero opacity,
+    // which leaves them unchanged.
+    LaneVector8 tf[5];
+    classifyPacket(rp.tf, values, tf);
+    LaneVector8 a = tf[4];
+    for (int l = 0; l < K; ++l)
+      if ((live >> l & 1u) && length[l] != dt) [[unlikely]]
+        a[l] = correctOpacity(tf[3][l], rp.correctionExponent * length[l] / dt);
+    const auto visible = isLive & (tf[3] > 0.0f);
+    a = visible ? a : 0.0f;
+    LaneVector8 c[3] = {tf[0], tf[1], tf[2]};
+    if constexpr (Shade) {
+      for (int l = 0; l < K; ++l) {
+        if (!visible[l]) continue;
+        const float unshaded[3] = {tf[0][l], tf[1][l], tf[2][l]};
+        float g[3], shaded[3];
+        sampler.gradient(l, g);
+        shadeSample(rp.shading, rayShading[l], unshaded, g, shaded);
+        for (int i = 0; i < 3; ++i) c[i][l] = shaded[i];
       }
-      opacity[l] = tf.alpha > 0.0f ? a : 0.0f;
-      for (int i = 0; i < 3; ++i) colour[i][l] = c[i];
     }
-    LaneVector8 a, c[3];
-    __builtin_memcpy(&a, opacity, sizeof a);
-    for (int i = 0; i < 3; ++i) __builtin_memcpy(&c[i], colour[i], sizeof c[i]);
     compositeSample(red, green, blue, alpha, a, c);
     const auto stop = (alpha >= rp.stopOpacity) & (a > 0.0f);
     for (int l = 0; l < K; ++l)

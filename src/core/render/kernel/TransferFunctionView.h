@@ -17,6 +17,12 @@ struct alignas(32) TfEntry {
 };
 static_assert(sizeof(TfEntry) == 8 * sizeof(float));
 
+// Between two entries' values (or, on the host, vectors of them: ray packets): weight t of b.
+template <class F>
+MFADVR_HD MFADVR_INLINE F interpolate(F a, F b, float t) {
+  return a + t * (b - a);
+}
+
 struct TransferFunctionView {
   const TfEntry* entries = nullptr;
   int count = 0;                  // >= 2
@@ -26,17 +32,22 @@ struct TransferFunctionView {
   // Values below and above the table take its end entries. Monotone in value, so that the
   // entries a value range touches are those between its ends' (EmptySpaceGrid relies on it).
   MFADVR_HD MFADVR_INLINE bool locate(float value, int& i, float& t) const {
-    float x = (value - lo) * scale;
-    if (!(x > 0.0f)) {
-      if (value != value) return false;  // NaN
-      x = 0.0f;
-    }
-    const float last = static_cast<float>(count - 1);
-    if (x > last) x = last;
-    i = static_cast<int>(x);
-    if (i > count - 2) i = count - 2;
-    t = x - static_cast<float>(i);
+    if (value != value) return false;  // NaN
+    position(value, i, t);
     return true;
+  }
+
+  // The same for a float or, on the host, a vector of floats (F) with integers I to match
+  // (ray packets); NaN takes entry 0.
+  template <class F, class I>
+  MFADVR_HD MFADVR_INLINE void position(F value, I& i, F& t) const {
+    F x = (value - lo) * scale;
+    x = x > 0.0f ? x : 0.0f;  // also NaN
+    const float last = static_cast<float>(count - 1);
+    x = x > last ? last : x;
+    i = convertLanes<I>(x);
+    i = i > count - 2 ? count - 2 : i;
+    t = x - convertLanes<F>(i);
   }
 
   MFADVR_HD MFADVR_INLINE TfEntry classify(float value) const {
@@ -45,11 +56,11 @@ struct TransferFunctionView {
     if (!locate(value, i, t)) return {0.0f, 0.0f, 0.0f, 0.0f, 0.0f, {}};
     const TfEntry& a = entries[i];
     const TfEntry& b = entries[i + 1];
-    return {a.r + t * (b.r - a.r),
-            a.g + t * (b.g - a.g),
-            a.b + t * (b.b - a.b),
-            a.alpha + t * (b.alpha - a.alpha),
-            a.alphaStep + t * (b.alphaStep - a.alphaStep),
+    return {interpolate(a.r, b.r, t),
+            interpolate(a.g, b.g, t),
+            interpolate(a.b, b.b, t),
+            interpolate(a.alpha, b.alpha, t),
+            interpolate(a.alphaStep, b.alphaStep, t),
             {}};
   }
 };
