@@ -71,25 +71,6 @@ MFADVR_INLINE V splatLanes(float x) {
   return v;
 }
 
-// a * b + c for vectors of 4 or 8 floats, rounded once where the target has FMA and twice
-// otherwise, whatever the optimizer would contract. Every multiply-add of the vector paths goes
-// through here, so that the per-point kernel and the eight-lane kernel (SplineLaneKernel.h)
-// round each lane alike; left to the compiler, which product of `a * b + c * d` it fuses
-// depends on the shape of the code around it.
-template <class V>
-MFADVR_INLINE V fusedMultiplyAdd(V a, V b, V c) {
-#if defined(__FMA__)
-  if constexpr (sizeof(V) == 16)
-    return reinterpret_cast<V>(_mm_fmadd_ps(
-        reinterpret_cast<__m128>(a), reinterpret_cast<__m128>(b), reinterpret_cast<__m128>(c)));
-  else
-    return reinterpret_cast<V>(_mm256_fmadd_ps(
-        reinterpret_cast<__m256>(a), reinterpret_cast<__m256>(b), reinterpret_cast<__m256>(c)));
-#else
-  return a * b + c;  // no FMA on x86: two roundings; the eight-lane kernel needs FMA anyway
-#endif
-}
-
 // Horner's rule for basis polynomials held as vectors: c[k] holds coefficients of tau^k
 // (k = 0..P), t the local coordinate; n gets the values, d1 and d2 (Order >= 1, 2) the first
 // and second derivatives with respect to tau. The per-point kernel holds an axis's p+1

@@ -17,7 +17,12 @@
 #define MFADVR_INLINE inline
 #endif
 
+#include <cmath>
 #include <type_traits>
+
+#if !defined(__CUDACC__) && defined(__AVX__)
+#include <immintrin.h>
+#endif
 
 namespace mfadvr {
 
@@ -31,6 +36,49 @@ MFADVR_HD MFADVR_INLINE To convertLanes(From x) {
 #if !defined(__CUDACC__)
     return __builtin_convertvector(x, To);
 #endif
+  }
+}
+
+// The correctly rounded square root of a float or, on the host, of each lane of a vector of
+// eight floats (sqrtf per lane; one instruction with AVX).
+template <class F>
+MFADVR_HD MFADVR_INLINE F squareRoot(F x) {
+  if constexpr (std::is_arithmetic_v<F>) {
+    return sqrtf(x);
+  } else {
+#if !defined(__CUDACC__) && defined(__AVX__)
+    if constexpr (sizeof(F) == 32)
+      return reinterpret_cast<F>(_mm256_sqrt_ps(reinterpret_cast<__m256>(x)));
+#endif
+    F r;
+    for (unsigned l = 0; l < sizeof(F) / sizeof(float); ++l) r[l] = sqrtf(x[l]);
+    return r;
+  }
+}
+
+// a * b + c for floats or, on the host, vectors of 4 or 8 floats: rounded once where the target
+// has FMA (and on the device), twice otherwise, whatever the optimizer would contract. Formulas
+// computed both for one value and for SIMD lanes (the spline kernels, shading) make every
+// multiply-add explicit through here, so that each lane rounds as the single value does; left
+// to the compiler, which product of `a * b + c * d` it fuses depends on the code around it.
+template <class F>
+MFADVR_HD MFADVR_INLINE F fusedMultiplyAdd(F a, F b, F c) {
+  if constexpr (std::is_arithmetic_v<F>) {
+#if defined(__CUDACC__) || defined(__FMA__)
+    return fmaf(a, b, c);
+#else
+    return a * b + c;
+#endif
+  } else {
+#if !defined(__CUDACC__) && defined(__FMA__)
+    if constexpr (sizeof(F) == 16)
+      return reinterpret_cast<F>(_mm_fmadd_ps(
+          reinterpret_cast<__m128>(a), reinterpret_cast<__m128>(b), reinterpret_cast<__m128>(c)));
+    if constexpr (sizeof(F) == 32)
+      return reinterpret_cast<F>(_mm256_fmadd_ps(
+          reinterpret_cast<__m256>(a), reinterpret_cast<__m256>(b), reinterpret_cast<__m256>(c)));
+#endif
+    return a * b + c;  // no FMA on x86: two roundings; the eight-lane kernel needs FMA anyway
   }
 }
 

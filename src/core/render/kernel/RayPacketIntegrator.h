@@ -15,8 +15,8 @@
 //
 // The sampler provides, besides the batch interface of RayIntegrator.h:
 //   static constexpr bool kRayPackets          true
-//   void evaluatePacket(const LaneDouble8 x[3], float v[8])   values at the eight points
-//   void gradient(int lane, float g[3])        physical gradient of a lane (shaded renders)
+//   LaneVector8 evaluatePacket(const LaneDouble8 x[3])   values at the eight points
+//   void gradientPacket(LaneVector8 g[3])   their physical gradients (shaded renders)
 // Packets cover renders without a domain mask or empty-space skipping; those take one ray at a
 // time.
 #include <cstdint>
@@ -81,8 +81,8 @@ MFADVR_INLINE void integratePacket(const RayParams& rp, Sampler& sampler, int x0
   LaneDouble8 o[3], d[3], tEnter, tExit, t0;
   std::int64_t steps[K];
   std::int64_t longest = 0;
-  RayShading rayShading[Shade ? K : 1];
-  unsigned live = 0;  // bit per lane: the ray has steps left
+  RayShadingOf<LaneVector8> shading = {};  // lane l: ray l's RayShading
+  unsigned live = 0;                       // bit per lane: the ray has steps left
   for (int l = 0; l < K; ++l) {
     RaySegment ray;
     const bool hit = raySegment(rp, x0 + l, y, ray);
@@ -100,7 +100,12 @@ MFADVR_INLINE void integratePacket(const RayParams& rp, Sampler& sampler, int x0
     if (ray.steps > longest) longest = ray.steps;
     if constexpr (Shade) {
       const float df[3] = {float(ray.d[0]), float(ray.d[1]), float(ray.d[2])};
-      prepareRayShading(rp.shading, df, rayShading[l]);
+      RayShading one;
+      prepareRayShading(rp.shading, df, one);
+      for (int c = 0; c < 3; ++c) {
+        shading.toEye[c][l] = one.toEye[c];
+        for (int i = 0; i < rp.shading.lightCount; ++i) shading.half[i][c][l] = one.half[i][c];
+      }
     }
   }
 
@@ -118,8 +123,7 @@ MFADVR_INLINE void integratePacket(const RayParams& rp, Sampler& sampler, int x0
     const LaneDouble8 m = t + 0.5 * length;
     LaneDouble8 x[3];
     for (int a = 0; a < 3; ++a) x[a] = o[a] + m * d[a];
-    LaneVector8 values;
-    sampler.evaluatePacket(x, reinterpret_cast<float*>(&values));
+    const LaneVector8 values = sampler.evaluatePacket(x);
     samples += __builtin_popcount(live);
     const LaneInt8 laneBit = {1, 2, 4, 8, 16, 32, 64, 128};
     const auto isLive = (laneBit & static_cast<int>(live)) != 0;
@@ -136,14 +140,10 @@ MFADVR_INLINE void integratePacket(const RayParams& rp, Sampler& sampler, int x0
     a = visible ? a : 0.0f;
     LaneVector8 c[3] = {tf[0], tf[1], tf[2]};
     if constexpr (Shade) {
-      for (int l = 0; l < K; ++l) {
-        if (!visible[l]) continue;
-        const float unshaded[3] = {tf[0][l], tf[1][l], tf[2][l]};
-        float g[3], shaded[3];
-        sampler.gradient(l, g);
-        shadeSample(rp.shading, rayShading[l], unshaded, g, shaded);
-        for (int i = 0; i < 3; ++i) c[i][l] = shaded[i];
-      }
+      LaneVector8 g[3], shaded[3];
+      sampler.gradientPacket(g);
+      shadeSample(rp.shading, shading, c, g, shaded);
+      for (int i = 0; i < 3; ++i) c[i] = visible ? shaded[i] : c[i];
     }
     compositeSample(red, green, blue, alpha, a, c);
     const auto stop = (alpha >= rp.stopOpacity) & (a > 0.0f);

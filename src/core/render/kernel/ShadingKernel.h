@@ -7,6 +7,7 @@
 // the ambient and diffuse terms as if it faced the light, and no specular, so that homogeneous
 // regions keep their transfer-function colour instead of turning black.
 #include <cmath>
+#include <type_traits>
 
 #include "core/util/HostDevice.h"
 
@@ -23,11 +24,14 @@ struct ShadingParams {
   float lightColor[kMaxLights][3];  // colour times intensity
 };
 
-// Per ray: the vector to the eye and the half vectors for that view direction.
-struct RayShading {
-  float toEye[3];
-  float half[kMaxLights][3];
+// Per ray: the vector to the eye and the half vectors for that view direction. F is float, or
+// on the host a vector of lanes holding a packet of rays (RayPacketIntegrator.h).
+template <class F>
+struct RayShadingOf {
+  F toEye[3];
+  F half[kMaxLights][3];
 };
+using RayShading = RayShadingOf<float>;
 
 MFADVR_HD MFADVR_INLINE void prepareRayShading(const ShadingParams& s, const float dir[3],
                                                RayShading& r) {
@@ -43,9 +47,18 @@ MFADVR_HD MFADVR_INLINE void prepareRayShading(const ShadingParams& s, const flo
 
 // nh^power; by repeated squaring when the power is a whole number (the usual case, and exact),
 // since powf costs as much as the rest of the shading.
-MFADVR_HD MFADVR_INLINE float specularTerm(const ShadingParams& s, float nh) {
-  if (s.integerPower < 0) return powf(nh, s.specularPower);
-  float result = 1.0f, base = nh;
+template <class F>
+MFADVR_HD MFADVR_INLINE F specularTerm(const ShadingParams& s, F nh) {
+  if (s.integerPower < 0) {
+    if constexpr (std::is_arithmetic_v<F>) {
+      return powf(nh, s.specularPower);
+    } else {
+      F r;
+      for (unsigned l = 0; l < sizeof(F) / sizeof(float); ++l) r[l] = powf(nh[l], s.specularPower);
+      return r;
+    }
+  }
+  F result = F{} + 1.0f, base = nh;
   for (int e = s.integerPower; e > 0; e >>= 1) {
     if (e & 1) result *= base;
     base *= base;
@@ -53,34 +66,45 @@ MFADVR_HD MFADVR_INLINE float specularTerm(const ShadingParams& s, float nh) {
   return result;
 }
 
-// Shaded colour of a sample with transfer-function colour `color` and field gradient `g`.
-MFADVR_HD MFADVR_INLINE void shadeSample(const ShadingParams& s, const RayShading& r,
-                                         const float color[3], const float g[3], float out[3]) {
-  const float g2 = g[0] * g[0] + g[1] * g[1] + g[2] * g[2];
-  if (!(g2 > 1e-30f)) {
-    const float k = s.ambient + s.diffuseSum;
-    for (int c = 0; c < 3; ++c) out[c] = color[c] * k;
-    return;
-  }
-  const float inv = 1.0f / sqrtf(g2);
-  float n[3] = {g[0] * inv, g[1] * inv, g[2] * inv};
-  if (n[0] * r.toEye[0] + n[1] * r.toEye[1] + n[2] * r.toEye[2] < 0.0f)
-    for (int c = 0; c < 3; ++c) n[c] = -n[c];
-  float diffuse[3] = {0.0f, 0.0f, 0.0f}, specular[3] = {0.0f, 0.0f, 0.0f};
+// a . b, with the rounding of fusedMultiplyAdd: the same for one value and for lanes.
+template <class F, class G>
+MFADVR_HD MFADVR_INLINE F dot3(const F a[3], const G b[3]) {
+  return fusedMultiplyAdd(a[2], F{} + b[2], fusedMultiplyAdd(a[1], F{} + b[1], a[0] * b[0]));
+}
+
+// Shaded colour of a sample with transfer-function colour `color` and field gradient `g`: one
+// sample (F = float), or on the host one sample of each ray of a packet (F a vector of lanes).
+// Written with selects rather than branches, and with explicit multiply-adds, so that both forms
+// are one formula and every lane gets bit for bit what a single sample would.
+template <class F>
+MFADVR_HD MFADVR_INLINE void shadeSample(const ShadingParams& s, const RayShadingOf<F>& r,
+                                         const F color[3], const F g[3], F out[3]) {
+  const F g2 = dot3(g, g);
+  const auto hasNormal = g2 > 1e-30f;
+  const F inv = 1.0f / squareRoot(hasNormal ? g2 : 1.0f);
+  F n[3] = {g[0] * inv, g[1] * inv, g[2] * inv};
+  const auto back = dot3(n, r.toEye) < 0.0f;
+  for (int c = 0; c < 3; ++c) n[c] = back ? -n[c] : n[c];
+  F diffuse[3] = {}, specular[3] = {};
   for (int i = 0; i < s.lightCount; ++i) {
-    const float* l = s.toLight[i];
-    const float nl = n[0] * l[0] + n[1] * l[1] + n[2] * l[2];
-    if (nl <= 0.0f) continue;
-    for (int c = 0; c < 3; ++c) diffuse[c] += nl * s.lightColor[i][c];
-    const float* h = r.half[i];
-    const float nh = n[0] * h[0] + n[1] * h[1] + n[2] * h[2];
-    if (nh > 0.0f) {
-      const float sp = specularTerm(s, nh);
-      for (int c = 0; c < 3; ++c) specular[c] += sp * s.lightColor[i][c];
+    const F nl = dot3(n, s.toLight[i]);
+    const auto lit = nl > 0.0f;
+    const F litNl = lit ? nl : 0.0f;
+    const F nh = dot3(n, r.half[i]);
+    const auto shines = lit & (nh > 0.0f);
+    const F sp = shines ? specularTerm(s, nh) : 0.0f;
+    for (int c = 0; c < 3; ++c) {
+      const F light = F{} + s.lightColor[i][c];
+      diffuse[c] = fusedMultiplyAdd(litNl, light, diffuse[c]);
+      specular[c] = fusedMultiplyAdd(sp, light, specular[c]);
     }
   }
-  for (int c = 0; c < 3; ++c)
-    out[c] = s.ambient * color[c] + s.diffuse * diffuse[c] * color[c] + s.specular * specular[c];
+  const float flat = s.ambient + s.diffuseSum;  // no normal: as if facing the light
+  for (int c = 0; c < 3; ++c) {
+    const F lit = fusedMultiplyAdd(s.diffuse * diffuse[c], color[c], s.ambient * color[c]);
+    const F shaded = fusedMultiplyAdd(F{} + s.specular, specular[c], lit);
+    out[c] = hasNormal ? shaded : color[c] * flat;
+  }
 }
 
 }  // namespace mfadvr

@@ -186,13 +186,27 @@ class SplineRaySampler {
 
 #if defined(MFADVR_SPLINE_LANE_KERNEL)
   // A packet's eight points, as coordinate vectors (physical, x[axis][lane]): their values, and
-  // for shading their gradients (gradient()). Every lane is evaluated.
-  MFADVR_INLINE void evaluatePacket(const LaneDouble8 x[3], float v[8]) {
+  // for shading their gradients (gradientPacket()). Every lane is evaluated.
+  MFADVR_INLINE LaneVector8 evaluatePacket(const LaneDouble8 x[3]) {
     static_assert(kRayPackets && kBatch == 8, "a sampler made for ray packets");
     for (int a = 0; a < 3; ++a)
       locateLanesOnAxis<P>(m_.spline.axis[a], m_.boxMin[a], m_.inverseExtent[a], x[a], 8, span_[a],
                            tau_[a]);
+    float v[8];
     if (!evaluateLanes<P, kOrder>(m_.spline, span_, tau_, 8, v, grads_)) evaluateEach(8, v);
+    LaneVector8 values;
+    __builtin_memcpy(&values, v, sizeof values);
+    return values;
+  }
+
+  // Physical gradients at the last packet's eight points, g[axis] over the lanes: each lane is
+  // what gradient() gives it.
+  MFADVR_INLINE void gradientPacket(LaneVector8 g[3]) const {
+    static_assert(Shade, "gradients need a sampler made for shading");
+    for (int a = 0; a < 3; ++a) {
+      __builtin_memcpy(&g[a], grads_[a], sizeof g[a]);
+      g[a] *= gradientScale_[a];
+    }
   }
 #endif
 
