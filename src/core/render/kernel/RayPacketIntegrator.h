@@ -78,11 +78,10 @@ MFADVR_INLINE void integratePacket(const RayParams& rp, Sampler& sampler, int x0
                                    float out[kRayPacket][4], RayCounters& counters) {
   constexpr int K = kRayPacket;
   const double dt = rp.sampleDistance;
-  LaneDouble8 o[3], d[3], tEnter, tExit, t0;
-  std::int64_t steps[K];
+  LaneDouble8 o[3], d[3], tEnter, tExit, t0, steps;
   std::int64_t longest = 0;
   RayShadingOf<LaneVector8> shading = {};  // lane l: ray l's RayShading
-  unsigned live = 0;                       // bit per lane: the ray has steps left
+  LaneInt8 live = {};                      // -1 in the lanes whose ray has steps left
   for (int l = 0; l < K; ++l) {
     RaySegment ray;
     const bool hit = raySegment(rp, x0 + l, y, ray);
@@ -93,10 +92,10 @@ MFADVR_INLINE void integratePacket(const RayParams& rp, Sampler& sampler, int x0
     tEnter[l] = ray.tEnter;
     tExit[l] = ray.tExit;
     t0[l] = ray.t0;
-    steps[l] = ray.steps;
+    steps[l] = static_cast<double>(ray.steps);  // exact: far below 2^53 steps
     if (!hit) continue;
     ++counters.hits;
-    if (ray.steps > 0) live |= 1u << l;
+    if (ray.steps > 0) live[l] = -1;
     if (ray.steps > longest) longest = ray.steps;
     if constexpr (Shade) {
       const float df[3] = {float(ray.d[0]), float(ray.d[1]), float(ray.d[2])};
@@ -111,32 +110,35 @@ MFADVR_INLINE void integratePacket(const RayParams& rp, Sampler& sampler, int x0
 
   LaneVector8 red = {}, green = {}, blue = {}, alpha = {};
   std::int64_t samples = 0;
-  for (std::int64_t k = 0; k < longest && live; ++k) {
-    for (int l = 0; l < K; ++l)
-      if (k >= steps[l]) live &= ~(1u << l);
+  const auto anyLane = [](LaneInt8 mask) {
+    return _mm256_movemask_ps(reinterpret_cast<__m256>(mask)) != 0;
+  };
+  const auto countLanes = [](LaneInt8 mask) {
+    return __builtin_popcount(_mm256_movemask_ps(reinterpret_cast<__m256>(mask)));
+  };
+  for (std::int64_t k = 0; k < longest; ++k) {
     LaneDouble8 length;
     const LaneDouble8 kv = LaneDouble8{} + static_cast<double>(k);
     const LaneDouble8 t = rayStep(kv, t0, tEnter, tExit, dt, length);
-    for (int l = 0; l < K; ++l)
-      if (!(length[l] > 0.0)) live &= ~(1u << l);
-    if (!live) break;
+    // A ray ends after its steps, or where a step would have no length (it left the box).
+    live &= __builtin_convertvector((kv < steps) & (length > 0.0), LaneInt8);
+    if (!anyLane(live)) break;
     const LaneDouble8 m = t + 0.5 * length;
     LaneDouble8 x[3];
     for (int a = 0; a < 3; ++a) x[a] = o[a] + m * d[a];
     const LaneVector8 values = sampler.evaluatePacket(x);
-    samples += __builtin_popcount(live);
-    const LaneInt8 laneBit = {1, 2, 4, 8, 16, 32, 64, 128};
-    const auto isLive = (laneBit & static_cast<int>(live)) != 0;
+    samples += countLanes(live);
 
     // Classification (and shading); lanes without a visible sample composite a zero opacity,
     // which leaves them unchanged.
     LaneVector8 tf[5];
     classifyPacket(rp.tf, values, tf);
     LaneVector8 a = tf[4];
-    for (int l = 0; l < K; ++l)
-      if ((live >> l & 1u) && length[l] != dt) [[unlikely]]
-        a[l] = correctOpacity(tf[3][l], rp.correctionExponent * length[l] / dt);
-    const auto visible = isLive & (tf[3] > 0.0f);
+    const LaneInt8 shortStep = live & __builtin_convertvector(length != dt, LaneInt8);
+    if (anyLane(shortStep)) [[unlikely]]
+      for (int l = 0; l < K; ++l)
+        if (shortStep[l]) a[l] = correctOpacity(tf[3][l], rp.correctionExponent * length[l] / dt);
+    const LaneInt8 visible = live & (tf[3] > 0.0f);
     a = visible ? a : 0.0f;
     LaneVector8 c[3] = {tf[0], tf[1], tf[2]};
     if constexpr (Shade) {
@@ -146,12 +148,9 @@ MFADVR_INLINE void integratePacket(const RayParams& rp, Sampler& sampler, int x0
       for (int i = 0; i < 3; ++i) c[i] = visible ? shaded[i] : c[i];
     }
     compositeSample(red, green, blue, alpha, a, c);
-    const auto stop = (alpha >= rp.stopOpacity) & (a > 0.0f);
-    for (int l = 0; l < K; ++l)
-      if ((live >> l & 1u) && stop[l]) {
-        ++counters.terminated;
-        live &= ~(1u << l);
-      }
+    const LaneInt8 stop = visible & (alpha >= rp.stopOpacity);
+    counters.terminated += countLanes(stop);
+    live &= ~stop;
   }
   counters.samples += samples;
   for (int l = 0; l < K; ++l) overBackground(rp, red[l], green[l], blue[l], alpha[l], out[l]);
