@@ -213,8 +213,10 @@ int run(const Options& o) {
       }
       if (frame.count(ReconstructionMethod::Mfa)) {
         const double ratio = frame[ReconstructionMethod::Mfa] / vtkRow.seconds;
-        std::snprintf(line, sizeof line, " mfa %.3f s = %.2fx VTK (target <= 2: %s);",
-                      frame[ReconstructionMethod::Mfa], ratio, ratio <= 2.0 ? "met" : "MISSED");
+        // <= 2: the first renderer's target; <= 0.33: the CPU hot path's (docs/benchmarks.md).
+        std::snprintf(line, sizeof line, " mfa %.3f s = %.2fx VTK (target <= 2: %s, <= 0.33: %s);",
+                      frame[ReconstructionMethod::Mfa], ratio, ratio <= 2.0 ? "met" : "MISSED",
+                      ratio <= 0.33 ? "met" : "MISSED");
         text += line;
       }
       std::snprintf(line, sizeof line, " VTK %.3f s (first frame %.3f s)", vtkRow.seconds,
