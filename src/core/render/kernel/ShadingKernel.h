@@ -101,8 +101,8 @@ MFADVR_HD MFADVR_INLINE void shadeSample(const ShadingParams& s, const RayShadin
   }
   const float flat = s.ambient + s.diffuseSum;  // no normal: as if facing the light
   for (int c = 0; c < 3; ++c) {
-    const F lit = fusedMultiplyAdd(s.diffuse * diffuse[c], color[c], s.ambient * color[c]);
-    const F shaded = fusedMultiplyAdd(F{} + s.specular, specular[c], lit);
+    const F matte = fusedMultiplyAdd(s.diffuse * diffuse[c], color[c], s.ambient * color[c]);
+    const F shaded = fusedMultiplyAdd(F{} + s.specular, specular[c], matte);
     out[c] = hasNormal ? shaded : color[c] * flat;
   }
 }
