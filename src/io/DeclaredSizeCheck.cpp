@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <limits>
 #include <sstream>
 #include <vector>
@@ -424,10 +425,10 @@ std::int64_t countValues(const std::string& path, std::int64_t offset, std::int6
 
 }  // namespace
 
-void checkNrrdDeclaredSize(const std::string& path) {
+NrrdAsciiData checkNrrdDeclaredSize(const std::string& path) {
   const NrrdDataLocation data = checkNrrdHeaderText(readHead(path, kMaxHeaderBytes), path,
                                                     fileSize(path), dataFilesBeside(path));
-  if (data.values <= 0) return;
+  if (data.values <= 0) return {};
   fs::path file(path);
   if (!data.dataFile.empty()) {
     file = fs::path(data.dataFile);
@@ -436,7 +437,7 @@ void checkNrrdDeclaredSize(const std::string& path) {
   if (data.gzip) {
     // VTK's reader stops at the end of the deflate data and never looks at the gzip trailer.
     requireCompleteGzip(path, "NRRD", file.string(), data.offset, data.bytes);
-    return;
+    return {};
   }
   // VTK's reader fills values missing from ASCII data with zeros: count them first. A cut
   // inside the last value leaves the count right, so the data must also end with white space
@@ -454,6 +455,42 @@ void checkNrrdDeclaredSize(const std::string& path) {
                 grouped(data.values) + " values in ascii encoding), but the data holds " +
                 grouped(found) + "; the file is truncated or its header is wrong");
   }
+  return {file.string(), data.offset};
+}
+
+std::vector<double> readAsciiValues(const std::string& path, std::int64_t offset,
+                                    std::int64_t count) {
+  std::ifstream in(path, std::ios::binary);
+  in.seekg(offset);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (!in.good() && !in.eof()) throw Error("cannot read " + path);
+  std::vector<double> values;
+  values.reserve(static_cast<size_t>(count));
+  const char* p = text.data();
+  const char* end = p + text.size();
+  const auto separator = [](char c) {
+    return std::isspace(static_cast<unsigned char>(c)) || c == ',';
+  };
+  while (static_cast<std::int64_t>(values.size()) < count) {
+    while (p < end && separator(*p)) ++p;
+    if (p == end) break;
+    const char* token = p;
+    while (p < end && !separator(*p)) ++p;
+    double v = 0.0;
+    const auto [stop, ec] = std::from_chars(token + (*token == '+'), p, v);
+    if (ec != std::errc() || stop != p) {
+      throw Error("cannot read " + path + ": '" +
+                  std::string(token, std::min<size_t>(p - token, 40)) +
+                  "' in its ascii data (value " + grouped(std::int64_t(values.size()) + 1) +
+                  ") is not a number");
+    }
+    values.push_back(v);
+  }
+  if (static_cast<std::int64_t>(values.size()) < count) {
+    throw Error("cannot read " + path + ": its ascii data holds " + grouped(values.size()) +
+                " values, " + grouped(count) + " expected");
+  }
+  return values;
 }
 
 // ---- MetaImage --------------------------------------------------------------------------------

@@ -16,11 +16,25 @@
 #include <functional>
 #include <istream>
 #include <string>
+#include <vector>
 
 namespace mfadvr {
 
-// NRRD, attached (.nrrd) or detached (.nhdr + data file): sizes, type, encoding.
-void checkNrrdDeclaredSize(const std::string& path);
+// NRRD, attached (.nrrd) or detached (.nhdr + data file): sizes, type, encoding. For ASCII
+// data, returns the file that holds it and the data's byte offset there: VTK 9.1's reader
+// parses attached ASCII data from the file's first byte (the header included) and stops at a
+// comma, leaving the samples unset, so the volume reader reads such data itself. Otherwise an
+// empty file name.
+struct NrrdAsciiData {
+  std::string file;
+  std::int64_t offset = 0;
+};
+NrrdAsciiData checkNrrdDeclaredSize(const std::string& path);
+
+// The first `count` numbers of the whitespace- or comma-separated ASCII text at byte `offset` of
+// `path`; an Error (naming `path`) when one is not a number or fewer are there.
+std::vector<double> readAsciiValues(const std::string& path, std::int64_t offset,
+                                    std::int64_t count);
 
 // MetaImage (.mha, or .mhd + data file): DimSize, ElementType, channels, compression; also
 // that a detached data file exists.

@@ -109,9 +109,10 @@ vtkSmartPointer<vtkImageData> runReader(const std::string& path, VtkVolumeFormat
                                         const VtkMessageCapture& capture,
                                         vtkSmartPointer<vtkAlgorithm>& reader) {
   int dicomFiles = 0;
+  NrrdAsciiData nrrdAscii;
   switch (format) {
     case VtkVolumeFormat::kNrrd: {
-      checkNrrdDeclaredSize(path);
+      nrrdAscii = checkNrrdDeclaredSize(path);
       auto r = vtkSmartPointer<vtkNrrdReader>::New();
       r->SetFileName(path.c_str());
       reader = r;
@@ -162,6 +163,19 @@ vtkSmartPointer<vtkImageData> runReader(const std::string& path, VtkVolumeFormat
     throwReadFailure(path, format, capture, reader, "the reader produced no image");
   if (image->GetNumberOfPoints() == 0)
     throwReadFailure(path, format, capture, reader, "the file holds no samples");
+  if (!nrrdAscii.file.empty()) {
+    // VTK 9.1 leaves attached or comma-separated ASCII samples unset (checkNrrdDeclaredSize):
+    // they are read here, in the file's order (x fastest), which is the array's.
+    vtkDataArray* samples = image->GetPointData()->GetScalars();
+    if (!samples) throwReadFailure(path, format, capture, reader, "the reader produced no samples");
+    const std::int64_t count = samples->GetNumberOfValues();
+    const std::vector<double> values = readAsciiValues(nrrdAscii.file, nrrdAscii.offset, count);
+    const int components = samples->GetNumberOfComponents();
+    for (std::int64_t i = 0; i < count; ++i)
+      samples->SetComponent(i / components, static_cast<int>(i % components),
+                            values[static_cast<size_t>(i)]);
+    samples->Modified();
+  }
   // VTK's DICOM reader leaves out files it cannot parse, without a word.
   if (format == VtkVolumeFormat::kDicomSeries && image->GetDimensions()[2] != dicomFiles) {
     throw Error("cannot read " + path + " as a DICOM series: it holds " +

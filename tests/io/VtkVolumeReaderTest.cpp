@@ -4,6 +4,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -14,7 +15,9 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+
 #include <zlib.h>
+#include <cstdio>
 
 #include "TestSupport.h"
 #include "core/util/Error.h"
@@ -351,6 +354,39 @@ TEST(NrrdReader, GzipEncoding) {
       writeFile(test::scratchDir() / "v.nrrd",
                 nrrdHeader("short", "gzip") + "\n" + gzipped(labelBytes(std::endian::little)));
   expectLabelGrid(loadStructuredVolume(path));
+}
+
+// The samples as text, one per line or several per line, comma- or space-separated.
+std::string densityText() {
+  std::string out;
+  char number[32];
+  for (int n = 0; n < kCount; ++n) {
+    std::snprintf(number, sizeof number, "%.9g", density(n));
+    out += number;
+    out += n % 10 == 9 ? "\n" : (n % 3 == 0 ? ", " : " ");
+  }
+  return out;
+}
+
+TEST(NrrdReader, AsciiEncoding) {
+  const auto path =
+      writeFile(test::scratchDir() / "v.nrrd", nrrdHeader("float", "ascii") + "\n" + densityText());
+  expectDensityGrid(loadStructuredVolume(path));
+}
+
+TEST(NrrdReader, AsciiEncodingDetached) {
+  const auto dir = test::scratchDir();
+  writeFile(dir / "v.txt", densityText());
+  const auto path = writeFile(dir / "v.nhdr", nrrdHeader("float", "ascii", "data file: v.txt\n"));
+  expectDensityGrid(loadStructuredVolume(path));
+}
+
+TEST(NrrdReader, AsciiWordIsAnError) {
+  std::string text = densityText();
+  text.replace(text.find(' '), 1, " abc ");
+  const auto path =
+      writeFile(test::scratchDir() / "v.nrrd", nrrdHeader("float", "ascii") + "\n" + text);
+  expectError([&] { loadStructuredVolume(path); }, {path, "'abc'", "not a number"});
 }
 
 TEST(NrrdReader, SpacingsWithoutSpace) {
