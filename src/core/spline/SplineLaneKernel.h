@@ -38,6 +38,14 @@ struct SplineLaneKernel {
 
 using Lanes8 = LaneVector8;
 
+// Whether any lane of a mask (each lane 0 or -1) is set, and how many are.
+MFADVR_INLINE bool anyLane(LaneInt8 mask) {
+  return _mm256_movemask_ps(reinterpret_cast<__m256>(mask)) != 0;
+}
+MFADVR_INLINE int countLanes(LaneInt8 mask) {
+  return __builtin_popcount(_mm256_movemask_ps(reinterpret_cast<__m256>(mask)));
+}
+
 // x * y rounded on its own: the per-point kernel sums the lanes of a vector product (rowDot),
 // which the compiler cannot fuse into its additions; the barrier keeps it from fusing these.
 MFADVR_INLINE Lanes8 unfusedProduct(Lanes8 x, Lanes8 y) {
@@ -75,7 +83,7 @@ MFADVR_INLINE void laneBasis(const KnotAxisView& a, LaneInt8 s, Lanes8 t, Lanes8
   const LaneInt8 outside = (s < a.sharedFirst) | (s > a.sharedLast);
   Lanes8 C[V][4];  // C[k][r]: the coefficients of tau^k of function r
   Lanes8 inv;      // d tau / du
-  if (_mm256_movemask_ps(reinterpret_cast<__m256>(outside)) == 0) {
+  if (!anyLane(outside)) {
     const float* c = a.poly + static_cast<std::int64_t>(a.sharedFirst) * V * V;
 #pragma GCC unroll 8
     for (int k = 0; k <= P; ++k)
@@ -151,7 +159,7 @@ MFADVR_INLINE bool evaluateLanes(const SplineView& v, const int span[3][8], cons
   }
   const LaneInt8 offset = (s[0] - P) + int(n0) * ((s[1] - P) + int(n1) * (s[2] - P));
   const LaneInt8 tooFar = offset > int(total - lastRow - 4);
-  if (_mm256_movemask_ps(reinterpret_cast<__m256>(tooFar)) != 0) return false;
+  if (anyLane(tooFar)) return false;
   const float* rows[8];
 #pragma GCC unroll 8
   for (int i = 0; i < 8; ++i) rows[i] = v.ctrl + offset[i];

@@ -110,12 +110,6 @@ MFADVR_INLINE void integratePacket(const RayParams& rp, Sampler& sampler, int x0
 
   LaneVector8 red = {}, green = {}, blue = {}, alpha = {};
   std::int64_t samples = 0;
-  const auto anyLane = [](LaneInt8 mask) {
-    return _mm256_movemask_ps(reinterpret_cast<__m256>(mask)) != 0;
-  };
-  const auto countLanes = [](LaneInt8 mask) {
-    return __builtin_popcount(_mm256_movemask_ps(reinterpret_cast<__m256>(mask)));
-  };
   for (std::int64_t k = 0; k < longest; ++k) {
     LaneDouble8 length;
     const LaneDouble8 kv = LaneDouble8{} + static_cast<double>(k);
