@@ -8,6 +8,7 @@
 
 #include <cmath>
 
+#include "core/FrameAgreement.h"
 #include "core/field/ModelField.h"
 #include "core/render/ModelKernelSwitch.h"
 #include "core/render/ModelRenderSetup.h"
@@ -75,10 +76,7 @@ TEST(RayPacket, PacketsRenderTheImageAndCountersOfOneRayAtATime) {
         RenderStats packetStats, rayStats;
         const Image packets = renderModelView(s, setup.params(), setup.view(), &packetStats);
         const Image rays = renderRayByRay(s, setup, rayStats);
-        EXPECT_EQ(packets.rgba, rays.rgba) << "render " << renders;
-        EXPECT_EQ(packetStats.samples, rayStats.samples) << "render " << renders;
-        EXPECT_EQ(packetStats.terminated, rayStats.terminated) << "render " << renders;
-        EXPECT_EQ(packetStats.raysHit, rayStats.raysHit) << "render " << renders;
+        expectSameFrame(packets, packetStats, rays, rayStats, renders);
         terminated += rayStats.terminated;
         samples += rayStats.samples;
         ++renders;

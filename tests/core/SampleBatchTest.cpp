@@ -7,6 +7,7 @@
 
 #include <cmath>
 
+#include "core/FrameAgreement.h"
 #include "core/field/ModelField.h"
 #include "core/render/ModelKernelSwitch.h"
 #include "core/render/ModelRenderSetup.h"
@@ -75,11 +76,7 @@ TEST(SampleBatch, BatchesRenderTheImageAndCountersOfOneSampleAtATime) {
         RenderStats batchStats, laneStats;
         const Image batch = renderModelView(s, setup.params(), setup.view(), &batchStats);
         const Image oneLane = renderOneLane(s, setup, &laneStats);
-        EXPECT_EQ(batch.rgba, oneLane.rgba) << "render " << renders;
-        EXPECT_EQ(batchStats.samples, laneStats.samples) << "render " << renders;
-        EXPECT_EQ(batchStats.skipped, laneStats.skipped) << "render " << renders;
-        EXPECT_EQ(batchStats.terminated, laneStats.terminated) << "render " << renders;
-        EXPECT_EQ(batchStats.raysHit, laneStats.raysHit) << "render " << renders;
+        expectSameFrame(batch, batchStats, oneLane, laneStats, renders);
         skipped += batchStats.skipped;
         terminated += batchStats.terminated;
         if (m->spline().degrees()[0] == m->spline().degrees()[1] &&
