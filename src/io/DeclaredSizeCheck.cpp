@@ -402,6 +402,11 @@ NrrdDataLocation checkNrrdHeaderText(const std::string& header, const std::strin
 
 namespace {
 
+// What separates the values of ASCII data (NRRD allows commas besides white space).
+bool asciiSeparator(char c) {
+  return std::isspace(static_cast<unsigned char>(c)) || c == ',';
+}
+
 // Whitespace- or comma-separated values in `path` from byte `offset` on, counting at most
 // `limit`.
 std::int64_t countValues(const std::string& path, std::int64_t offset, std::int64_t limit) {
@@ -414,8 +419,7 @@ std::int64_t countValues(const std::string& path, std::int64_t offset, std::int6
     in.read(buffer.data(), static_cast<std::streamsize>(buffer.size()));
     const size_t got = static_cast<size_t>(in.gcount());
     for (size_t i = 0; i < got; ++i) {
-      const char c = buffer[i];
-      const bool separator = std::isspace(static_cast<unsigned char>(c)) || c == ',';
+      const bool separator = asciiSeparator(buffer[i]);
       if (!separator && !inValue) ++count;
       inValue = !separator;
     }
@@ -468,14 +472,11 @@ std::vector<double> readAsciiValues(const std::string& path, std::int64_t offset
   values.reserve(static_cast<size_t>(count));
   const char* p = text.data();
   const char* end = p + text.size();
-  const auto separator = [](char c) {
-    return std::isspace(static_cast<unsigned char>(c)) || c == ',';
-  };
   while (static_cast<std::int64_t>(values.size()) < count) {
-    while (p < end && separator(*p)) ++p;
+    while (p < end && asciiSeparator(*p)) ++p;
     if (p == end) break;
     const char* token = p;
-    while (p < end && !separator(*p)) ++p;
+    while (p < end && !asciiSeparator(*p)) ++p;
     double v = 0.0;
     const auto [stop, ec] = std::from_chars(token + (*token == '+'), p, v);
     if (ec != std::errc() || stop != p) {

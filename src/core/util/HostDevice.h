@@ -39,6 +39,14 @@ MFADVR_HD MFADVR_INLINE To convertLanes(From x) {
   }
 }
 
+// f applied to each lane of a host vector of floats (F), for functions with no vector form.
+template <class F, class Fn>
+MFADVR_INLINE F mapLanes(F x, Fn f) {
+  F r;
+  for (unsigned l = 0; l < sizeof(F) / sizeof(float); ++l) r[l] = f(x[l]);
+  return r;
+}
+
 // The correctly rounded square root of a float or, on the host, of each lane of a vector of
 // eight floats (sqrtf per lane; one instruction with AVX).
 template <class F>
@@ -50,9 +58,7 @@ MFADVR_HD MFADVR_INLINE F squareRoot(F x) {
     if constexpr (sizeof(F) == 32)
       return reinterpret_cast<F>(_mm256_sqrt_ps(reinterpret_cast<__m256>(x)));
 #endif
-    F r;
-    for (unsigned l = 0; l < sizeof(F) / sizeof(float); ++l) r[l] = sqrtf(x[l]);
-    return r;
+    return mapLanes(x, [](float v) { return sqrtf(v); });
   }
 }
 

@@ -53,9 +53,7 @@ MFADVR_HD MFADVR_INLINE F specularTerm(const ShadingParams& s, F nh) {
     if constexpr (std::is_arithmetic_v<F>) {
       return powf(nh, s.specularPower);
     } else {
-      F r;
-      for (unsigned l = 0; l < sizeof(F) / sizeof(float); ++l) r[l] = powf(nh[l], s.specularPower);
-      return r;
+      return mapLanes(nh, [&](float v) { return powf(v, s.specularPower); });
     }
   }
   F result = F{} + 1.0f, base = nh;
