@@ -79,7 +79,8 @@ int encodeBlocks(const StructuredGrid& grid, const std::string& blocksText, int 
 
 Command addEncodeCommand(CLI::App& app) {
   struct Options {
-    std::string input, output, spacing, origin, field, blocks;
+    std::string input, output, spacing, origin, blocks;
+    FieldOptionTexts field;
     int ghost = -1;
     bool json = false, quiet = false, strict = false;
     EncodeCliOptions encode;
@@ -104,9 +105,7 @@ Command addEncodeCommand(CLI::App& app) {
   sub->add_option("--origin", o->origin,
                   "Grids: position of the first sample X,Y,Z (overrides the file's)")
       ->group("Input");
-  sub->add_option("--field", o->field,
-                  "Scalar array to encode (default: the active/first point-data array)")
-      ->group("Input");
+  o->field.addTo(sub, "Input");
   sub->add_option("--blocks", o->blocks,
                   "Grids: split into BX,BY,BZ blocks (or B on every axis), each fitted with "
                   "ghost layers around it, and write a multi-block model (for parallel "
@@ -163,7 +162,7 @@ Command addEncodeCommand(CLI::App& app) {
     Model model;
     if (scattered) {
       ScatteredLoadOptions load;
-      load.field = o->field;
+      load.field = o->field.parse();
       const ScatteredData data = loadScatteredData(o->input, load);
       if (progress)
         std::cerr << "  " << data.kind << ": " << groupDigits(data.pointCount()) << " points"

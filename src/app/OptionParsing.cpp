@@ -4,9 +4,11 @@
 
 #include <CLI/CLI.hpp>
 #include <charconv>
-#include <iostream>
 #include <cmath>
+#include <iostream>
 #include <vector>
+
+#include "core/util/Error.h"
 
 namespace mfadvr::app {
 namespace {
@@ -92,8 +94,40 @@ StructuredFitOptions parseFitOptions(const std::string& degree, const std::strin
   return fit;
 }
 
+void FieldOptionTexts::addTo(CLI::App* sub, const std::string& group) {
+  sub->add_option("--field", name,
+                  "Array to read (default: the active scalars, else the first one-component "
+                  "point-data array, else the same from the cell data)")
+      ->group(group);
+  sub->add_option("--association", association,
+                  "point | cell | auto: read the --field from the point data or the cell data "
+                  "(grids: cell data is sampled at the cell centres; meshes: averaged to the "
+                  "points); default auto, points first")
+      ->group(group);
+  sub->add_option("--component", component,
+                  "N | magnitude: the component of a vector or multi-component array to use "
+                  "(0 = x), or the magnitude of its components")
+      ->group(group);
+}
+
+FieldSelection FieldOptionTexts::parse() const {
+  FieldSelection selection;
+  selection.name = name;
+  try {
+    if (!association.empty()) selection.association = parseFieldAssociation(association);
+  } catch (const Error& e) {
+    throw CLI::ValidationError("--association", e.what());
+  }
+  try {
+    if (!component.empty()) selection.component = parseFieldComponent(component);
+  } catch (const Error& e) {
+    throw CLI::ValidationError("--component", e.what());
+  }
+  return selection;
+}
+
 VolumeLoadOptions parseVolumeLoadOptions(const std::string& spacing, const std::string& origin,
-                                         const std::string& field) {
+                                         const FieldOptionTexts& field) {
   VolumeLoadOptions load;
   if (!spacing.empty()) {
     const auto s = parseTriple("--spacing", spacing);
@@ -103,7 +137,7 @@ VolumeLoadOptions parseVolumeLoadOptions(const std::string& spacing, const std::
     const auto s = parseTriple("--origin", origin);
     load.origin = Vec3d(s[0], s[1], s[2]);
   }
-  load.field = field;
+  load.field = field.parse();
   return load;
 }
 

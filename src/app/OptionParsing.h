@@ -7,6 +7,10 @@
 #include "core/encode/StructuredEncoder.h"
 #include "io/VolumeLoader.h"
 
+namespace CLI {
+class App;
+}
+
 namespace mfadvr::app {
 
 // "V" or "VX,VY,VZ" -> three values; throws CLI::ValidationError naming the option.
@@ -18,9 +22,18 @@ std::vector<double> parseNumberList(const std::string& option, const std::string
 
 // --degree and --ctrl texts -> fit options (validated by the encoder later).
 StructuredFitOptions parseFitOptions(const std::string& degree, const std::string& ctrl);
-// --spacing, --origin (empty: not given) and --field -> volume load options.
+// The texts of --field, --association and --component, which say which array of a file is
+// encoded or rendered (the same three options on encode, render and view).
+struct FieldOptionTexts {
+  std::string name, association, component;
+  void addTo(CLI::App* sub, const std::string& group);
+  // Throws CLI::ValidationError naming the option for a bad association or component.
+  FieldSelection parse() const;
+};
+
+// --spacing, --origin (empty: not given) and the field options -> volume load options.
 VolumeLoadOptions parseVolumeLoadOptions(const std::string& spacing, const std::string& origin,
-                                         const std::string& field);
+                                         const FieldOptionTexts& field);
 
 // One progress line on stderr, redrawn in place ("  encoding: 40% (fit y)"); ends the line at 1.
 void printProgress(const char* what, double fraction, const std::string& stage = "");

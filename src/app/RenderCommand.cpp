@@ -42,7 +42,8 @@ std::string methodList(const std::vector<std::string>& names) {
 struct Options {
   std::string input, output, floatOutput, method, gradientFrom, gradient = "analytic";
   std::string device = "auto";
-  std::string spacing, origin, field;
+  std::string spacing, origin;
+  FieldOptionTexts field;
   EncodeCliOptions encode;
   bool json = false, quiet = false, alpha = false;
   int frames = 0;  // 0: 1 for our methods, 3 for VTK's
@@ -191,7 +192,7 @@ Command addRenderCommand(CLI::App& app) {
   sub->add_option("--spacing", o->spacing, "Sample spacing S or SX,SY,SZ (overrides the file's)")
       ->group(in);
   sub->add_option("--origin", o->origin, "Position of the first sample X,Y,Z")->group(in);
-  sub->add_option("--field", o->field, "Scalar array to render")->group(in);
+  o->field.addTo(sub, in);
   sub->add_flag("--json", o->json, "Print timings and counts as JSON");
   sub->add_flag("-q,--quiet", o->quiet, "No progress on stderr");
 

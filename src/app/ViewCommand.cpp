@@ -191,7 +191,8 @@ int runViewBenchmark(Viewer& viewer, int frames, double fps) {
 
 Command addViewCommand(CLI::App& app) {
   struct Options {
-    std::string input, method = "mfa", screenshot, spacing, origin, field, device = "auto";
+    std::string input, method = "mfa", screenshot, spacing, origin, device = "auto";
+    FieldOptionTexts field;
     EncodeCliOptions encode;
     RenderOptions render;
     bool quiet = false;
@@ -226,7 +227,7 @@ Command addViewCommand(CLI::App& app) {
   sub->add_option("--spacing", o->spacing, "Sample spacing S or SX,SY,SZ (overrides the file's)")
       ->group(in);
   sub->add_option("--origin", o->origin, "Position of the first sample X,Y,Z")->group(in);
-  sub->add_option("--field", o->field, "Scalar array to render")->group(in);
+  o->field.addTo(sub, in);
   sub->add_flag("-q,--quiet", o->quiet, "No progress on stderr");
 
   auto run = [o]() -> int {

@@ -50,7 +50,7 @@ ExperimentReport runUnstructuredGallery(const EvalContext& ctx) {
     const std::string name = std::filesystem::path(input.path).stem().string();
     ctx.log("unstructured gallery: " + name + ": loading and encoding");
     ScatteredLoadOptions load;
-    load.field = input.field;
+    load.field.name = input.field;
     ScatteredData mesh;
     try {
       mesh = loadScatteredData(input.path, load);

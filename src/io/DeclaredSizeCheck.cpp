@@ -620,33 +620,67 @@ std::int64_t legacyTypeBytes(const std::string& type) {
   return 0;
 }
 
+// What VTK's legacy reader reads before the dataset: the version line ('# vtk DataFile
+// Version x.y', any version), one title line (any text, also empty), then the first word after
+// it, ASCII or BINARY in any case: VTK skips blank lines (and spaces, CR line ends) before it.
+// Leaves `in` at the start of the line after that word.
+struct LegacyPreamble {
+  bool valid = false;  // a legacy header with a known file type
+  bool binary = false;
+  std::string version;  // "3.0", "5.1", ...
+};
+
+LegacyPreamble readLegacyPreamble(std::istream& in) {
+  LegacyPreamble p;
+  std::string line;
+  if (!std::getline(in, line) || line.rfind("# vtk DataFile", 0) != 0) return p;
+  const auto at = line.find("Version");
+  if (at != std::string::npos) p.version = trim(line.substr(at + 7));
+  if (!std::getline(in, line)) return p;  // the title
+  std::string type;
+  if (!(in >> type)) return p;
+  type = lower(type);
+  if (type != "ascii" && type != "binary") return p;
+  std::getline(in, line);  // the rest of the file type's line
+  p.binary = type == "binary";
+  p.valid = static_cast<bool>(in);
+  return p;
+}
+
 }  // namespace
 
 void checkLegacyVtkHeaderText(const std::string& header, const std::string& path,
                               std::int64_t fileBytes) {
-  if (header.rfind("# vtk DataFile", 0) != 0) return;
   std::istringstream in(header);
+  const LegacyPreamble preamble = readLegacyPreamble(in);
+  if (!preamble.valid) return;
+  const Encoding enc = preamble.binary ? Encoding::Binary : Encoding::Ascii;
+  // Bytes of the header consumed so far (the stream ends at the header's last byte).
+  const auto consumed = [&]() -> std::int64_t {
+    const auto at = in.tellg();
+    return at < 0 ? static_cast<std::int64_t>(header.size()) : static_cast<std::int64_t>(at);
+  };
   std::string line;
-  std::int64_t offset = 0;
-  int lineNumber = 0;
-  bool binary = false;
   std::vector<std::int64_t> dims;
   std::int64_t pointData = -1;
-  while (std::getline(in, line) && offset < static_cast<std::int64_t>(header.size())) {
-    offset += static_cast<std::int64_t>(line.size()) + 1;
-    ++lineNumber;
-    if (lineNumber == 3) binary = lower(trim(line)) == "binary";
-    if (lineNumber < 4) continue;
+  std::string dataset;
+  while (std::getline(in, line)) {
     const auto w = words(line);
     if (w.empty()) continue;
     const std::string key = lower(w[0]);
-    const Encoding enc = binary ? Encoding::Binary : Encoding::Ascii;
-    if (key == "dimensions" && w.size() >= 4) {
+    if (key == "dataset" && w.size() >= 2) {
+      dataset = lower(w[1]);
+    } else if (key == "dimensions" && w.size() >= 4 && dataset == "structured_points") {
       dims = {parseCount(w[1]), parseCount(w[2]), parseCount(w[3])};
       if (std::any_of(dims.begin(), dims.end(), [](std::int64_t d) { return d < 0; })) return;
-      // Structured points need a value per point: at least one byte each.
-      requireData(path, "legacy VTK", dimsText(dims) + " points", product(dims), 1,
-                  Encoding::Binary, fileBytes - offset, "the file after its header");
+      // A field of structured points has a value per point or per cell: at least one byte per
+      // cell (an axis of one point has one cell). Other grids list their points or
+      // coordinates, which the POINTS check and VTK's reader check.
+      std::vector<std::int64_t> cells;
+      for (std::int64_t d : dims) cells.push_back(std::max<std::int64_t>(d - 1, 1));
+      requireData(
+          path, "legacy VTK", dimsText(dims) + " points (" + grouped(product(cells)) + " cells)",
+          product(cells), 1, Encoding::Binary, fileBytes - consumed(), "the file after its header");
     } else if (key == "point_data" && w.size() >= 2) {
       pointData = parseCount(w[1]);
     } else if (key == "points" && w.size() >= 3) {
@@ -654,21 +688,22 @@ void checkLegacyVtkHeaderText(const std::string& header, const std::string& path
       const std::int64_t n = parseCount(w[1]), bytes = legacyTypeBytes(w[2]);
       if (n < 0 || bytes == 0) return;
       requireData(path, "legacy VTK", grouped(n) + " points of type " + w[2], times(n, 3), bytes,
-                  enc, fileBytes - offset, "the file after the POINTS line");
+                  enc, fileBytes - consumed(), "the file after the POINTS line");
       return;  // binary data follows: lines no longer mean anything
     } else if (key == "scalars" && w.size() >= 3 && pointData >= 0) {
-      // Structured points: POINT_DATA n, SCALARS name type [components], LOOKUP_TABLE name.
+      // Structured points: POINT_DATA n, SCALARS name type [components], LOOKUP_TABLE name;
+      // VTK reads the values from the line after LOOKUP_TABLE's.
       const std::int64_t bytes = legacyTypeBytes(w[2]);
       const std::int64_t components = w.size() >= 4 ? parseCount(w[3]) : 1;
       if (bytes == 0 || components <= 0) return;
       std::string next;
-      if (!std::getline(in, next)) return;
-      offset += static_cast<std::int64_t>(next.size()) + 1;
-      if (lower(words(next).empty() ? "" : words(next)[0]) != "lookup_table") return;
+      while (std::getline(in, next) && words(next).empty()) {
+      }
+      if (!in || lower(words(next)[0]) != "lookup_table") return;
       requireData(path, "legacy VTK",
                   grouped(pointData) + " point values of type " + w[2] +
                       (components > 1 ? " x " + std::to_string(components) : ""),
-                  times(pointData, components), bytes, enc, fileBytes - offset,
+                  times(pointData, components), bytes, enc, fileBytes - consumed(),
                   "the file after the SCALARS block's header");
       return;
     }
@@ -685,14 +720,11 @@ void checkLegacyCells(std::istream& in, const std::string& path) {
     throw Error("cannot read " + path + " as legacy VTK: " + why +
                 "; the file is damaged or its header is wrong");
   };
+  const LegacyPreamble preamble = readLegacyPreamble(in);
+  if (!preamble.valid) return;
+  const bool binary = preamble.binary;
+  const bool newCells = preamble.version.rfind("5.", 0) == 0;  // 5.x: offsets + connectivity
   std::string line;
-  std::string version;
-  bool binary = false;
-  for (int n = 1; n <= 4 && std::getline(in, line); ++n) {
-    if (n == 1) version = line.size() > 25 ? trim(line.substr(23)) : "";
-    if (n == 3) binary = lower(trim(line)) == "binary";
-  }
-  const bool newCells = version.rfind("5.", 0) == 0;  // 5.x: offsets + connectivity
   const auto skip = [&](std::int64_t values, std::int64_t bytes) {
     if (values < 0 || bytes <= 0) return false;
     if (binary) {
@@ -709,17 +741,19 @@ void checkLegacyCells(std::istream& in, const std::string& path) {
   for (int guard = 0; guard < 16 && std::getline(in, line); ++guard) {
     const auto w = words(line);
     if (w.empty()) continue;
+    const std::string key = lower(w[0]);  // VTK reads keywords in any case
+    if (key == "dataset") continue;
     // VTK reads a keyword's counts across line ends: a short line takes its numbers from the
     // data that follows.
-    if ((w[0] == "POINTS" || w[0] == "CELLS") && w.size() != 3)
+    if ((key == "points" || key == "cells") && w.size() != 3)
       fail("the " + w[0] + " line has " + std::to_string(w.size() - 1) + " fields, not 2");
-    if (w[0] == "CELL_TYPES" && w.size() != 2)
+    if (key == "cell_types" && w.size() != 2)
       fail("the CELL_TYPES line has " + std::to_string(w.size() - 1) + " fields, not 1");
-    if (w[0] == "POINTS" && w.size() >= 3) {
+    if (key == "points" && w.size() >= 3) {
       if (parseCount(w[1]) < 0 || legacyTypeBytes(w[2]) == 0)
         fail("POINTS '" + w[1] + " " + w[2] + "' is not a count and a VTK data type");
       if (!skip(times(parseCount(w[1]), 3), legacyTypeBytes(w[2]))) return;
-    } else if (w[0] == "CELLS" && w.size() >= 3) {
+    } else if (key == "cells" && w.size() >= 3) {
       const std::int64_t a = parseCount(w[1]), b = parseCount(w[2]);
       if (a < 0 || b < 0) fail("CELLS '" + w[1] + " " + w[2] + "' are not counts");
       if (newCells) {
@@ -736,9 +770,9 @@ void checkLegacyCells(std::istream& in, const std::string& path) {
         cells = a;
         if (!skip(b, 4)) return;
       }
-    } else if ((w[0] == "OFFSETS" || w[0] == "CONNECTIVITY") && w.size() >= 2) {
+    } else if ((key == "offsets" || key == "connectivity") && w.size() >= 2) {
       return;  // their lengths are CELLS' counts; VTK checks the rest
-    } else if (w[0] == "CELL_TYPES" && w.size() >= 2) {
+    } else if (key == "cell_types" && w.size() >= 2) {
       const std::int64_t n = parseCount(w[1]);
       if (cells >= 0 && n != cells)
         fail("CELL_TYPES declares " + w[1] + " types for " + grouped(cells) + " cells");

@@ -29,6 +29,15 @@ void requireReadableFile(const std::string& path, const std::string& expected) {
   std::fclose(f);
 }
 
+void requireNonEmptyFile(const std::string& path, const std::string& expected) {
+  // Every reader would fail on it, each in its own words (VTK's: "Premature EOF reading first
+  // line!"); a detached header's data file is checked by the header's size checks.
+  std::error_code ec;
+  if (std::filesystem::is_regular_file(path, ec) && std::filesystem::file_size(path, ec) == 0 &&
+      !ec)
+    throw Error("cannot read " + path + ": the file is empty (0 bytes), expected " + expected);
+}
+
 std::string readTextFile(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error("cannot open " + path + ": " + std::strerror(errno));

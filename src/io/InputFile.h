@@ -12,6 +12,11 @@ std::string lowerExtension(const std::string& path);
 // and when it is a directory ("expected `expected`", e.g. "a volume file").
 void requireReadableFile(const std::string& path, const std::string& expected);
 
+// Throws mfadvr::Error "cannot read PATH: the file is empty" when a regular file holds no
+// bytes. (Raw volumes are not checked here: their names declare a size, and the raw reader
+// says which.)
+void requireNonEmptyFile(const std::string& path, const std::string& expected);
+
 // The whole file as text (binary-safe); throws mfadvr::Error naming the file on failure.
 std::string readTextFile(const std::string& path);
 

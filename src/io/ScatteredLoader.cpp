@@ -16,16 +16,19 @@
 #include <vtkDataSet.h>
 #include <vtkDataSetReader.h>
 #include <vtkDataSetTriangleFilter.h>
+#include <vtkDoubleArray.h>
 #include <vtkErrorCode.h>
 #include <vtkGenericCell.h>
 #include <vtkIdList.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
 #include <vtkPolyData.h>
+#include <vtkRectilinearGrid.h>
 #include <vtkSmartPointer.h>
 #include <vtkStructuredGrid.h>
 #include <vtkUnstructuredGrid.h>
 #include <vtkXMLPolyDataReader.h>
+#include <vtkXMLRectilinearGridReader.h>
 #include <vtkXMLStructuredGridReader.h>
 #include <vtkXMLUnstructuredGridReader.h>
 
@@ -34,6 +37,7 @@
 #include "io/DeclaredSizeCheck.h"
 #include "io/InputFile.h"
 #include "io/VtkDataConversion.h"
+#include "io/VtkFieldSelection.h"
 #include "io/VtkSupport.h"
 
 namespace mfadvr {
@@ -66,7 +70,8 @@ std::string legacyDatasetType(const std::string& path) {
 }
 
 bool isScatteredLegacyType(const std::string& type) {
-  return type == "UNSTRUCTURED_GRID" || type == "STRUCTURED_GRID" || type == "POLYDATA";
+  return type == "UNSTRUCTURED_GRID" || type == "STRUCTURED_GRID" || type == "POLYDATA" ||
+         type == "RECTILINEAR_GRID";
 }
 
 struct MeshFormat {
@@ -84,16 +89,19 @@ MeshFormat meshFormat(const std::string& ext) {
   if (ext == ".vtp")
     return {"VTK XML polydata (.vtp)",
             "a VTK XML file <VTKFile type=\"PolyData\"> with points and data"};
+  if (ext == ".vtr")
+    return {"VTK XML rectilinear grid (.vtr)",
+            "a VTK XML file <VTKFile type=\"RectilinearGrid\"> with coordinates and data"};
   return {"legacy VTK",
           "a legacy VTK file ('# vtk DataFile Version') with DATASET UNSTRUCTURED_GRID, "
-          "STRUCTURED_GRID or POLYDATA"};
+          "STRUCTURED_GRID, RECTILINEAR_GRID or POLYDATA"};
 }
 
 // Runs the reader for `ext` and returns its dataset, with VTK's messages in the error.
 vtkSmartPointer<vtkDataSet> readMesh(const std::string& path, const std::string& ext) {
   const MeshFormat format = meshFormat(ext);
   vtkSmartPointer<vtkAlgorithm> reader;
-  if (ext == ".vtu" || ext == ".vts" || ext == ".vtp")
+  if (ext == ".vtu" || ext == ".vts" || ext == ".vtp" || ext == ".vtr")
     checkXmlVtkDeclaredSize(path);
   else
     checkLegacyVtkDeclaredSize(path);
@@ -107,6 +115,10 @@ vtkSmartPointer<vtkDataSet> readMesh(const std::string& path, const std::string&
     reader = r;
   } else if (ext == ".vtp") {
     auto r = vtkSmartPointer<vtkXMLPolyDataReader>::New();
+    r->SetFileName(path.c_str());
+    reader = r;
+  } else if (ext == ".vtr") {
+    auto r = vtkSmartPointer<vtkXMLRectilinearGridReader>::New();
     r->SetFileName(path.c_str());
     reader = r;
   } else {
@@ -123,7 +135,7 @@ vtkSmartPointer<vtkDataSet> readMesh(const std::string& path, const std::string&
     if (!isScatteredLegacyType(type)) {
       throw Error(path + ": DATASET " + type +
                   " is not supported for scattered input; expected UNSTRUCTURED_GRID, "
-                  "STRUCTURED_GRID or POLYDATA");
+                  "STRUCTURED_GRID, RECTILINEAR_GRID or POLYDATA");
     }
     auto r = vtkSmartPointer<vtkDataSetReader>::New();
     r->SetFileName(path.c_str());
@@ -146,75 +158,6 @@ vtkSmartPointer<vtkDataSet> readMesh(const std::string& path, const std::string&
     }
   }
   return data;
-}
-
-std::string arrayName(vtkDataArray* a) {
-  return a->GetName() ? a->GetName() : "";
-}
-
-std::string listArrays(vtkDataSet* data) {
-  return "point data: " + describeVtkArrays(data->GetPointData()) +
-         "; cell data: " + describeVtkArrays(data->GetCellData());
-}
-
-vtkDataArray* firstScalarArray(vtkFieldData* fields) {
-  for (int i = 0; i < fields->GetNumberOfArrays(); ++i) {
-    vtkDataArray* a = fields->GetArray(i);  // null for string and other non-numeric arrays
-    if (a && a->GetNumberOfComponents() == 1) return a;
-  }
-  return nullptr;
-}
-
-struct SelectedArray {
-  vtkDataArray* array = nullptr;
-  bool fromCells = false;
-};
-
-SelectedArray selectArray(const std::string& path, vtkDataSet* data, const std::string& field) {
-  vtkPointData* pd = data->GetPointData();
-  vtkCellData* cd = data->GetCellData();
-  SelectedArray s;
-  if (field.empty()) {
-    if (pd->GetNumberOfArrays() == 0 && cd->GetNumberOfArrays() == 0)
-      throw Error(path +
-                  ": the file holds no point-data or cell-data arrays; a scalar field "
-                  "(one value per point or cell) is needed");
-    s.array = pd->GetScalars();
-    if (!s.array || s.array->GetNumberOfComponents() != 1) s.array = firstScalarArray(pd);
-    if (!s.array) {
-      s.array = cd->GetScalars();
-      if (!s.array || s.array->GetNumberOfComponents() != 1) s.array = firstScalarArray(cd);
-      s.fromCells = s.array != nullptr;
-    }
-    if (!s.array)
-      throw Error(path + ": no one-component numeric array to use as the scalar field; " +
-                  listArrays(data));
-  } else {
-    s.array = pd->GetArray(field.c_str());
-    if (!s.array) {
-      s.array = cd->GetArray(field.c_str());
-      s.fromCells = s.array != nullptr;
-    }
-    if (!s.array) {
-      const bool other = pd->GetAbstractArray(field.c_str()) || cd->GetAbstractArray(field.c_str());
-      throw Error(path + ": " +
-                  (other ? "the array '" + field + "' is not numeric"
-                         : "no point-data or cell-data array named '" + field + "'") +
-                  "; " + listArrays(data));
-    }
-    if (s.array->GetNumberOfComponents() != 1) {
-      throw Error(path + ": array '" + field + "' has " +
-                  std::to_string(s.array->GetNumberOfComponents()) +
-                  " components, but a scalar field (1 component) is needed; pick another "
-                  "array: " +
-                  listArrays(data));
-    }
-  }
-  if (vtkSampleTypeName(s.array).empty()) {
-    throw Error(path + ": array '" + arrayName(s.array) + "' has sample type " +
-                s.array->GetDataTypeAsString() + "; expected an integer or floating-point type");
-  }
-  return s;
 }
 
 // Dimension (0..3) of every cell type in `data`, indexed by VTK cell type.
@@ -242,23 +185,44 @@ void appendTets(vtkDataSet* data, std::vector<Tetrahedron>& tets) {
   }
 }
 
-ScatteredData meshDataOf(vtkDataSet* input, const std::string& path, const std::string& field) {
+ScatteredData meshDataOf(vtkDataSet* input, const std::string& path, const FieldSelection& field) {
   if (!input || input->GetNumberOfPoints() == 0)
     throw Error(path + ": the data set holds no points");
 
   ScatteredData out;
-  const SelectedArray selected = selectArray(path, input, field);
-  out.fieldName = arrayName(selected.array);
+  const SelectedVtkField selected = selectVtkField(path, input, field);
+  out.fieldName = selected.name;
   out.sampleType = vtkSampleTypeName(selected.array);
-  out.inputBytes = static_cast<std::int64_t>(selected.array->GetNumberOfTuples()) *
-                   selected.array->GetDataTypeSize();
+  out.inputBytes =
+      static_cast<std::int64_t>(selected.array->GetNumberOfTuples()) *
+      selected.array->GetDataTypeSize() *
+      (selected.component == FieldSelection::kWholeArray ? 1
+                                                         : selected.array->GetNumberOfComponents());
+
+  // The selected values as a one-component array of their own, on a shallow copy of the input
+  // (a chosen component or magnitude becomes a scalar before any averaging).
+  vtkNew<vtkDoubleArray> scalar;
+  scalar->SetName(out.fieldName.c_str());
+  {
+    const std::vector<double> values = selectedValues(selected);
+    scalar->SetNumberOfTuples(static_cast<vtkIdType>(values.size()));
+    std::copy(values.begin(), values.end(), scalar->GetPointer(0));
+  }
+  vtkSmartPointer<vtkDataSet> carrier;
+  carrier.TakeReference(input->NewInstance());
+  carrier->ShallowCopy(input);
+  carrier->GetPointData()->Initialize();
+  carrier->GetCellData()->Initialize();
+  (selected.fromCells ? static_cast<vtkDataSetAttributes*>(carrier->GetCellData())
+                      : static_cast<vtkDataSetAttributes*>(carrier->GetPointData()))
+      ->AddArray(scalar);
 
   // The filters below report through VTK's output window too.
   VtkMessageCapture capture;
-  vtkSmartPointer<vtkDataSet> data = input;
+  vtkSmartPointer<vtkDataSet> data = carrier;
   if (selected.fromCells) {
     vtkNew<vtkCellDataToPointData> toPoints;
-    toPoints->SetInputData(input);
+    toPoints->SetInputData(carrier);
     toPoints->ProcessAllArraysOff();
     toPoints->AddCellDataArray(out.fieldName.c_str());
     toPoints->PassCellDataOff();
@@ -285,11 +249,14 @@ ScatteredData meshDataOf(vtkDataSet* input, const std::string& path, const std::
 
   if (volumeCells == 0) {
     out.kind = "point cloud";
-  } else if (allTets && !vtkStructuredGrid::SafeDownCast(data)) {
+  } else if (allTets && !vtkStructuredGrid::SafeDownCast(data) &&
+             !vtkRectilinearGrid::SafeDownCast(data)) {
     out.kind = "tetrahedral mesh";
     appendTets(data, out.tets);
   } else {
-    out.kind = vtkStructuredGrid::SafeDownCast(data) ? "curvilinear grid" : "mixed-cell mesh";
+    out.kind = vtkStructuredGrid::SafeDownCast(data)    ? "curvilinear grid"
+               : vtkRectilinearGrid::SafeDownCast(data) ? "rectilinear grid"
+                                                        : "mixed-cell mesh";
     // Splits every 3-D cell into tetrahedra on the cell's own points; the points and their
     // data pass through.
     vtkNew<vtkDataSetTriangleFilter> split;
@@ -318,19 +285,22 @@ ScatteredData meshDataOf(vtkDataSet* input, const std::string& path, const std::
 }
 
 ScatteredData readMeshData(const std::string& path, const std::string& ext,
-                           const std::string& field) {
+                           const FieldSelection& field) {
   vtkSmartPointer<vtkDataSet> input = readMesh(path, ext);
   if (input->GetNumberOfPoints() == 0) throw Error(path + ": the file holds no points");
   return meshDataOf(input, path, field);
 }
 
-ScatteredData readTextData(const std::string& path, const std::string& field) {
+ScatteredData readTextData(const std::string& path, const FieldSelection& field) {
   ScatteredData out = parsePointValueList(readTextFile(path), path);
-  if (!field.empty() && field != out.fieldName) {
-    throw Error(path + ": no value column named '" + field + "'; the file's value column is '" +
-                out.fieldName +
+  if (!field.name.empty() && field.name != out.fieldName) {
+    throw Error(path + ": no value column named '" + field.name +
+                "'; the file's value column is '" + out.fieldName +
                 "' (the fourth name of a header line; 'value' when there is no header)");
   }
+  if (field.association == FieldAssociation::kCells || field.component > 0)
+    throw Error(path + ": a point list holds one value per point, so --association cell and " +
+                "--component do not apply to it");
   return out;
 }
 
@@ -338,14 +308,15 @@ ScatteredData readTextData(const std::string& path, const std::string& field) {
 
 ScatteredData loadScatteredData(const std::string& path, const ScatteredLoadOptions& options) {
   const std::string ext = lowerExtension(path);
-  const bool known =
-      isTextExtension(ext) || ext == ".vtu" || ext == ".vts" || ext == ".vtp" || ext == ".vtk";
+  const bool known = isTextExtension(ext) || ext == ".vtu" || ext == ".vts" || ext == ".vtp" ||
+                     ext == ".vtr" || ext == ".vtk";
   if (!known) {
     throw Error(path + ": unknown mesh or point format '" +
                 (ext.empty() ? std::string("(no extension)") : ext) + "'; supported inputs:\n" +
                 supportedScatteredFormats());
   }
   requireReadableFile(path, "a mesh or point file");
+  requireNonEmptyFile(path, "a mesh or point file");
   ScatteredData data = isTextExtension(ext) ? readTextData(path, options.field)
                                             : readMeshData(path, ext, options.field);
   data.source = path;
@@ -355,7 +326,9 @@ ScatteredData loadScatteredData(const std::string& path, const ScatteredLoadOpti
 
 ScatteredData scatteredFromVtkDataSet(vtkDataSet* data, const std::string& field,
                                       const std::string& source) {
-  ScatteredData out = meshDataOf(data, source, field);
+  FieldSelection selection;
+  selection.name = field;
+  ScatteredData out = meshDataOf(data, source, selection);
   out.source = source;
   out.validate();
   return out;
@@ -363,16 +336,18 @@ ScatteredData scatteredFromVtkDataSet(vtkDataSet* data, const std::string& field
 
 bool isScatteredInput(const std::string& path) {
   const std::string ext = lowerExtension(path);
-  if (isTextExtension(ext) || ext == ".vtu" || ext == ".vts" || ext == ".vtp") return true;
+  if (isTextExtension(ext) || ext == ".vtu" || ext == ".vts" || ext == ".vtp" || ext == ".vtr")
+    return true;
   return ext == ".vtk" && isScatteredLegacyType(legacyDatasetType(path));
 }
 
 std::string supportedScatteredFormats() {
   return "  .vtu                 VTK XML unstructured grid (3-D cells split into tetrahedra)\n"
          "  .vts                 VTK XML structured (curvilinear) grid\n"
+         "  .vtr                 VTK XML rectilinear grid (cells split into tetrahedra)\n"
          "  .vtp                 VTK XML polydata (the points; polygons and lines are ignored)\n"
-         "  .vtk                 legacy VTK, DATASET UNSTRUCTURED_GRID, STRUCTURED_GRID or\n"
-         "                       POLYDATA\n"
+         "  .vtk                 legacy VTK, DATASET UNSTRUCTURED_GRID, STRUCTURED_GRID,\n"
+         "                       RECTILINEAR_GRID or POLYDATA\n"
          "  .csv, .txt, .xyz     text, one 'x y z value' per line (commas and/or spaces,\n"
          "                       optional header line naming the columns, # comments)\n";
 }

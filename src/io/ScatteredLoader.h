@@ -5,14 +5,16 @@
 #include <string>
 
 #include "core/mesh/ScatteredData.h"
+#include "io/FieldSelection.h"
 
 namespace mfadvr {
 
 struct ScatteredLoadOptions {
-  // Scalar array to read. Empty: the active scalars, else the first one-component point-data
-  // array, else the first one-component cell-data array. A cell-data array is averaged to the
-  // points. Text files have one value column; a name must match its header.
-  std::string field;
+  // Array to read (name, point or cell data, component; selectVtkField). Default: the active
+  // scalars, else the first one-component point-data array, else the same from the cell data.
+  // A cell-data array is averaged to the points. Text files have one value column; a name must
+  // match its header.
+  FieldSelection field;
 };
 
 // Reads a mesh or point cloud by extension: .vtu, .vts, .vtp, legacy .vtk (DATASET

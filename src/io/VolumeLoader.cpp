@@ -18,8 +18,9 @@ bool endsWith(const std::string& text, const std::string& tail) {
          text.compare(text.size() - tail.size(), tail.size(), tail) == 0;
 }
 
-StructuredGrid readFile(const std::string& path, const std::string& field) {
+StructuredGrid readFile(const std::string& path, const FieldSelection& field) {
   const std::string ext = lowerExtension(path);
+  if (ext != ".raw") requireNonEmptyFile(path, "a volume file or a directory of DICOM slices");
   std::string lower = path;
   std::transform(lower.begin(), lower.end(), lower.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
@@ -31,9 +32,11 @@ StructuredGrid readFile(const std::string& path, const std::string& field) {
                 "slices (and nothing else) to read them as a volume");
   }
   if (ext == ".raw") {
-    if (!field.empty())
-      throw Error(path + ": a raw file holds one unnamed field, so a field name ('" + field +
-                  "') cannot be chosen");
+    if (field.chosen())
+      throw Error(path + ": a raw file holds one unnamed scalar field on the grid points, so " +
+                  (field.name.empty() ? std::string("--association and --component do")
+                                      : "a field name ('" + field.name + "') does") +
+                  " not apply to it");
     return readRawVolume(path);
   }
   if (ext == ".nrrd" || ext == ".nhdr") return readVtkVolume(path, VtkVolumeFormat::kNrrd, field);
@@ -57,10 +60,10 @@ StructuredGrid readFile(const std::string& path, const std::string& field) {
 StructuredGrid loadStructuredVolume(const std::string& input, const VolumeLoadOptions& options) {
   if (isBuiltinSpec(input)) {
     // A built-in is defined on [-1,1]^3; moving its samples would detach it from its truth.
-    if (options.spacing || options.origin || !options.field.empty())
+    if (options.spacing || options.origin || options.field.chosen())
       throw Error(input +
-                  ": --spacing, --origin and --field apply to files, not to built-in "
-                  "functions (choose the grid with builtin:NAME:NXxNYxNZ)");
+                  ": --spacing, --origin, --field, --association and --component apply to "
+                  "files, not to built-in functions (choose the grid with builtin:NAME:NXxNYxNZ)");
     return sampleBuiltinSpec(input);
   }
 

@@ -6,14 +6,17 @@
 
 #include "core/grid/StructuredGrid.h"
 #include "core/util/Vec.h"
+#include "io/FieldSelection.h"
 
 namespace mfadvr {
 
 struct VolumeLoadOptions {
   std::optional<Vec3d> spacing;  // override (raw files: default 1,1,1)
   std::optional<Vec3d> origin;   // override (raw files: default 0,0,0)
-  std::string field;  // scalar array name to pick (empty: the active scalars / first point-data
-                      // array); only formats with named arrays (.vti, .vtk) have a choice
+  // The array to encode (name, point or cell data, component); only formats with named arrays
+  // (.vti, .vtk, .nrrd, .mha, ...) have a choice. Default: the active scalars, else the first
+  // one-component point-data array, else the same from the cell data.
+  FieldSelection field;
 };
 
 // input: "builtin:..." (sampled by sampleBuiltinSpec; the options do not apply to it), or a

@@ -30,6 +30,7 @@
 #include "core/util/Error.h"
 #include "io/DeclaredSizeCheck.h"
 #include "io/VtkDataConversion.h"
+#include "io/VtkFieldSelection.h"
 #include "io/VtkSupport.h"
 
 namespace mfadvr {
@@ -186,63 +187,34 @@ vtkSmartPointer<vtkImageData> runReader(const std::string& path, VtkVolumeFormat
   return image;
 }
 
-vtkDataArray* selectArray(const std::string& path, VtkVolumeFormat format, vtkImageData* image,
-                          const std::string& field) {
-  vtkPointData* points = image->GetPointData();
-  vtkDataArray* array = nullptr;
-  if (field.empty()) {
-    array = points->GetScalars();
-    for (int i = 0; !array && i < points->GetNumberOfArrays(); ++i) array = points->GetArray(i);
-    if (!array) {
-      throw Error(path + ": no point-data arrays to read (cell data: " +
-                  describeVtkArrays(image->GetCellData()) +
-                  "); the encoder needs one scalar value per grid point");
-    }
-  } else {
-    array = points->GetArray(field.c_str());
-    if (!array) {
-      std::string msg = path + ": no point-data array named '" + field + "'";
-      if (image->GetCellData()->GetAbstractArray(field.c_str()))
-        msg += " (there is a cell-data array of that name, but samples must sit on grid points)";
-      throw Error(msg + "; point-data arrays in the file: " + describeVtkArrays(points));
-    }
-  }
-  const int components = array->GetNumberOfComponents();
+SelectedVtkField selectArray(const std::string& path, VtkVolumeFormat format, vtkImageData* image,
+                             const FieldSelection& field) {
+  // NRRD has no notion of components; VTK's reader guesses them from the axis sizes, so a
+  // multi-component array here is a misread volume, whatever --component says.
+  vtkDataArray* scalars = image->GetPointData()->GetScalars();
+  const int components = scalars ? scalars->GetNumberOfComponents() : 1;
   if (components != 1 && format == VtkVolumeFormat::kNrrd) {
-    // NRRD has no notion of components; VTK's reader guesses them from the axis sizes.
     throw Error(path + ": VTK's NRRD reader takes the first axis (" + std::to_string(components) +
                 " samples) for vector components, as it does for a first axis of 9 samples or "
                 "fewer and for a 4th axis; a scalar volume needs 3 axes and at least 10 samples "
                 "along x");
   }
-  if (components != 1) {
-    throw Error(path + ": array '" + std::string(array->GetName() ? array->GetName() : "") +
-                "' has " + std::to_string(components) +
-                " components per sample, but a scalar field (1 component) is expected; "
-                "point-data arrays in the file: " +
-                describeVtkArrays(points));
-  }
-  return array;
+  return selectVtkField(path, image, field);
 }
 
-template <typename T>
-void copyValues(const T* in, size_t count, double* out) {
-  for (size_t n = 0; n < count; ++n) out[n] = static_cast<double>(in[n]);
+std::string axesText(const Index3& dims) {
+  return std::to_string(dims[0]) + " x " + std::to_string(dims[1]) + " x " +
+         std::to_string(dims[2]);
 }
 
 StructuredGrid toGrid(const std::string& path, VtkVolumeFormat format, vtkImageData* image,
-                      const std::string& field) {
+                      const FieldSelection& field) {
   if (vtkMatrix3x3* direction = image->GetDirectionMatrix(); direction && !direction->IsIdentity())
     throw Error(path +
                 ": the grid axes are rotated or flipped (direction matrix is not the "
                 "identity); only axis-aligned grids are supported");
-  vtkDataArray* array = selectArray(path, format, image, field);
-  const std::string type = vtkSampleTypeName(array);
-  if (type.empty()) {
-    throw Error(path + ": array '" + std::string(array->GetName() ? array->GetName() : "") +
-                "' has sample type " + array->GetDataTypeAsString() +
-                "; expected an integer or floating-point type");
-  }
+  const SelectedVtkField selected = selectArray(path, format, image, field);
+  vtkDataArray* array = selected.array;
 
   StructuredGrid grid;
   int dims[3];
@@ -254,28 +226,43 @@ StructuredGrid toGrid(const std::string& path, VtkVolumeFormat format, vtkImageD
   image->GetOrigin(origin);
   image->GetSpacing(spacing);
   for (int a = 0; a < 3; ++a) {
-    grid.dims[a] = dims[a];
     // VTK's origin is the position of index 0, which need not be the first sample.
     grid.origin[a] = origin[a] + extent[2 * a] * spacing[a];
     grid.spacing[a] = spacing[a];
+    grid.dims[a] = dims[a];
+    // Cell data: one sample at the centre of each cell (an axis of one point has one cell).
+    if (selected.fromCells && dims[a] > 1) {
+      grid.dims[a] = dims[a] - 1;
+      grid.origin[a] += 0.5 * spacing[a];
+    }
+  }
+  const char* association = selected.fromCells ? "cell data" : "point data";
+  if (grid.dims[0] < 2 || grid.dims[1] < 2 || grid.dims[2] < 2) {
+    throw Error(path + ": the " + association + " of '" + selected.name + "' spans " +
+                axesText(grid.dims) +
+                " samples: 2-D data (a volume needs at least 2 samples along every axis)");
   }
   if (array->GetNumberOfTuples() != grid.sampleCount()) {
     throw Error(path + ": array '" + std::string(array->GetName() ? array->GetName() : "") +
                 "' has " + std::to_string(array->GetNumberOfTuples()) + " values for " +
-                std::to_string(grid.sampleCount()) + " grid points");
+                std::to_string(grid.sampleCount()) + (selected.fromCells ? " cells" : " points"));
   }
   grid.source = path;
-  grid.fieldName = array->GetName() ? array->GetName() : "";
-  grid.sampleType = type;
-  grid.inputBytes = grid.sampleCount() * array->GetDataTypeSize();
-  grid.values.resize(static_cast<size_t>(grid.sampleCount()));
-  // VTK's point order is x fastest, like StructuredGrid's.
-  switch (array->GetDataType()) {
-    vtkTemplateMacro(copyValues(static_cast<const VTK_TT*>(array->GetVoidPointer(0)),
-                                grid.values.size(), grid.values.data()));
-    default:
-      throw Error(path + ": unsupported sample type " + array->GetDataTypeAsString());
-  }
+  grid.fieldName = selected.name;
+  grid.fieldAssociation = association;
+  if (selected.fromCells)
+    grid.notes.push_back("'" + selected.name +
+                         "' is cell data: encoded with one sample at each "
+                         "cell centre (a " +
+                         axesText(grid.dims) +
+                         " grid, half a cell inside "
+                         "the image's bounds)");
+  grid.sampleType = vtkSampleTypeName(array);
+  grid.inputBytes =
+      grid.sampleCount() * array->GetDataTypeSize() *
+      (selected.component == FieldSelection::kWholeArray ? 1 : array->GetNumberOfComponents());
+  // VTK's point and cell order is x fastest, like StructuredGrid's.
+  grid.values = selectedValues(selected);
   return grid;
 }
 
@@ -343,7 +330,7 @@ void fixDicomSeries(StructuredGrid& grid) {
 }  // namespace
 
 StructuredGrid readVtkVolume(const std::string& path, VtkVolumeFormat format,
-                             const std::string& field) {
+                             const FieldSelection& field) {
   vtkSmartPointer<vtkImageData> image;
   vtkSmartPointer<vtkAlgorithm> reader;
   {
@@ -361,7 +348,9 @@ StructuredGrid gridFromVtkImage(vtkImageData* image, const std::string& field,
   if (!image || image->GetNumberOfPoints() == 0)
     throw Error(source + ": the image data holds no samples");
   // The NRRD-specific advice never applies to in-memory images.
-  StructuredGrid grid = toGrid(source, VtkVolumeFormat::kXmlImageData, image, field);
+  FieldSelection selection;
+  selection.name = field;
+  StructuredGrid grid = toGrid(source, VtkVolumeFormat::kXmlImageData, image, selection);
   grid.source = source;
   return grid;
 }

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "core/grid/StructuredGrid.h"
+#include "io/FieldSelection.h"
 
 namespace mfadvr {
 
@@ -16,11 +17,14 @@ enum class VtkVolumeFormat {
   kDicomSeries,             // a directory of DICOM slices (vtkDICOMImageReader)
 };
 
-// Reads the point-data array named `field` (empty: the active scalars, else the first
-// point-data array) of an image volume, converted to double, with the file's origin, spacing
-// and dims. Throws mfadvr::Error with the reader's own messages when VTK fails, when the field
-// is missing (listing the arrays there are) or has more than one component, and when a legacy
-// file holds another dataset type. The grid is not validated (the caller overrides and
+// Reads the array `field` selects (selectVtkField: by default the active scalars, else the first
+// one-component point-data array, else the same from the cell data) of an image volume,
+// converted to double (a chosen component, or the magnitude), with the file's origin, spacing
+// and dims. Cell data gives one sample at each cell centre: a grid of one sample fewer per
+// axis, half a cell in from the image's bounds. Throws mfadvr::Error with the reader's own
+// messages when VTK fails, when the field is missing (listing the arrays there are) or has
+// more than one component and none was chosen, when the samples span fewer than 2 along an
+// axis (2-D data), and when a legacy file holds another dataset type. The grid is not validated (the caller overrides and
 // validates).
 //
 // NIfTI: the scl_slope / scl_inter calibration is applied; the sform (else the qform) matrix
@@ -32,6 +36,6 @@ enum class VtkVolumeFormat {
 // the first voxel at the origin, x spacing from Pixel Spacing's column spacing, and
 // grid.notes says so.
 StructuredGrid readVtkVolume(const std::string& path, VtkVolumeFormat format,
-                             const std::string& field);
+                             const FieldSelection& field);
 
 }  // namespace mfadvr

@@ -5,6 +5,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <random>
+#include <sstream>
 
 #include "TestSupport.h"
 #include "app/CliRunner.h"
@@ -167,6 +168,40 @@ TEST(EncodeCli, RefusesCutAndAbsurdInputsWithoutOutput) {
     EXPECT_EQ(r.status, 1) << file;
     EXPECT_NE(r.err.find(reason), std::string::npos) << file << ": " << r.err;
     EXPECT_FALSE(std::filesystem::exists(model)) << file;
+  }
+}
+
+// A finite-volume style image: a 3-component cell array only, 6 x 5 x 4 points.
+TEST(EncodeCli, CellDataAndComponentOptions) {
+  const auto dir = test::scratchDir();
+  std::ostringstream values;
+  for (int n = 0; n < 5 * 4 * 3; ++n) values << n << " 0 " << 2 * n << " ";
+  std::ofstream(dir / "fv.vti")
+      << "<?xml version=\"1.0\"?>\n<VTKFile type=\"ImageData\" version=\"1.0\">\n"
+         "<ImageData WholeExtent=\"0 5 0 4 0 3\" Origin=\"0 0 0\" Spacing=\"2 2 2\">\n"
+         "<Piece Extent=\"0 5 0 4 0 3\"><CellData>\n"
+         "<DataArray type=\"Float32\" Name=\"velocity\" NumberOfComponents=\"3\" "
+         "format=\"ascii\">"
+      << values.str() << "</DataArray>\n</CellData></Piece></ImageData></VTKFile>\n";
+  const std::string file = (dir / "fv.vti").string();
+  const auto vector = runMfadvr("encode " + file + " --degree 1");
+  EXPECT_EQ(vector.status, 1);
+  EXPECT_NE(vector.err.find("--component"), std::string::npos) << vector.err;
+  const auto model = (dir / "fv.mfa").string();
+  const auto r =
+      runMfadvr("encode " + file + " --degree 1 --component magnitude --json -o " + model);
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = parseJson(r);
+  EXPECT_EQ(j["field"], "velocity_magnitude");
+  EXPECT_EQ(j["field_association"], "cell data");
+  // Cell centres: 5 x 4 x 3 samples from (1, 1, 1) on; the largest magnitude is sqrt(5) * 59.
+  EXPECT_NEAR(j["value_max"].get<double>(), std::sqrt(5.0) * 59.0, 1e-3);
+  EXPECT_EQ(j["samples"], nlohmann::json({5, 4, 3}));
+  const auto info = runMfadvr("info " + model);
+  EXPECT_NE(info.out.find("velocity_magnitude"), std::string::npos) << info.out;
+  for (const std::string bad : {" --component -1", " --component x", " --association edge"}) {
+    const auto b = runMfadvr("encode " + file + bad);
+    EXPECT_EQ(b.status, 2) << bad << "\n" << b.err;
   }
 }
 

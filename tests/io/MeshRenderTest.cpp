@@ -106,7 +106,7 @@ void checkMesh(const std::string& file, const std::string& field, Index3 ctrl) {
   const auto path = test::dataFile(file);
   if (path.empty()) GTEST_SKIP() << file << " not present";
   ScatteredLoadOptions load;
-  load.field = field;
+  load.field.name = field;
   const ScatteredData mesh = loadScatteredData(path.string(), load);
   ASSERT_TRUE(mesh.hasCells());
   EncodeOptions options;

@@ -178,7 +178,7 @@ TEST(RawVolumeReader, FieldNameIsAnErrorForRaw) {
   const auto path =
       writeRaw<std::uint8_t>(test::scratchDir(), "vol_2x2x2_uint8.raw", {1, 2, 3, 4, 5, 6, 7, 8});
   VolumeLoadOptions options;
-  options.field = "density";
+  options.field.name = "density";
   expectError([&] { loadStructuredVolume(path, options); }, {path, "'density'"});
 }
 

@@ -201,7 +201,7 @@ TEST(ScatteredLoader, CellDataIsAveragedToPoints) {
   const std::string cellData = dataArray("Int16", "label", 1, "1 2 3 4 5");
   const auto path = writeFile(dir / "c.vtu", vtuText(fiveTets(), cellData));
   ScatteredLoadOptions options;
-  options.field = "label";
+  options.field.name = "label";
   const ScatteredData d = loadScatteredData(path, options);
   EXPECT_EQ(d.fieldName, "label");
   EXPECT_EQ(d.fieldAssociation, "cell data averaged to points");
@@ -231,12 +231,47 @@ TEST(ScatteredLoader, FieldErrors) {
   const std::string cellData = dataArray("Int16", "label", 1, "1 2 3 4 5");
   const auto path = writeFile(dir / "c.vtu", vtuText(fiveTets(), cellData));
   ScatteredLoadOptions options;
-  options.field = "nope";
+  options.field.name = "nope";
   expectError([&] { loadScatteredData(path, options); },
               {path, "'nope'", "point data: 'temp', 'vec' (3 components)", "cell data: 'label'"});
-  options.field = "vec";
+  options.field.name = "vec";
   expectError([&] { loadScatteredData(path, options); },
-              {path, "'vec'", "3 components", "pick another", "'temp'"});
+              {path, "'vec'", "3 components", "--component", "'temp'"});
+}
+
+TEST(ScatteredLoader, ComponentAndMagnitudeOfAVectorArray) {
+  const auto dir = test::scratchDir();
+  // 'vec' holds each corner's coordinates.
+  const auto path = writeFile(dir / "v.vtu", vtuText(fiveTets()));
+  ScatteredLoadOptions options;
+  options.field.name = "vec";
+  options.field.component = 1;
+  const ScatteredData y = loadScatteredData(path, options);
+  EXPECT_EQ(y.fieldName, "vec_1");
+  EXPECT_EQ(y.inputBytes, 8 * 3 * 8);
+  for (size_t i = 0; i < y.values.size(); ++i) EXPECT_EQ(y.values[i], y.points[i][1]) << i;
+  options.field.component = FieldSelection::kMagnitude;
+  const ScatteredData m = loadScatteredData(path, options);
+  EXPECT_EQ(m.fieldName, "vec_magnitude");
+  for (size_t i = 0; i < m.values.size(); ++i)
+    EXPECT_DOUBLE_EQ(m.values[i], m.points[i].norm()) << i;
+  options.field.component = 3;
+  expectError([&] { loadScatteredData(path, options); }, {path, "--component 3", "0..2"});
+}
+
+TEST(ScatteredLoader, AssociationPicksPointsOrCells) {
+  const auto dir = test::scratchDir();
+  const std::string cellData = dataArray("Int16", "label", 1, "1 2 3 4 5");
+  const auto path = writeFile(dir / "c.vtu", vtuText(fiveTets(), cellData));
+  ScatteredLoadOptions options;
+  options.field.association = FieldAssociation::kCells;
+  const ScatteredData d = loadScatteredData(path, options);
+  EXPECT_EQ(d.fieldName, "label");
+  EXPECT_EQ(d.fieldAssociation, "cell data averaged to points");
+  options.field.name = "label";
+  options.field.association = FieldAssociation::kPoints;
+  expectError([&] { loadScatteredData(path, options); },
+              {path, "no point data array named 'label'", "--association cell"});
 }
 
 TEST(ScatteredLoader, NoArraysIsAnError) {
@@ -251,8 +286,7 @@ TEST(ScatteredLoader, NoArraysIsAnError) {
 TEST(ScatteredLoader, BrokenAndEmptyFiles) {
   const auto dir = test::scratchDir();
   const auto empty = writeFile(dir / "empty.vtu", "");
-  expectError([&] { loadScatteredData(empty); },
-              {"cannot read " + empty, "VTK XML unstructured grid"});
+  expectError([&] { loadScatteredData(empty); }, {"cannot read " + empty, "the file is empty"});
   const auto junk = writeFile(dir / "junk.vtu", "<VTKFile type=\"Unstr");
   expectError([&] { loadScatteredData(junk); }, {"cannot read " + junk});
   // An image-data file under a .vtu name: VTK's own message.
@@ -367,7 +401,7 @@ TEST(ScatteredLoader, LegacyUnstructuredGrid) {
   EXPECT_EQ(d.tets.size(), 5u);
   // The second SCALARS block is read too.
   ScatteredLoadOptions options;
-  options.field = "b";
+  options.field.name = "b";
   const ScatteredData b = loadScatteredData(path, options);
   EXPECT_EQ(b.fieldName, "b");
   EXPECT_EQ(b.sampleType, "float64");
@@ -383,10 +417,24 @@ TEST(ScatteredLoader, LegacyDatasetTypeDecides) {
       "0 1 2 3 4 5 6 7\n");
   EXPECT_FALSE(isScatteredInput(points));
   expectError([&] { loadScatteredData(points); }, {points, "STRUCTURED_POINTS", "volume"});
-  const auto rect =
-      writeFile(dir / "r.vtk", "# vtk DataFile Version 3.0\nr\nASCII\nDATASET RECTILINEAR_GRID\n");
-  EXPECT_FALSE(isScatteredInput(rect));
-  expectError([&] { loadScatteredData(rect); }, {rect, "RECTILINEAR_GRID", "UNSTRUCTURED_GRID"});
+  const auto field =
+      writeFile(dir / "f.vtk", "# vtk DataFile Version 3.0\nf\nASCII\nDATASET FIELD\n");
+  EXPECT_FALSE(isScatteredInput(field));
+  expectError([&] { loadScatteredData(field); }, {field, "DATASET FIELD", "UNSTRUCTURED_GRID"});
+  // A rectilinear grid: its voxels are split into tetrahedra, like a curvilinear grid's cells.
+  const auto rect = writeFile(dir / "r.vtk",
+                              "# vtk DataFile Version 3.0\nr\nASCII\nDATASET RECTILINEAR_GRID\n"
+                              "DIMENSIONS 2 2 3\nX_COORDINATES 2 float\n0 1\n"
+                              "Y_COORDINATES 2 float\n0 2\nZ_COORDINATES 3 float\n0 1 5\n"
+                              "POINT_DATA 12\nSCALARS t float 1\nLOOKUP_TABLE default\n"
+                              "0 1 2 3 4 5 6 7 8 9 10 11\n");
+  EXPECT_TRUE(isScatteredInput(rect));
+  const ScatteredData r = loadScatteredData(rect);
+  EXPECT_EQ(r.kind, "rectilinear grid");
+  EXPECT_EQ(r.pointCount(), 12);
+  EXPECT_EQ(r.inputCells, 2);
+  EXPECT_EQ(r.boxMax(), Vec3d(1, 2, 5));
+  EXPECT_GE(r.tets.size(), 10u);
   const auto notVtk = writeFile(dir / "n.vtk", "hello\n");
   EXPECT_FALSE(isScatteredInput(notVtk));
   expectError([&] { loadScatteredData(notVtk); }, {"cannot read " + notVtk, "legacy VTK"});
@@ -473,9 +521,9 @@ TEST(ScatteredLoader, CsvWithHeader) {
   EXPECT_EQ(d.values, (std::vector<double>{1.5, 2, -300, 4}));
 
   ScatteredLoadOptions options;
-  options.field = "pressure";
+  options.field.name = "pressure";
   EXPECT_EQ(loadScatteredData(path, options).pointCount(), 4);
-  options.field = "density";
+  options.field.name = "density";
   expectError([&] { loadScatteredData(path, options); }, {path, "'density'", "'pressure'"});
 }
 
@@ -501,7 +549,7 @@ TEST(ScatteredLoader, TextErrorsNameTheLine) {
   const auto nan = writeFile(dir / "nan.csv", "0,0,0,1\n# c\n1,0,0,nan\n");
   expectError([&] { loadScatteredData(nan); }, {nan + " line 3", "finite"});
   const auto empty = writeFile(dir / "empty.csv", "");
-  expectError([&] { loadScatteredData(empty); }, {empty, "no points"});
+  expectError([&] { loadScatteredData(empty); }, {empty, "the file is empty"});
   const auto headerOnly = writeFile(dir / "h.csv", "x,y,z,v\n# nothing\n");
   expectError([&] { loadScatteredData(headerOnly); }, {headerOnly, "no points"});
 }
@@ -527,12 +575,12 @@ TEST(ScatteredLoaderRealData, BluntFin) {
   EXPECT_EQ(static_cast<std::int64_t>(used.size()), d.pointCount());
 
   ScatteredLoadOptions options;
-  options.field = "Pressure";
+  options.field.name = "Pressure";
   const ScatteredData p = loadScatteredData(path.string(), options);
   const auto [plo, phi] = std::minmax_element(p.values.begin(), p.values.end());
   EXPECT_NEAR(*plo, 0.2595, 1e-3);
   EXPECT_NEAR(*phi, 10.0127, 1e-3);
-  options.field = "Momentum";
+  options.field.name = "Momentum";
   expectError([&] { loadScatteredData(path.string(), options); },
               {"'Momentum'", "3 components", "'Temperature'"});
 }

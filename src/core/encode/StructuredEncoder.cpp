@@ -311,6 +311,7 @@ Model fitStructuredWithKnots(const StructuredGrid& grid, std::array<KnotVector, 
   Provenance prov;
   prov.source = grid.source;
   prov.field = grid.fieldName;
+  prov.fieldAssociation = grid.fieldAssociation;
   prov.sampleType = grid.sampleType;
   prov.sampleDims = grid.dims;
   prov.inputBytes = grid.inputBytes;

@@ -14,10 +14,11 @@ struct StructuredGrid {
   Vec3d spacing = Vec3d::Ones();  // physical distance between neighbouring samples
   std::vector<double> values;     // x fastest: values[i + nx * (j + ny * k)]
 
-  std::string source;           // where the samples came from (path or builtin spec)
-  std::string fieldName;        // scalar array name, when the format has one
-  std::string sampleType;       // storage type of the source: uint8, int16, float32, ...
-  std::int64_t inputBytes = 0;  // bytes of the samples in their source type
+  std::string source;            // where the samples came from (path or builtin spec)
+  std::string fieldName;         // scalar array name, when the format has one
+  std::string fieldAssociation;  // where the file held the samples: "point data", "cell data"
+  std::string sampleType;        // storage type of the source: uint8, int16, float32, ...
+  std::int64_t inputBytes = 0;   // bytes of the samples in their source type
   // What the reader applied or could not represent (orientation, calibration); the command
   // line prints them as warnings.
   std::vector<std::string> notes;

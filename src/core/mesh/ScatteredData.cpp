@@ -46,7 +46,7 @@ void ScatteredData::validate() const {
     if (!(hi[a] > lo[a])) {
       std::ostringstream m;
       m << name << ": the points span no extent along "
-        << "xyz"[a] << " (all at " << lo[a] << "); a 3-D model needs a box with volume";
+        << "xyz"[a] << " (all at " << lo[a] << "): 2-D data; a 3-D model needs a box with volume";
       throw Error(m.str());
     }
   }
