@@ -47,31 +47,38 @@ EXTENSIONS = (".vti", ".vtk", ".vtu", ".vtp", ".vts", ".vtr", ".mha", ".mhd", ".
 # Runs in a child process: prints a JSON summary of what VTK reads from argv[1].
 PROBE = r'''
 import json, sys
-import vtk
-vtk.vtkObject.GlobalWarningDisplayOff()
+# The plain readers: importing the whole `vtk` package would also load the MPI readers that
+# override them (vtkPNrrdReader fails without an MPI controller).
+from vtkmodules.vtkCommonCore import vtkOutputWindow, vtkStringOutputWindow
+from vtkmodules.vtkIOImage import vtkMetaImageReader, vtkNIFTIImageReader, vtkNrrdReader
+from vtkmodules.vtkIOLegacy import vtkGenericDataObjectReader
+from vtkmodules.vtkIOXML import vtkXMLGenericDataObjectReader
+import vtkmodules.vtkCommonDataModel  # noqa: F401  (the data set types)
 path = sys.argv[1]
 low = path.lower()
 out = {"ok": False}
 if low.endswith((".mha", ".mhd")):
-    reader = vtk.vtkMetaImageReader()
+    reader = vtkMetaImageReader()
 elif low.endswith((".nrrd", ".nhdr")):
-    reader = vtk.vtkNrrdReader()
+    reader = vtkNrrdReader()
 elif low.endswith((".nii", ".nii.gz")):
-    reader = vtk.vtkNIFTIImageReader()
+    reader = vtkNIFTIImageReader()
 elif low.endswith(".vtk"):
-    reader = vtk.vtkGenericDataObjectReader()
+    reader = vtkGenericDataObjectReader()
     reader.ReadAllScalarsOn(); reader.ReadAllVectorsOn(); reader.ReadAllFieldsOn()
     reader.ReadAllTensorsOn(); reader.ReadAllColorScalarsOn(); reader.ReadAllNormalsOn()
 else:
-    reader = vtk.vtkXMLGenericDataObjectReader()
+    reader = vtkXMLGenericDataObjectReader()
+errors = vtkStringOutputWindow()
+vtkOutputWindow.SetInstance(errors)
 reader.SetFileName(path)
-errors = vtk.vtkStringOutputWindow()
-vtk.vtkOutputWindow.SetInstance(errors)
 reader.Update()
 data = reader.GetOutputDataObject(0)
-out["type"] = data.GetClassName() if data else None
-out["error_code"] = reader.GetErrorCode()
-if data is not None and data.IsA("vtkDataSet"):
+text = errors.GetOutput() or ""
+out["errors"] = text[:300]
+failed = "ERROR" in text or reader.GetErrorCode() != 0
+out["type"] = data.GetClassName() if data is not None and not failed else None
+if data is not None and not failed and data.IsA("vtkDataSet"):
     out["ok"] = True
     out["points"] = data.GetNumberOfPoints()
     out["cells"] = data.GetNumberOfCells()
@@ -82,10 +89,8 @@ if data is not None and data.IsA("vtkDataSet"):
     for assoc, attrs in (("point", data.GetPointData()), ("cell", data.GetCellData())):
         for i in range(attrs.GetNumberOfArrays()):
             a = attrs.GetArray(i)
-            if a is None:
+            if a is None or a.GetDataTypeAsString() == "bit":
                 continue  # strings and other non-numeric arrays
-            if a.GetDataType() in (vtk.VTK_BIT,):
-                continue
             arrays.append({"assoc": assoc, "name": a.GetName() or "",
                            "components": a.GetNumberOfComponents(),
                            "tuples": a.GetNumberOfTuples()})
@@ -99,8 +104,9 @@ REASONS = [
                   r"no one-component numeric array", r"holds no samples", r"holds no points",
                   r"has no points"]),
     ("2-D data", [r"2-D data", r"span no extent"]),
-    ("not a data set", [r"composite", r"multi-block", r"is not supported for scattered input",
-                        r"needs a regular grid", r"vtkTable", r"vtkGraph", r"HyperTree"]),
+    ("not a data set", [r"not a data set", r"composite", r"multi-block",
+                        r"is not supported for scattered input", r"vtkTable", r"vtkGraph",
+                        r"HyperTree"]),
     ("non-finite", [r"NaN and Inf", r"must be finite", r"NaN or infinite"]),
     ("unreadable", [r"cannot read "]),
 ]
@@ -135,10 +141,12 @@ def vtk_expectation(path, view):
         return "not a data set"
     if view["points"] == 0:
         return "no field"
+    image = view.get("dims")
+    if image and min(image) < 2:
+        return "2-D data"
     arrays = view["arrays"]
     if not arrays:
         return "no field"
-    image = view.get("dims")
     if image:
         point_flat = min(image) < 2
         cell_flat = min(max(d - 1, 1) for d in image) < 2

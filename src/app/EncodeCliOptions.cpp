@@ -31,9 +31,11 @@ Index3 parseCounts(const std::string& option, const std::string& text, long mini
 }  // namespace
 
 void EncodeCliOptions::addTo(CLI::App* sub, const std::string& group) {
-  sub->add_option("--degree", degree, "Polynomial degree P or PX,PY,PZ (1..7)")
-      ->capture_default_str()
-      ->group(group);
+  degreeOption_ = sub->add_option("--degree", degree,
+                                  "Polynomial degree P or PX,PY,PZ (1..7); by default 3, lowered "
+                                  "on a grid axis of fewer than 4 samples to samples - 1")
+                      ->capture_default_str()
+                      ->group(group);
   sub->add_option("--ctrl", ctrl,
                   "Control points N or NX,NY,NZ per axis. Grids: default as many as samples "
                   "(interpolation); scattered data: default about the cube root of the point "
@@ -62,6 +64,21 @@ void EncodeCliOptions::addTo(CLI::App* sub, const std::string& group) {
   sub->add_flag("--no-mask", noMask,
                 "Scattered data: store no domain mask (the model then covers its whole box)")
       ->group(group);
+}
+
+std::vector<std::string> EncodeCliOptions::fitDefaultDegreeToGrid(EncodeOptions& options,
+                                                                  const Index3& dims) const {
+  std::vector<std::string> notes;
+  if (degreeGiven()) return notes;
+  for (int a = 0; a < 3; ++a) {
+    if (dims[a] >= 2 && options.degree[a] > dims[a] - 1) {
+      options.degree[a] = static_cast<int>(dims[a] - 1);
+      notes.push_back(std::string("axis ") + "xyz"[a] + " has " + std::to_string(dims[a]) +
+                      " samples: degree " + std::to_string(options.degree[a]) +
+                      " on that axis (the default 3 needs 4; --degree sets it)");
+    }
+  }
+  return notes;
 }
 
 EncodeOptions EncodeCliOptions::parse() const {

@@ -3,12 +3,14 @@
 // fly): degree, control points, adaptive bound, smoothing and domain mask.
 #include <CLI/CLI.hpp>
 #include <string>
+#include <vector>
 
 #include "core/encode/Encoder.h"
 
 namespace mfadvr::app {
 
-struct EncodeCliOptions {
+class EncodeCliOptions {
+ public:
   std::string degree = "3", ctrl, smooth, maxError, maxCtrl, maskRes;
   int maxRounds = 30;
   bool noMask = false;
@@ -17,6 +19,17 @@ struct EncodeCliOptions {
   void addTo(CLI::App* sub, const std::string& group);
   // Throws CLI::ValidationError naming the option for malformed values.
   EncodeOptions parse() const;
+  // Whether --degree was given (else the default 3, which a grid axis of fewer than 4 samples
+  // cannot carry: fitDefaultDegreeToGrid lowers it there).
+  bool degreeGiven() const { return degreeOption_ && degreeOption_->count() > 0; }
+  // Without --degree: the degree of each axis of a `dims` grid at most its samples - 1 (a
+  // degree-p axis needs p + 1 samples), so that small grids (AMR patches, thin slabs) encode
+  // with the defaults. Returns a note per lowered axis; with --degree, nothing changes (the
+  // encoder then reports the conflict).
+  std::vector<std::string> fitDefaultDegreeToGrid(EncodeOptions& options, const Index3& dims) const;
+
+ private:
+  CLI::Option* degreeOption_ = nullptr;
 };
 
 }  // namespace mfadvr::app

@@ -176,6 +176,8 @@ Command addEncodeCommand(CLI::App& app) {
       const VolumeLoadOptions load = parseVolumeLoadOptions(o->spacing, o->origin, o->field);
       const StructuredGrid grid = loadStructuredVolume(o->input, load);
       printReaderNotes(grid);
+      for (const std::string& note : o->encode.fitDefaultDegreeToGrid(options, grid.dims))
+        std::cerr << "mfadvr: note: " << note << "\n";
       if (!o->blocks.empty())
         return encodeBlocks(grid, o->blocks, o->ghost, options, o->output, o->json);
       model = encodeStructured(grid, options, &report);

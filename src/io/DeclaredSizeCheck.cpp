@@ -817,6 +817,18 @@ std::vector<std::int64_t> attributeCounts(const std::string& text, const std::st
 void checkXmlVtkText(const std::string& head, const std::string& tail, const std::string& path,
                      std::int64_t fileBytes) {
   if (head.find("<VTKFile") == std::string::npos) return;
+  // Composite data (a list of data sets in other files, or AMR levels): VTK's single-data-set
+  // readers only say they cannot find their element.
+  for (const char* composite : {"vtkMultiBlockDataSet", "vtkOverlappingAMR", "vtkNonOverlappingAMR",
+                                "vtkHierarchicalBoxDataSet", "vtkPartitionedDataSet",
+                                "vtkPartitionedDataSetCollection", "vtkMultiPieceDataSet"}) {
+    if (head.find("type=\"" + std::string(composite) + "\"") != std::string::npos) {
+      throw Error("cannot read " + path + ": the file holds a " + composite +
+                  ", a composite of several data sets (multi-block), not a data set; mfadvr "
+                  "reads one data set per file: encode the block files it lists, or extract a "
+                  "block in ParaView (Extract Block) and save it");
+    }
+  }
   if (trim(tail).size() < 10 || trim(tail).substr(trim(tail).size() - 10) != "</VTKFile>") {
     throw Error("cannot read " + path + " as VTK XML: the file (" + grouped(fileBytes) +
                 " bytes) does not end with </VTKFile>, so it is cut off or not well-formed");
@@ -835,15 +847,19 @@ void checkXmlVtkText(const std::string& head, const std::string& tail, const std
       if (hi < lo || hi - lo >= std::numeric_limits<std::int64_t>::max() / 2) return;
       dims.push_back(hi - lo + 1);
     }
-    points = product(dims);
-    declared = "an extent of " + dimsText(dims) + " points";
+    // A field of the image has a value per point or per cell: at least one byte per cell.
+    std::vector<std::int64_t> cells;
+    for (std::int64_t d : dims) cells.push_back(std::max<std::int64_t>(d - 1, 1));
+    points = product(cells);
+    declared = "an extent of " + dimsText(dims) + " points (" + grouped(points) + " cells)";
   } else {
     const auto n = attributeCounts(head, "NumberOfPoints");
     if (n.size() != 1 || n[0] < 0) return;
     points = n[0];
     declared = grouped(points) + " points";
   }
-  // At least one byte per point (a scalar or a coordinate), whatever the array types.
+  // At least one byte per cell of an image, per point (a coordinate) of other data sets,
+  // whatever the array types.
   requireData(path, "VTK XML", declared, points, 1, enc, fileBytes, "the file");
 }
 

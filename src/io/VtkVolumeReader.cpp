@@ -1,7 +1,9 @@
 #include "io/VtkVolumeReader.h"
 
+#include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <utility>
 
 #include <vtkAlgorithm.h>
@@ -86,12 +88,29 @@ const char* formatExpectation(VtkVolumeFormat format) {
               formatExpectation(format) + ")");
 }
 
+// Whether a legacy file's first keyword after ASCII/BINARY is FIELD (a vtkDataObject).
+bool legacyHoldsFieldDataOnly(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string line;
+  if (!std::getline(in, line) || line.rfind("# vtk DataFile", 0) != 0) return false;
+  std::getline(in, line);  // the title
+  std::string type, keyword;
+  if (!(in >> type >> keyword)) return false;
+  for (char& c : keyword) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  return keyword == "FIELD";
+}
+
 // Legacy files name their dataset type in the header; say which one it is instead of VTK's
 // "Cannot read dataset type".
 void requireStructuredPoints(const std::string& path, const VtkMessageCapture& capture) {
   vtkNew<vtkDataSetReader> probe;
   probe->SetFileName(path.c_str());
   const int type = probe->ReadOutputType();
+  if (type < 0 && legacyHoldsFieldDataOnly(path)) {
+    throw Error(path +
+                ": the legacy VTK file holds field data only (FIELD, no DATASET), not a data "
+                "set: there are no points or grid to encode");
+  }
   if (type < 0) {
     throwReadFailure(path, VtkVolumeFormat::kLegacyStructuredPoints, capture, nullptr,
                      "not a legacy VTK data file (expected a '# vtk DataFile Version' header)");
@@ -187,10 +206,9 @@ vtkSmartPointer<vtkImageData> runReader(const std::string& path, VtkVolumeFormat
   return image;
 }
 
-SelectedVtkField selectArray(const std::string& path, VtkVolumeFormat format, vtkImageData* image,
-                             const FieldSelection& field) {
-  // NRRD has no notion of components; VTK's reader guesses them from the axis sizes, so a
-  // multi-component array here is a misread volume, whatever --component says.
+// NRRD has no notion of components; VTK's reader guesses them from the axis sizes, so a
+// multi-component array here is a misread volume, whatever --component says.
+void requireNrrdScalars(const std::string& path, VtkVolumeFormat format, vtkImageData* image) {
   vtkDataArray* scalars = image->GetPointData()->GetScalars();
   const int components = scalars ? scalars->GetNumberOfComponents() : 1;
   if (components != 1 && format == VtkVolumeFormat::kNrrd) {
@@ -199,7 +217,6 @@ SelectedVtkField selectArray(const std::string& path, VtkVolumeFormat format, vt
                 "fewer and for a 4th axis; a scalar volume needs 3 axes and at least 10 samples "
                 "along x");
   }
-  return selectVtkField(path, image, field);
 }
 
 std::string axesText(const Index3& dims) {
@@ -213,15 +230,20 @@ StructuredGrid toGrid(const std::string& path, VtkVolumeFormat format, vtkImageD
     throw Error(path +
                 ": the grid axes are rotated or flipped (direction matrix is not the "
                 "identity); only axis-aligned grids are supported");
-  const SelectedVtkField selected = selectArray(path, format, image, field);
+  requireNrrdScalars(path, format, image);
+  int dims[3];
+  image->GetDimensions(dims);
+  if (dims[0] < 2 || dims[1] < 2 || dims[2] < 2) {
+    throw Error(path + ": the image spans " + axesText({dims[0], dims[1], dims[2]}) +
+                " points: 2-D data (a volume needs at least 2 samples along every axis)");
+  }
+  const SelectedVtkField selected = selectVtkField(path, image, field);
   vtkDataArray* array = selected.array;
 
   StructuredGrid grid;
-  int dims[3];
   int extent[6];
   double origin[3];
   double spacing[3];
-  image->GetDimensions(dims);
   image->GetExtent(extent);
   image->GetOrigin(origin);
   image->GetSpacing(spacing);

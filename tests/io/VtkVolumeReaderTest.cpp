@@ -277,7 +277,37 @@ TEST(VtiReader, CellDataOnlyIsReadAtTheCellCentres) {
 
 TEST(VtiReader, FlatImageIsTwoDimensionalData) {
   const auto path = writeFile(test::scratchDir() / "flat.vti", cellOnlyVtiText(1));
-  expectError([&] { loadStructuredVolume(path); }, {path, "9 x 3 x 1", "2-D data"});
+  expectError([&] { loadStructuredVolume(path); }, {path, "10 x 4 x 1 points", "2-D data"});
+  // A flat image whose only array has two components (texture coordinates): 2-D first.
+  std::string texture = cellOnlyVtiText(1);
+  const auto replace = [&](const std::string& from, const std::string& to) {
+    texture.replace(texture.find(from), from.size(), to);
+  };
+  replace("<CellData Scalars=\"phi\">", "<CellData>");
+  // Twice the values: two components per cell.
+  std::string zeros;
+  for (int n = 0; n < 9 * 3; ++n) zeros += "0 ";
+  replace("Name=\"phi\" format=\"ascii\">",
+          "Name=\"uv\" NumberOfComponents=\"2\" format=\"ascii\">" + zeros);
+  const auto uv = writeFile(test::scratchDir() / "uv.vti", texture);
+  expectError([&] { loadStructuredVolume(uv); }, {uv, "2-D data"});
+}
+
+TEST(VtiReader, CompositeDataIsNotADataSet) {
+  const auto path =
+      writeFile(test::scratchDir() / "blocks.vti",
+                "<?xml version=\"1.0\"?>\n<VTKFile type=\"vtkMultiBlockDataSet\" version=\"1.0\">\n"
+                "<vtkMultiBlockDataSet>\n<DataSet index=\"0\" file=\"blocks/blocks_0.vti\"/>\n"
+                "</vtkMultiBlockDataSet>\n</VTKFile>\n");
+  expectError([&] { loadStructuredVolume(path); },
+              {"cannot read " + path, "vtkMultiBlockDataSet", "not a data set"});
+}
+
+TEST(LegacyVtkReader, FieldDataOnlyIsNotADataSet) {
+  const auto path = writeFile(test::scratchDir() / "f.vtk",
+                              "# vtk DataFile Version 1.0\nattributes\nASCII\n\n"
+                              "FIELD time0 1\nthickness 1 3 float\n1 2 3\n");
+  expectError([&] { loadStructuredVolume(path); }, {path, "field data only", "not a data set"});
 }
 
 TEST(VtiReader, EmptyFileSaysSo) {

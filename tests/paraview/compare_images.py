@@ -1,5 +1,8 @@
 """compare_images.py MIN_PSNR REFERENCE.png OTHER.png...: exit 1 unless every other image is
-within MIN_PSNR dB of the reference (8-bit RGB) and the reference is not blank."""
+within MIN_PSNR dB of the reference (8-bit RGB) and the reference is not blank.
+
+compare_images.py --views MIN_PSNR REFERENCE_PREFIX OTHER_PREFIX...: the same for every view
+REFERENCE_PREFIX-a*-e*.png, each against OTHER_PREFIX with the same view suffix."""
 import math
 import sys
 
@@ -21,7 +24,37 @@ def pixels(path):
                                    for c in range(min(3, comps))]
 
 
+def compare_views(minimum, reference_prefix, others):
+    """Each OTHER-<view>.png against REFERENCE-<view>.png, for every view of the reference."""
+    import glob
+    references = sorted(glob.glob(reference_prefix + "-a*-e*.png"))
+    if not references:
+        sys.exit("no images %s-a*-e*.png" % reference_prefix)
+    worst, where = math.inf, ""
+    for ref_path in references:
+        view = ref_path[len(reference_prefix):]
+        dims, ref = pixels(ref_path)
+        if max(ref) - min(ref) < 16:
+            sys.exit("the reference image %s is blank" % ref_path)
+        for prefix in others:
+            other_dims, other = pixels(prefix + view)
+            if other_dims != dims:
+                sys.exit("%s has another size than %s" % (prefix + view, ref_path))
+            mse = sum((a - b) ** 2 for a, b in zip(ref, other)) / len(ref)
+            psnr = math.inf if mse == 0 else 10 * math.log10(255.0 ** 2 / mse)
+            print("%s vs %s: PSNR %.2f dB" % (prefix + view, ref_path, psnr))
+            if psnr < worst:
+                worst, where = psnr, prefix + view
+    print("%d views x %d rank counts; worst %.2f dB (%s)" % (len(references), len(others), worst,
+                                                           where))
+    if worst < minimum:
+        sys.exit("PSNR %.2f dB of %s is below %.1f dB" % (worst, where, minimum))
+
+
 def main():
+    if sys.argv[1] == "--views":
+        compare_views(float(sys.argv[2]), sys.argv[3], sys.argv[4:])
+        return
     minimum = float(sys.argv[1])
     dims, ref = pixels(sys.argv[2])
     if max(ref) - min(ref) < 16:

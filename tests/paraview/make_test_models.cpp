@@ -1,14 +1,58 @@
-// Writes the models the ParaView plugin tests read: a single model and a 4 x 1 x 1 multi-block
-// model of the same Marschner-Lobb samples (interpolating quadratic fits).
+// Writes the models and volumes the ParaView plugin tests read:
+//   single.mfa, blocks.mfa   Marschner-Lobb 41^3 on [-1,1]^3, one model and 4 x 1 x 1 blocks;
+//   scan-*.mfa, scan.vti     a CT-like head (the ct-head phantom mapped to 0..255, field
+//                            'scalars') on a box that is not a cube, with non-unit spacing that
+//                            differs per axis and an origin away from zero, as real scans are:
+//                            one model (scan-1.mfa), blocks split along x, y and z
+//                            (scan-x.mfa, scan-y.mfa, scan-z.mfa) and 2 x 2 x 1 (scan-xy.mfa),
+//                            and the samples as VTK XML image data (scan.vti) for MFA Encode;
+//   head.mfa                 the model docs/paraview.md's examples open (default encoding of
+//                            builtin:ct-head:64).
+// Interpolating quadratic fits throughout.
+#include <algorithm>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
+#include <fstream>
+#include <stdexcept>
+#include <string>
 
 #include "core/analytic/BuiltinFunction.h"
 #include "core/encode/Encoder.h"
 #include "core/encode/PieceEncoder.h"
 #include "core/model/BlockModelFile.h"
 #include "core/model/ModelFile.h"
+
+namespace {
+
+mfadvr::StructuredGrid scanGrid() {
+  mfadvr::StructuredGrid grid = mfadvr::sampleBuiltinSpec("builtin:ct-head:40x34x28");
+  grid.spacing = mfadvr::Vec3d(0.9, 0.7, 1.3);
+  grid.origin = mfadvr::Vec3d(12.0, -7.0, 30.0);
+  grid.fieldName = "scalars";
+  grid.source = "scan";
+  // Hounsfield units -1000..1000 to the 0..255 of an 8-bit scan.
+  for (double& v : grid.values) v = std::clamp((v + 1000.0) * 255.0 / 2000.0, 0.0, 255.0);
+  return grid;
+}
+
+void writeVti(const mfadvr::StructuredGrid& g, const std::filesystem::path& path) {
+  std::ofstream out(path);
+  const std::string extent = "0 " + std::to_string(g.dims[0] - 1) + " 0 " +
+                             std::to_string(g.dims[1] - 1) + " 0 " + std::to_string(g.dims[2] - 1);
+  out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"ImageData\" version=\"1.0\" "
+         "byte_order=\"LittleEndian\">\n<ImageData WholeExtent=\""
+      << extent << "\" Origin=\"" << g.origin[0] << ' ' << g.origin[1] << ' ' << g.origin[2]
+      << "\" Spacing=\"" << g.spacing[0] << ' ' << g.spacing[1] << ' ' << g.spacing[2]
+      << "\">\n<Piece Extent=\"" << extent << "\">\n<PointData Scalars=\"" << g.fieldName
+      << "\">\n<DataArray type=\"Float32\" Name=\"" << g.fieldName << "\" format=\"ascii\">\n";
+  for (size_t i = 0; i < g.values.size(); ++i)
+    out << static_cast<float>(g.values[i]) << ((i + 1) % 16 ? ' ' : '\n');
+  out << "\n</DataArray>\n</PointData>\n</Piece>\n</ImageData>\n</VTKFile>\n";
+  if (!out) throw std::runtime_error("cannot write " + path.string());
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   if (argc != 2) {
@@ -24,6 +68,19 @@ int main(int argc, char** argv) {
     mfadvr::saveModel(mfadvr::encodeStructured(grid, options), dir / "single.mfa");
     mfadvr::saveBlockModels(mfadvr::encodeStructuredBlocks(grid, {4, 1, 1}, -1, options), {4, 1, 1},
                             dir / "blocks.mfa");
+
+    const mfadvr::StructuredGrid scan = scanGrid();
+    mfadvr::saveModel(mfadvr::encodeStructured(scan, options), dir / "scan-1.mfa");
+    const std::pair<const char*, mfadvr::Index3> splits[] = {
+        {"x", {2, 1, 1}}, {"y", {1, 2, 1}}, {"z", {1, 1, 2}}, {"xy", {2, 2, 1}}};
+    for (const auto& [name, blocks] : splits)
+      mfadvr::saveBlockModels(mfadvr::encodeStructuredBlocks(scan, blocks, -1, options), blocks,
+                              dir / ("scan-" + std::string(name) + ".mfa"));
+    writeVti(scan, dir / "scan.vti");
+    // The model docs/paraview.md's example opens (`mfadvr encode builtin:ct-head:64`).
+    mfadvr::saveModel(mfadvr::encodeStructured(mfadvr::sampleBuiltinSpec("builtin:ct-head:64"),
+                                               mfadvr::EncodeOptions{}),
+                      dir / "head.mfa");
   } catch (const std::exception& e) {
     std::fprintf(stderr, "%s\n", e.what());
     return 1;

@@ -43,7 +43,8 @@ def source(kind):
         encoded.Degree = 2
         return encoded, "RTData", (37.35, 276.8)
     path = os.path.join(os.environ["MFADVR_TEST_DATA"], kind + ".mfa")
-    return pvs.MFAModelReader(FileName=path), "value", (0.0, 1.0)
+    # The array is named after the model's field: the built-in's name.
+    return pvs.MFAModelReader(FileName=path), "marschner-lobb", (0.0, 1.0)
 
 
 def render(kind, png):

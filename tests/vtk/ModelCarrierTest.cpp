@@ -6,6 +6,8 @@
 #include <cmath>
 
 #include <vtkFieldData.h>
+#include <vtkInformation.h>
+#include <vtkStreamingDemandDrivenPipeline.h>
 #include <vtkTrivialProducer.h>
 #include <vtkUnsignedCharArray.h>
 
@@ -104,8 +106,8 @@ TEST(ModelCarrier, MultiBlockFilesRenderWholeOrPieceByPiece) {
   const Image8 all = scene.render();  // one piece: every block, composited
   EXPECT_GT(compareImages(reference, all).psnr, 40.0);
 
-  // Pieces split the blocks: 4 pieces read one each, 2 pieces two each, 8 pieces leave some
-  // empty.
+  // Pieces split the blocks: 4 pieces read one each, 2 pieces two each, 8 pieces share them
+  // (a slab of a block each).
   auto regionCount = [&](int piece, int pieces) {
     reader->UpdatePiece(piece, pieces, 0);
     auto* image = vtkImageData::SafeDownCast(reader->GetOutputDataObject(0));
@@ -114,8 +116,39 @@ TEST(ModelCarrier, MultiBlockFilesRenderWholeOrPieceByPiece) {
   };
   EXPECT_EQ(regionCount(3, 4), 1);
   EXPECT_EQ(regionCount(1, 2), 2);
-  EXPECT_EQ(regionCount(0, 8), 0);
+  EXPECT_EQ(regionCount(0, 8), 1);
   EXPECT_EQ(regionCount(7, 8), 1);
+
+  // Every piece is a sub-extent of the one whole image the reader announces (one origin and
+  // spacing), and the pieces' regions tile the whole box, for any number of pieces.
+  reader->UpdateInformation();
+  int whole[6];
+  reader->GetOutputInformation(0)->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
+  for (int pieces : {1, 2, 3, 4, 5, 8, 13}) {
+    SCOPED_TRACE(pieces);
+    double volume = 0.0;
+    int cells = 0;
+    for (int piece = 0; piece < pieces; ++piece) {
+      reader->UpdatePiece(piece, pieces, 0);
+      auto* image = vtkImageData::SafeDownCast(reader->GetOutputDataObject(0));
+      if (image->GetNumberOfPoints() == 0) continue;
+      int extent[6];
+      image->GetExtent(extent);
+      for (int a = 0; a < 3; ++a) {
+        EXPECT_GE(extent[2 * a], whole[2 * a]);
+        EXPECT_LE(extent[2 * a + 1], whole[2 * a + 1]);
+        EXPECT_DOUBLE_EQ(image->GetOrigin()[a], -1.0);  // the box's corner, on every piece
+      }
+      cells += image->GetNumberOfCells();
+      vtkDataArray* regions = image->GetFieldData()->GetArray("MFARegions");
+      for (vtkIdType r = 0; r < regions->GetNumberOfTuples(); ++r) {
+        const double* b = regions->GetTuple(r);
+        volume += (b[1] - b[0]) * (b[3] - b[2]) * (b[5] - b[4]);
+      }
+    }
+    EXPECT_NEAR(volume, 8.0, 1e-9);  // [-1, 1]^3
+    EXPECT_EQ(cells, (whole[1] - whole[0]) * (whole[3] - whole[2]) * (whole[5] - whole[4]));
+  }
 }
 
 TEST(ModelCarrier, EncoderPiecesCompositeToTheWholeImage) {

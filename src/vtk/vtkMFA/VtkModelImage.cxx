@@ -30,8 +30,61 @@ std::string modelArrayName(size_t i) {
 
 }  // namespace
 
+CarrierGrid wholeCarrierGrid(const DomainBox& box, const Vec3d& step) {
+  CarrierGrid g;
+  for (int a = 0; a < 3; ++a) {
+    const double extent = box.max[a] - box.min[a];
+    const double n = extent > 0.0 && step[a] > 0.0 ? std::round(extent / step[a]) + 1.0 : 2.0;
+    const int dims = static_cast<int>(std::clamp(n, 2.0, 65536.0));
+    g.origin[a] = box.min[a];
+    g.spacing[a] = extent > 0.0 ? extent / (dims - 1) : 1.0;
+    g.extent[2 * a] = 0;
+    g.extent[2 * a + 1] = dims - 1;
+  }
+  return g;
+}
+
+CarrierGrid carrierSubGrid(const CarrierGrid& whole, const DomainBox& region) {
+  CarrierGrid g = whole;
+  for (int a = 0; a < 3; ++a) {
+    const int lo = whole.extent[2 * a], hi = whole.extent[2 * a + 1];
+    const auto index = [&](double x) {
+      const double i = std::round((x - whole.origin[a]) / whole.spacing[a]);
+      return static_cast<int>(std::clamp(i, static_cast<double>(lo), static_cast<double>(hi)));
+    };
+    int first = index(region.min[a]), last = index(region.max[a]);
+    if (last <= first) {  // a region thinner than a cell still gets one
+      last = std::min(first + 1, hi);
+      first = last - 1;
+    }
+    g.extent[2 * a] = first;
+    g.extent[2 * a + 1] = last;
+  }
+  return g;
+}
+
 vtkSmartPointer<vtkImageData> imageOfModels(const std::vector<CarriedModel>& models,
                                             const int* firstIndex) {
+  if (models.empty()) throw Error("internal: a carrier needs at least one model");
+  DomainBox all = models.front().region;
+  for (const auto& m : models) {
+    all.min = all.min.cwiseMin(m.region.min);
+    all.max = all.max.cwiseMax(m.region.max);
+  }
+  // The data's grid over the regions, moved to start at firstIndex.
+  CarrierGrid grid = wholeCarrierGrid(all, models.front().model->dataSpacing());
+  if (firstIndex) {
+    for (int a = 0; a < 3; ++a) {
+      grid.origin[a] -= firstIndex[a] * grid.spacing[a];
+      grid.extent[2 * a] += firstIndex[a];
+      grid.extent[2 * a + 1] += firstIndex[a];
+    }
+  }
+  return imageOfModels(models, grid);
+}
+
+vtkSmartPointer<vtkImageData> imageOfModels(const std::vector<CarriedModel>& models,
+                                            const CarrierGrid& grid) {
   if (models.empty()) throw Error("internal: a carrier needs at least one model");
   DomainBox all = models.front().region;
   vtkNew<vtkDoubleArray> regions;
@@ -54,29 +107,25 @@ vtkSmartPointer<vtkImageData> imageOfModels(const std::vector<CarriedModel>& mod
   image->GetFieldData()->AddArray(regions);
   const double bounds[6] = {all.min[0], all.max[0], all.min[1], all.max[1], all.min[2], all.max[2]};
 
-  // The data's grid over the regions (at least 2 points per axis).
-  const Vec3d step = models.front().model->dataSpacing();
+  image->SetExtent(const_cast<int*>(grid.extent));
+  image->SetOrigin(grid.origin.data());
+  image->SetSpacing(grid.spacing.data());
   int dims[3];
-  double spacing[3];
-  for (int a = 0; a < 3; ++a) {
-    const double extent = bounds[2 * a + 1] - bounds[2 * a];
-    const double n = extent > 0.0 && step[a] > 0.0 ? std::round(extent / step[a]) + 1.0 : 2.0;
-    dims[a] = static_cast<int>(std::clamp(n, 2.0, 65536.0));
-    spacing[a] = extent / (dims[a] - 1);
-  }
-  int first[3] = {0, 0, 0};
-  if (firstIndex) std::copy(firstIndex, firstIndex + 3, first);
-  image->SetExtent(first[0], first[0] + dims[0] - 1, first[1], first[1] + dims[1] - 1, first[2],
-                   first[2] + dims[2] - 1);
-  image->SetOrigin(bounds[0] - first[0] * spacing[0], bounds[2] - first[1] * spacing[1],
-                   bounds[4] - first[2] * spacing[2]);
-  image->SetSpacing(spacing);
+  image->GetDimensions(dims);
+  const int* first = grid.extent;
+  const double spacing[3] = {grid.spacing[0], grid.spacing[1], grid.spacing[2]};
+  // Position of point i (of the carrier's own numbering, from 0) along axis a: on the grid, the
+  // last one on the regions' face (no rounding past it).
+  const auto coordinate = [&](int a, int i) {
+    if (i + 1 == dims[a]) return bounds[2 * a + 1];
+    if (i == 0) return bounds[2 * a];
+    return grid.origin[a] + (first[2 * a] + i) * spacing[a];
+  };
 
   // Each point takes the value of the first model whose region holds it (neighbours share
   // their faces, where their models agree), evaluated a z plane at a time on all cores.
-  const std::string& field = models.front().model->provenance().field;
   vtkNew<vtkFloatArray> values;
-  values->SetName(field.empty() ? "MFA value" : field.c_str());
+  values->SetName(carrierArrayName(*models.front().model).c_str());
   values->SetNumberOfTuples(static_cast<vtkIdType>(dims[0]) * dims[1] * dims[2]);
   float* out = values->GetPointer(0);
   std::fill(out, out + values->GetNumberOfTuples(), std::numeric_limits<float>::quiet_NaN());
@@ -95,9 +144,7 @@ vtkSmartPointer<vtkImageData> imageOfModels(const std::vector<CarriedModel>& mod
           const size_t at = static_cast<size_t>(i) + static_cast<size_t>(dims[0]) * j;
           if (done[at]) continue;
           // The last point of an axis is the bound itself (no rounding past a region's face).
-          const Vec3d x(i + 1 == dims[0] ? bounds[1] : bounds[0] + i * spacing[0],
-                        j + 1 == dims[1] ? bounds[3] : bounds[2] + j * spacing[1],
-                        k + 1 == dims[2] ? bounds[5] : bounds[4] + k * spacing[2]);
+          const Vec3d x(coordinate(0, i), coordinate(1, j), coordinate(2, k));
           bool inRegion = true;
           for (int a = 0; a < 3; ++a) {
             const double tolerance = 1e-9 * (bounds[2 * a + 1] - bounds[2 * a]);
@@ -117,6 +164,11 @@ vtkSmartPointer<vtkImageData> imageOfModels(const std::vector<CarriedModel>& mod
   }
   image->GetPointData()->SetScalars(values);
   return image;
+}
+
+std::string carrierArrayName(const Model& model) {
+  const std::string& field = model.provenance().field;
+  return field.empty() ? "MFA value" : field;
 }
 
 bool carriesModels(vtkDataObject* data) {

@@ -15,6 +15,7 @@
 //     grid, for colour maps, slices and contours of the model in the pipeline.
 // Private to the module.
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "vtkSmartPointer.h"
@@ -23,6 +24,7 @@ class vtkDataObject;
 class vtkImageData;
 
 #include "core/model/DomainBox.h"
+#include "core/util/Vec.h"
 
 namespace mfadvr {
 class Model;
@@ -35,11 +37,39 @@ struct CarriedModel {
   DomainBox region;
 };
 
-// firstIndex (optional): the index of the carrier's first point, for a carrier made from image
-// data, so that its extent lies in the input's index space (a pipeline crops an image to the
-// update extent it asked for, which is in that space); null: the extent starts at 0.
+// Where a carrier lies in the image grid of the whole data set: the origin and spacing that every
+// piece's carrier shares, and this carrier's extent in it. ParaView treats the pieces of one
+// image as sub-extents of a whole extent (WHOLE_EXTENT, ORIGIN, SPACING): the representation
+// takes the view's bounds and the ranks' compositing order from them.
+struct CarrierGrid {
+  Vec3d origin = Vec3d::Zero();
+  Vec3d spacing = Vec3d::Ones();
+  int extent[6] = {0, -1, 0, -1, 0, -1};
+};
+
+// The grid of the data that `box` holds, sampled `step` apart (Model::dataSpacing): at least 2
+// points per axis, the spacing adjusted so that the points end on the box's faces; its extent
+// is the whole grid (from 0).
+CarrierGrid wholeCarrierGrid(const DomainBox& box, const Vec3d& step);
+
+// The part of `whole` that covers `region` (its faces rounded to the nearest grid points; at
+// least 2 points per axis).
+CarrierGrid carrierSubGrid(const CarrierGrid& whole, const DomainBox& region);
+
+// The carrier of `models` on `grid` (carrierSubGrid of the whole data's grid for a piece).
+vtkSmartPointer<vtkImageData> imageOfModels(const std::vector<CarriedModel>& models,
+                                            const CarrierGrid& grid);
+
+// The carrier on the data's grid over the union of the models' regions. firstIndex (optional):
+// the index of the carrier's first point, for a carrier made from image data, so that its
+// extent lies in the input's index space (a pipeline crops an image to the update extent it
+// asked for, which is in that space); null: the extent starts at 0.
 vtkSmartPointer<vtkImageData> imageOfModels(const std::vector<CarriedModel>& models,
                                             const int* firstIndex = nullptr);
+
+// The name of a carrier's point array for `model`: the model's field, "MFA value" when it has
+// none.
+std::string carrierArrayName(const Model& model);
 
 // Whether `data` is an image carrying models (it has the regions array).
 bool carriesModels(vtkDataObject* data);

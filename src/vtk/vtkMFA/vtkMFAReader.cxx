@@ -13,8 +13,10 @@
 
 #include <cstring>
 #include <exception>
+#include <filesystem>
 #include <fstream>
 #include <memory>
+#include <string>
 
 #include "VtkModelImage.h"
 #include "core/model/BlockModelFile.h"
@@ -44,7 +46,60 @@ bool vtkMFAReader::CanReadFile(const char* fileName) {
   return in && std::memcmp(magic, "MFADVR", sizeof(magic)) == 0;
 }
 
+// What RequestInformation and RequestData need to know of the file: its blocks' regions (one
+// block over the model's box for a single model), the whole box and grid.
+struct vtkMFAReader::Layout {
+  std::string path;
+  std::filesystem::file_time_type time;
+  bool multiBlock = false;
+  mfadvr::BlockIndex index;                     // multi-block files
+  std::shared_ptr<const mfadvr::Model> single;  // single-model files
+  std::vector<mfadvr::DomainBox> regions;
+  mfadvr::vtkglue::CarrierGrid whole;
+};
+
 namespace {
+
+// The blocks piece p of P renders, each with the part of its region this piece renders.
+struct Share {
+  size_t block = 0;
+  mfadvr::DomainBox region;
+};
+
+// P <= B: blocks p B / P to (p + 1) B / P - 1, whole. P > B: the pieces with p B / P == b share
+// block b, each a slab of its region along the longest axis, cut at grid points (a piece left
+// without a slab, when a block is thinner than its pieces, renders nothing).
+std::vector<Share> shareOf(int piece, int pieces, const std::vector<mfadvr::DomainBox>& regions,
+                           const mfadvr::vtkglue::CarrierGrid& whole) {
+  const size_t count = regions.size();
+  const size_t p = static_cast<size_t>(piece), n = static_cast<size_t>(pieces);
+  std::vector<Share> out;
+  if (n <= count) {
+    for (size_t i = count * p / n; i < count * (p + 1) / n; ++i) out.push_back({i, regions[i]});
+    return out;
+  }
+  const size_t block = p * count / n;
+  size_t first = p, last = p;  // the pieces that share this block
+  while (first > 0 && (first - 1) * count / n == block) --first;
+  while (last + 1 < n && (last + 1) * count / n == block) ++last;
+  const size_t sharing = last - first + 1, at = p - first;
+  const mfadvr::vtkglue::CarrierGrid grid = mfadvr::vtkglue::carrierSubGrid(whole, regions[block]);
+  int axis = 0;
+  for (int a = 1; a < 3; ++a)
+    if (grid.extent[2 * a + 1] - grid.extent[2 * a] >
+        grid.extent[2 * axis + 1] - grid.extent[2 * axis])
+      axis = a;
+  const int lo = grid.extent[2 * axis], cells = grid.extent[2 * axis + 1] - lo;
+  const int from = lo + static_cast<int>(cells * at / sharing);
+  const int to = lo + static_cast<int>(cells * (at + 1) / sharing);
+  if (to <= from) return out;
+  Share s{block, regions[block]};
+  // The slab's faces: grid points, except the block's own faces (kept exactly).
+  if (at > 0) s.region.min[axis] = whole.origin[axis] + from * whole.spacing[axis];
+  if (at + 1 < sharing) s.region.max[axis] = whole.origin[axis] + to * whole.spacing[axis];
+  out.push_back(s);
+  return out;
+}
 
 // Whether the regions tile their bounding box (their volumes add up to its volume): then a
 // rank's share of blocks is one box, as ordered compositing across ranks assumes.
@@ -61,6 +116,51 @@ bool regionsFormABox(const std::vector<mfadvr::vtkglue::CarriedModel>& models) {
 }
 
 }  // namespace
+
+const vtkMFAReader::Layout& vtkMFAReader::ReadLayout() {
+  std::error_code ec;
+  const auto time = std::filesystem::last_write_time(this->FileName, ec);
+  if (this->Cached && this->Cached->path == this->FileName && !ec && this->Cached->time == time) {
+    return *this->Cached;
+  }
+  auto layout = std::make_shared<Layout>();
+  layout->path = this->FileName;
+  layout->time = time;
+  layout->multiBlock = mfadvr::isBlockModelFile(this->FileName);
+  mfadvr::Vec3d step;
+  if (layout->multiBlock) {
+    layout->index = mfadvr::readBlockIndex(this->FileName);
+    for (const auto& e : layout->index.entries) layout->regions.push_back(e.region);
+    // Every block stands for samples of one grid: the first one's spacing is the data's.
+    step = mfadvr::loadBlock(this->FileName, layout->index, 0).dataSpacing();
+    layout->whole = mfadvr::vtkglue::wholeCarrierGrid(layout->index.box, step);
+  } else {
+    layout->single = std::make_shared<const mfadvr::Model>(mfadvr::loadModel(this->FileName));
+    layout->regions.push_back(layout->single->domain());
+    layout->whole =
+        mfadvr::vtkglue::wholeCarrierGrid(layout->single->domain(), layout->single->dataSpacing());
+  }
+  this->Cached = layout;
+  return *layout;
+}
+
+int vtkMFAReader::RequestInformation(vtkInformation*, vtkInformationVector**,
+                                     vtkInformationVector* outInfo) {
+  if (!this->OutputImageData || !this->FileName || !*this->FileName) {
+    return 1;  // a model output has no extent; RequestData reports a missing name
+  }
+  try {
+    const Layout& layout = this->ReadLayout();
+    vtkInformation* info = outInfo->GetInformationObject(0);
+    info->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), layout.whole.extent, 6);
+    info->Set(vtkDataObject::ORIGIN(), layout.whole.origin.data(), 3);
+    info->Set(vtkDataObject::SPACING(), layout.whole.spacing.data(), 3);
+  } catch (const std::exception& e) {
+    vtkErrorMacro(<< e.what());
+    return 0;
+  }
+  return 1;
+}
 
 int vtkMFAReader::RequestData(vtkInformation*, vtkInformationVector**,
                               vtkInformationVector* outInfo) {
@@ -79,44 +179,45 @@ int vtkMFAReader::RequestData(vtkInformation*, vtkInformationVector**,
                          ? info->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES())
                          : 1;
   try {
-    if (mfadvr::isBlockModelFile(this->FileName)) {
-      if (!this->OutputImageData) {
+    if (!this->OutputImageData) {
+      if (mfadvr::isBlockModelFile(this->FileName)) {
         vtkErrorMacro(<< this->FileName
                       << " is a multi-block model; read it with OutputImageData on (as "
                          "ParaView does) or render it with `mfadvr render`");
         return 0;
       }
-      const mfadvr::BlockIndex index = mfadvr::readBlockIndex(this->FileName);
-      const size_t count = index.entries.size();
-      // Piece p of P reads the blocks [p B / P, (p+1) B / P): contiguous, x fastest.
-      const size_t first = count * static_cast<size_t>(piece) / static_cast<size_t>(pieces);
-      const size_t last = count * static_cast<size_t>(piece + 1) / static_cast<size_t>(pieces);
-      std::vector<mfadvr::vtkglue::CarriedModel> models;
-      for (size_t i = first; i < last; ++i) {
-        mfadvr::vtkglue::CarriedModel m;
-        m.model =
-            std::make_shared<const mfadvr::Model>(mfadvr::loadBlock(this->FileName, index, i));
-        m.region = index.entries[i].region;
-        models.push_back(std::move(m));
-      }
-      if (models.empty()) {
-        return 1;  // more pieces than blocks: this one has nothing to render
-      }
-      if (pieces > 1 && !regionsFormABox(models)) {
-        vtkWarningMacro(<< "piece " << piece << " of " << pieces << " reads blocks " << first
-                        << ".." << last - 1 << " of " << this->FileName
-                        << ", which do not form a box; parallel compositing orders pieces by "
-                           "their bounds and may blend them in the wrong order. Use as many "
-                           "ranks as blocks, or a count that splits the block grid into boxes.");
-      }
-      output->ShallowCopy(mfadvr::vtkglue::imageOfModels(models));
+      this->SetOutputModel(
+          outInfo, std::make_shared<const mfadvr::Model>(mfadvr::loadModel(this->FileName)));
       return 1;
     }
-    if (this->OutputImageData && piece != 0) {
-      return 1;  // a single model is read and rendered by piece 0 only
+    const Layout& layout = this->ReadLayout();
+    const std::vector<Share> share =
+        shareOf(std::max(piece, 0), std::max(pieces, 1), layout.regions, layout.whole);
+    if (share.empty()) {
+      return 1;  // a piece without a block (more pieces than the blocks can be cut into)
     }
-    this->SetOutputModel(outInfo,
-                         std::make_shared<const mfadvr::Model>(mfadvr::loadModel(this->FileName)));
+    std::vector<mfadvr::vtkglue::CarriedModel> models;
+    mfadvr::DomainBox all = share.front().region;
+    for (const Share& s : share) {
+      mfadvr::vtkglue::CarriedModel m;
+      m.model = layout.multiBlock ? std::make_shared<const mfadvr::Model>(
+                                        mfadvr::loadBlock(this->FileName, layout.index, s.block))
+                                  : layout.single;
+      m.region = s.region;
+      all.min = all.min.cwiseMin(s.region.min);
+      all.max = all.max.cwiseMax(s.region.max);
+      models.push_back(std::move(m));
+    }
+    if (pieces > 1 && !regionsFormABox(models)) {
+      vtkWarningMacro(<< "piece " << piece << " of " << pieces << " reads blocks "
+                      << share.front().block << ".." << share.back().block << " of "
+                      << this->FileName
+                      << ", which do not form a box; parallel compositing orders pieces by "
+                         "their bounds and may blend them in the wrong order. Use as many "
+                         "ranks as blocks, or a count that splits the block grid into boxes.");
+    }
+    output->ShallowCopy(
+        mfadvr::vtkglue::imageOfModels(models, mfadvr::vtkglue::carrierSubGrid(layout.whole, all)));
   } catch (const std::exception& e) {
     vtkErrorMacro(<< e.what());
     return 0;

@@ -4,16 +4,23 @@
  *
  * The output is a vtkMFAModelData, or with OutputImageData on a vtkImageData carrying the
  * model (vtkMFAModelAlgorithm). A multi-block file (`mfadvr encode --blocks`) needs
- * OutputImageData: in a parallel pipeline, piece p of P reads the blocks p B / P to
- * (p + 1) B / P - 1 (x fastest) and carries them with their regions; a single model is read by
- * piece 0 alone. A missing, truncated or damaged file is reported with vtkErrorMacro (the
- * message says what is wrong) and leaves the output empty.
+ * OutputImageData. In a parallel pipeline with P pieces and B blocks (a single model is one
+ * block over its box), piece p reads the blocks p B / P to (p + 1) B / P - 1 (x fastest) when
+ * P <= B; when P > B, the pieces share the blocks (P / B or so per block), each reading its
+ * block and rendering a slab of the block's region, cut along the region's longest axis. The
+ * carriers are sub-extents of one whole image (WHOLE_EXTENT, ORIGIN and SPACING are set at
+ * RequestInformation): the data's grid over the whole box, as ParaView expects of the pieces
+ * of an image (its view bounds and compositing order come from them). A missing, truncated or
+ * damaged file is reported with vtkErrorMacro (the message says what is wrong) and leaves the
+ * output empty.
  */
 #ifndef vtkMFAReader_h
 #define vtkMFAReader_h
 
 #include "vtkMFAModelAlgorithm.h"
 #include "vtkMFAModule.h"  // for export macro
+
+#include <memory>  // for the cached layout
 
 class VTKMFA_EXPORT vtkMFAReader : public vtkMFAModelAlgorithm {
  public:
@@ -38,9 +45,17 @@ class VTKMFA_EXPORT vtkMFAReader : public vtkMFAModelAlgorithm {
   vtkMFAReader();
   ~vtkMFAReader() override;
 
+  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
   char* FileName = nullptr;
+
+ private:
+  struct Layout;
+  // The blocks' regions, the whole box and the data spacing of FileName, read once per file
+  // (and again when the file changes).
+  const Layout& ReadLayout();
+  std::shared_ptr<Layout> Cached;
 
  private:
   vtkMFAReader(const vtkMFAReader&) = delete;

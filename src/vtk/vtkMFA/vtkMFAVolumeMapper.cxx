@@ -261,6 +261,17 @@ void vtkMFAVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol) {
   }
   const std::shared_ptr<const mfadvr::Model> model = data->GetModel();
 
+  // ParaView (and SelectScalarArray) name the array the maps belong to; the volume is always
+  // drawn from the model's values, so say so when the name is another field's.
+  if (this->ArrayAccessMode == VTK_GET_ARRAY_BY_NAME && this->ArrayName && *this->ArrayName) {
+    const std::string field = mfadvr::vtkglue::carrierArrayName(*model);
+    if (field != this->ArrayName) {
+      this->WarnOnce(std::string("the volume is coloured by '") + this->ArrayName +
+                     "', but the model's field is '" + field + "': the model's values are " +
+                     "mapped through the colour and opacity maps of '" + this->ArrayName +
+                     "'; colour by '" + field + "' to use its maps");
+    }
+  }
   if (this->BlendMode != vtkVolumeMapper::COMPOSITE_BLEND) {
     this->WarnOnce("only composite blending is supported; rendering with it");
   }
