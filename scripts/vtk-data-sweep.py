@@ -21,7 +21,8 @@ What it does for each file with an extension of a VTK data-set format (.vti .vtk
      files its refusal under the same list of reasons, from the message it printed.
 
 A file is conformant when both sides agree: VTK holds a field and mfadvr encodes it, or VTK
-holds none and mfadvr refuses it with a reason of the list. Anything else is printed as a
+holds none and mfadvr refuses it with a reason of the list (the table shows both sides'
+reasons). Anything else is printed as a
 mismatch, and the exit status is 1 when there is one.
 
 Reasons (in docs/input-formats.md):
@@ -183,7 +184,10 @@ def sweep_one(args, path):
     if expected in ("field", "vector"):
         agree = ok
     else:
-        agree = not ok and got == expected
+        # Refused with a reason of the list; the probe's guess at why VTK holds no field can
+        # differ from mfadvr's more specific reason (a field-only legacy file, which VTK's
+        # data-set readers cannot read, is 'not a data set' to mfadvr).
+        agree = not ok and got != "other"
     return {"file": os.path.relpath(path, args.data), "vtk_type": view.get("type") or "",
             "vtk": expected, "mfadvr": got, "agree": agree,
             "message": "" if ok else message}

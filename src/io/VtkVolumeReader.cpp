@@ -212,10 +212,17 @@ void requireNrrdScalars(const std::string& path, VtkVolumeFormat format, vtkImag
   vtkDataArray* scalars = image->GetPointData()->GetScalars();
   const int components = scalars ? scalars->GetNumberOfComponents() : 1;
   if (components != 1 && format == VtkVolumeFormat::kNrrd) {
+    int dims[3];
+    image->GetDimensions(dims);
+    const bool flat = dims[0] < 2 || dims[1] < 2 || dims[2] < 2;
     throw Error(path + ": VTK's NRRD reader takes the first axis (" + std::to_string(components) +
                 " samples) for vector components, as it does for a first axis of 9 samples or "
                 "fewer and for a 4th axis; a scalar volume needs 3 axes and at least 10 samples "
-                "along x");
+                "along x" +
+                (flat ? " (read so, the file is 2-D data: an image of " +
+                            std::to_string(dims[0]) + " x " + std::to_string(dims[1]) + " x " +
+                            std::to_string(dims[2]) + " points, e.g. an RGB picture)"
+                      : std::string()));
   }
 }
 

@@ -171,6 +171,21 @@ TEST(EncodeCli, RefusesCutAndAbsurdInputsWithoutOutput) {
   }
 }
 
+// A thin grid (an AMR patch, a slab): the default degree 3 needs 4 samples per axis, so without
+// --degree the short axis gets samples - 1; an explicit --degree is kept (and refused).
+TEST(EncodeCli, DefaultDegreeFitsShortAxes) {
+  const auto dir = test::scratchDir();
+  const auto file = (dir / "thin_6x3x5_uint8.raw").string();
+  std::ofstream(file, std::ios::binary) << std::string(6 * 3 * 5, '\7');
+  const auto r = runMfadvr("encode " + file + " --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(parseJson(r)["degree"], nlohmann::json({3, 2, 3}));
+  EXPECT_NE(r.err.find("axis y has 3 samples: degree 2"), std::string::npos) << r.err;
+  const auto fixed = runMfadvr("encode " + file + " --degree 3");
+  EXPECT_EQ(fixed.status, 1);
+  EXPECT_NE(fixed.err.find("too few for degree 3"), std::string::npos) << fixed.err;
+}
+
 // A finite-volume style image: a 3-component cell array only, 6 x 5 x 4 points.
 TEST(EncodeCli, CellDataAndComponentOptions) {
   const auto dir = test::scratchDir();
