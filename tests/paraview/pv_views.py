@@ -1,7 +1,7 @@
 """pv_views.py SCENE OUT_PREFIX: renders SCENE from 24 cameras (azimuths 0, 45, ..., 315 at
 elevations -60, 0 and 60: from the front, behind, above and below) and writes
 OUT_PREFIX-a<azimuth>-e<elevation>.png for each. Run by pvbatch on 1, 2 or 4 MPI ranks
-(run_view_matrix.sh compares the ranks' images view by view).
+(run_mpi_compare.sh SCENE OUT views compares the ranks' images view by view).
 
 Scenes (files written by mfadvr_paraview_test_data, a CT-like head with field 'scalars' on a
 36 x 23.1 x 35.1 box with spacing 0.9, 0.7, 1.3 and origin 12, -7, 30):
