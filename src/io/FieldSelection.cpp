@@ -7,11 +7,19 @@
 #include "core/util/Error.h"
 
 namespace mfadvr {
+namespace {
+
+// Option values are read in any case.
+std::string lowered(std::string text) {
+  std::transform(text.begin(), text.end(), text.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return text;
+}
+
+}  // namespace
 
 FieldAssociation parseFieldAssociation(const std::string& text) {
-  std::string t = text;
-  std::transform(t.begin(), t.end(), t.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  const std::string t = lowered(text);
   if (t == "point" || t == "points") return FieldAssociation::kPoints;
   if (t == "cell" || t == "cells") return FieldAssociation::kCells;
   if (t == "auto" || t == "any") return FieldAssociation::kAny;
@@ -19,9 +27,7 @@ FieldAssociation parseFieldAssociation(const std::string& text) {
 }
 
 int parseFieldComponent(const std::string& text) {
-  std::string t = text;
-  std::transform(t.begin(), t.end(), t.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  const std::string t = lowered(text);
   if (t == "magnitude" || t == "mag") return FieldSelection::kMagnitude;
   int value = -1;
   const auto r = std::from_chars(t.data(), t.data() + t.size(), value);

@@ -38,6 +38,24 @@ void requireNonEmptyFile(const std::string& path, const std::string& expected) {
     throw Error("cannot read " + path + ": the file is empty (0 bytes), expected " + expected);
 }
 
+std::vector<std::string> legacyVtkHeaderWords(const std::string& path, size_t count) {
+  std::ifstream in(path, std::ios::binary);
+  std::string head(1024, '\0');
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<size_t>(in.gcount()));
+  std::istringstream lines(head);
+  std::string line;
+  std::vector<std::string> words;
+  if (!std::getline(lines, line) || line.rfind("# vtk DataFile", 0) != 0) return words;
+  std::getline(lines, line);  // the title, any text
+  for (std::string w; words.size() < count && lines >> w;) {
+    std::transform(w.begin(), w.end(), w.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::toupper(c)); });
+    words.push_back(w);
+  }
+  return words;
+}
+
 std::string readTextFile(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error("cannot open " + path + ": " + std::strerror(errno));

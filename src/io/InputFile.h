@@ -2,6 +2,7 @@
 // File checks shared by the loaders, so that every format reports a missing or unreadable file
 // the same way, before a reader gets a chance to fail with less clear text.
 #include <string>
+#include <vector>
 
 namespace mfadvr {
 
@@ -16,6 +17,11 @@ void requireReadableFile(const std::string& path, const std::string& expected);
 // bytes. (Raw volumes are not checked here: their names declare a size, and the raw reader
 // says which.)
 void requireNonEmptyFile(const std::string& path, const std::string& expected);
+
+// The first `count` words of a legacy VTK file after its version and title lines, upper-cased
+// ({"BINARY", "DATASET", "UNSTRUCTURED_GRID"}, {"ASCII", "FIELD", ...}); empty when the file
+// does not start like a legacy VTK data file. Reads the first KB only.
+std::vector<std::string> legacyVtkHeaderWords(const std::string& path, size_t count = 3);
 
 // The whole file as text (binary-safe); throws mfadvr::Error naming the file on failure.
 std::string readTextFile(const std::string& path);

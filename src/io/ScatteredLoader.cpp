@@ -51,22 +51,8 @@ bool isTextExtension(const std::string& ext) {
 // upper case; "" when the file does not start like a legacy VTK data file. Only the header is
 // read: version line, title line, ASCII|BINARY, DATASET TYPE.
 std::string legacyDatasetType(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::string head(1024, '\0');
-  in.read(head.data(), static_cast<std::streamsize>(head.size()));
-  head.resize(static_cast<size_t>(in.gcount()));
-  std::istringstream lines(head);
-  std::string line;
-  if (!std::getline(lines, line) || line.rfind("# vtk DataFile", 0) != 0) return "";
-  std::getline(lines, line);  // title
-  std::vector<std::string> words;
-  for (std::string w; words.size() < 3 && lines >> w;) {
-    std::transform(w.begin(), w.end(), w.begin(),
-                   [](unsigned char c) { return static_cast<char>(std::toupper(c)); });
-    words.push_back(w);
-  }
-  if (words.size() < 3 || words[1] != "DATASET") return "";
-  return words[2];
+  const auto words = legacyVtkHeaderWords(path);
+  return words.size() == 3 && words[1] == "DATASET" ? words[2] : "";
 }
 
 bool isScatteredLegacyType(const std::string& type) {

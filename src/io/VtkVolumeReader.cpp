@@ -1,9 +1,7 @@
 #include "io/VtkVolumeReader.h"
 
-#include <cctype>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <utility>
 
 #include <vtkAlgorithm.h>
@@ -31,6 +29,7 @@
 #include "core/grid/GridOrientation.h"
 #include "core/util/Error.h"
 #include "io/DeclaredSizeCheck.h"
+#include "io/InputFile.h"
 #include "io/VtkDataConversion.h"
 #include "io/VtkFieldSelection.h"
 #include "io/VtkSupport.h"
@@ -90,14 +89,8 @@ const char* formatExpectation(VtkVolumeFormat format) {
 
 // Whether a legacy file's first keyword after ASCII/BINARY is FIELD (a vtkDataObject).
 bool legacyHoldsFieldDataOnly(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::string line;
-  if (!std::getline(in, line) || line.rfind("# vtk DataFile", 0) != 0) return false;
-  std::getline(in, line);  // the title
-  std::string type, keyword;
-  if (!(in >> type >> keyword)) return false;
-  for (char& c : keyword) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-  return keyword == "FIELD";
+  const auto words = legacyVtkHeaderWords(path, 2);
+  return words.size() == 2 && words[1] == "FIELD";
 }
 
 // Legacy files name their dataset type in the header; say which one it is instead of VTK's
@@ -219,9 +212,9 @@ void requireNrrdScalars(const std::string& path, VtkVolumeFormat format, vtkImag
                 " samples) for vector components, as it does for a first axis of 9 samples or "
                 "fewer and for a 4th axis; a scalar volume needs 3 axes and at least 10 samples "
                 "along x" +
-                (flat ? " (read so, the file is 2-D data: an image of " +
-                            std::to_string(dims[0]) + " x " + std::to_string(dims[1]) + " x " +
-                            std::to_string(dims[2]) + " points, e.g. an RGB picture)"
+                (flat ? " (read so, the file is 2-D data: an image of " + std::to_string(dims[0]) +
+                            " x " + std::to_string(dims[1]) + " x " + std::to_string(dims[2]) +
+                            " points, e.g. an RGB picture)"
                       : std::string()));
   }
 }
