@@ -19,5 +19,6 @@ Command addDemoCommand(CLI::App& app);
 Command addCompareCommand(CLI::App& app);
 Command addViewCommand(CLI::App& app);
 Command addEvalCommand(CLI::App& app);
+Command addDecodeCommand(CLI::App& app);
 
 }  // namespace mfadvr::app

@@ -2,6 +2,7 @@
 //               [--blocks BX,BY,BZ [--ghost N]]
 #include <iostream>
 
+#include "app/CodingCliOptions.h"
 #include "app/Commands.h"
 #include "app/EncodeCliOptions.h"
 #include "app/FitReportOutput.h"
@@ -84,6 +85,7 @@ Command addEncodeCommand(CLI::App& app) {
     int ghost = -1;
     bool json = false, quiet = false, strict = false;
     EncodeCliOptions encode;
+    CodingCliOptions coding;
   };
   auto o = std::make_shared<Options>();
   CLI::App* sub = app.add_subcommand(
@@ -96,6 +98,7 @@ Command addEncodeCommand(CLI::App& app) {
   sub->add_option("-o,--output", o->output,
                   "Model file to write (.mfa); without it only the report is printed");
   o->encode.addTo(sub, "Encoding");
+  o->coding.addTo(sub, "Storage (control-point coding, budgets; docs/compression.md)");
   sub->add_flag("--strict", o->strict,
                 "With --max-error: exit with status 3 and write nothing when a limit stops "
                 "refinement before the bound is reached");
@@ -121,6 +124,7 @@ Command addEncodeCommand(CLI::App& app) {
 
   auto run = [o]() -> int {
     EncodeOptions options = o->encode.parse();
+    options.coding = o->coding.parse();
     const bool scattered = isScatteredInput(o->input);
     if (o->strict && !options.adaptive)
       throw CLI::ValidationError("--strict", "applies to adaptive encoding; give --max-error too");
@@ -178,6 +182,7 @@ Command addEncodeCommand(CLI::App& app) {
       printReaderNotes(grid);
       for (const std::string& note : o->encode.fitDefaultDegreeToGrid(options, grid.dims))
         std::cerr << "mfadvr: note: " << note << "\n";
+      CodingCliOptions::applyGridDefault(options.coding, grid.sampleType);
       if (!o->blocks.empty())
         return encodeBlocks(grid, o->blocks, o->ghost, options, o->output, o->json);
       model = encodeStructured(grid, options, &report);

@@ -1,5 +1,6 @@
 #include "app/FitReportOutput.h"
 
+#include <cmath>
 #include <cstdio>
 #include <sstream>
 
@@ -55,7 +56,25 @@ std::string formatFitReport(const FitReport& r, const std::string& modelPath) {
     o << "domain mask     " << r.maskKind << ", " << r.maskDims[0] << " x " << r.maskDims[1]
       << " x " << r.maskDims[2] << " nodes, " << fmt("%.1f", 100.0 * r.maskInsideFraction)
       << "% inside\n";
-  o << "model size      " << groupDigits(r.modelBytes) << " bytes"
+  o << "psnr            "
+    << (std::isfinite(r.psnr()) ? fmt("%.2f", r.psnr()) + " dB" : std::string("exact"))
+    << "  (value range over the rms error)\n";
+  o << "coding          " << r.coding;
+  if (r.coding == "zfp") o << ", tolerance " << fmt("%.4g", r.codingTolerance);
+  o << "\n";
+  if (!r.codingNote.empty()) {
+    // The note may span lines (a budget's candidates); indent them under the label.
+    std::string note = r.codingNote;
+    while (!note.empty() && note.back() == '\n') note.pop_back();
+    size_t at = 0;
+    while ((at = note.find('\n', at)) != std::string::npos) {
+      note.replace(at, 1, "\n                ");
+      at += 17;
+    }
+    o << "                " << note << "\n";
+  }
+  o << "model size      " << groupDigits(r.modelBytes) << " bytes, "
+    << fmt("%.3f", r.bitsPerSample()) << " bits/sample"
     << (modelPath.empty() ? std::string("  (not written: no -o)") : "  -> " + modelPath) << "\n";
   o << "compression     " << fmt("%.2f", r.compressionRatio())
     << (r.points > 0 ? " : 1  (bytes of the input values / model bytes; coordinates and cells "
@@ -85,6 +104,12 @@ nlohmann::json fitReportJson(const FitReport& r, const std::string& modelPath) {
       {"input_bytes", r.inputBytes},
       {"model_bytes", r.modelBytes},
       {"compression_ratio", r.compressionRatio()},
+      {"bits_per_sample", r.bitsPerSample()},
+      {"psnr", std::isfinite(r.psnr()) ? nlohmann::json(r.psnr()) : nlohmann::json(nullptr)},
+      {"coding", {{"method", r.coding},
+                  {"tolerance", r.coding == "zfp" ? nlohmann::json(r.codingTolerance)
+                                                  : nlohmann::json(nullptr)},
+                  {"note", r.codingNote}}},
       {"model", modelPath.empty() ? nlohmann::json(nullptr) : nlohmann::json(modelPath)}};
   j["solver"] = r.points > 0 ? nlohmann::json{{"smoothing", r.smoothing},
                                               {"iterations", r.solverIterations},

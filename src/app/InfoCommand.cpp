@@ -34,6 +34,11 @@ nlohmann::json infoJson(const Model& m, const std::string& path, std::uint32_t v
                       {"domain_max", {m.domain().max[0], m.domain().max[1], m.domain().max[2]}},
                       {"value_range", {m.valueMin(), m.valueMax()}},
                       {"mask", maskJson(m.mask())},
+                      {"control_coding",
+                       {{"method", controlCoderName(m.controlCoding().coder)},
+                        {"tolerance", m.controlCoding().coder == ControlCoder::kZfp
+                                          ? nlohmann::json(m.controlCoding().tolerance)
+                                          : nlohmann::json(nullptr)}}},
                       {"provenance", provenanceToJson(m.provenance())}};
   if (!path.empty()) {
     j["file"] = path;
@@ -122,6 +127,10 @@ Command addInfoCommand(CLI::App& app) {
             out << "file            " << o->model << "  ("
                 << groupDigits(j["file_bytes"].get<std::int64_t>()) << " bytes, format v" << version
                 << ")\n";
+            out << "control coding  " << j["control_coding"]["method"].get<std::string>();
+            if (!j["control_coding"]["tolerance"].is_null())
+              out << ", tolerance " << j["control_coding"]["tolerance"].get<double>();
+            out << "\n";
             out << "degree          " << j["degree"][0] << " " << j["degree"][1] << " "
                 << j["degree"][2] << "\n";
             out << "control points  " << j["control_counts"][0] << " x " << j["control_counts"][1]

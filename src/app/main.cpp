@@ -18,7 +18,8 @@ int main(int argc, char** argv) {
       mfadvr::app::addEncodeCommand(app),  mfadvr::app::addInfoCommand(app),
       mfadvr::app::addQueryCommand(app),   mfadvr::app::addRenderCommand(app),
       mfadvr::app::addCompareCommand(app), mfadvr::app::addDemoCommand(app),
-      mfadvr::app::addViewCommand(app),    mfadvr::app::addEvalCommand(app)};
+      mfadvr::app::addViewCommand(app),    mfadvr::app::addEvalCommand(app),
+      mfadvr::app::addDecodeCommand(app)};
 
   try {
     app.parse(argc, argv);

@@ -86,9 +86,9 @@ std::vector<std::uint8_t> withHeader(const std::vector<std::uint8_t>& full, cons
 size_t maskSectionBytes(const std::vector<std::uint8_t>& file) {
   const std::string text(file.begin(), file.end());
   const std::string header = headerOf(text);
-  const size_t at = header.find("\"bytes\":");
+  const size_t at = header.find("\"mask\":{\"bytes\":");
   EXPECT_NE(at, std::string::npos) << header;
-  return std::stoul(header.substr(at + 8));
+  return std::stoul(header.substr(at + 16));
 }
 
 // The packed (uncompressed) mask bits of a masked model file.
@@ -108,8 +108,8 @@ std::vector<std::uint8_t> withMaskSection(const std::vector<std::uint8_t>& file,
   std::vector<std::uint8_t> b(file.begin(), file.end() - 4 - static_cast<long>(bytes));
   b.insert(b.end(), section.begin(), section.end());
   b.insert(b.end(), 4, 0);
-  return withHeader(b, "\"bytes\":" + std::to_string(bytes),
-                    "\"bytes\":" + std::to_string(section.size()));
+  return withHeader(b, "\"mask\":{\"bytes\":" + std::to_string(bytes),
+                    "\"mask\":{\"bytes\":" + std::to_string(section.size()));
 }
 
 std::vector<std::uint8_t> compressed(const std::vector<std::uint8_t>& packed) {
@@ -196,7 +196,7 @@ TEST(ModelFile, MaskRoundTripIsBitExact) {
   std::uint32_t version = 0;
   const Model r = parseModel(bytesOf(bytes), "m.mfa", &version);
   EXPECT_EQ(version, kModelFormatVersion);
-  EXPECT_EQ(version, 2u);
+  EXPECT_EQ(version, 3u);
   EXPECT_EQ(r.mask().kind(), MaskKind::PointCoverage);
   EXPECT_EQ(r.mask().dims(), (Index3{5, 6, 7}));
   EXPECT_EQ(r.mask().nodes(), m.mask().nodes());
@@ -271,9 +271,9 @@ TEST(ModelFile, VersionOneFilesStillLoad) {
   // Trilinear: value = u + 2v + 4w with u = x / 2.
   EXPECT_NEAR(m.value(Vec3d(1.0, 0.25, 0.5)), 0.5 + 0.5 + 2.0, 1e-6);
   EXPECT_NEAR(m.value(Vec3d(2.0, 1.0, 1.0)), 7.0, 1e-6);
-  // Written back, it becomes version 2 with the same content.
+  // Written back, it becomes version 3 with the same content.
   const auto again = bytesOf(serializeModel(m));
-  EXPECT_EQ(again[10], 2);
+  EXPECT_EQ(again[10], 3);
   EXPECT_EQ(parseModel(again).spline().controlPoints(), m.spline().controlPoints());
 
   // A "mask" key means nothing to version 1 (unknown keys are ignored): no mask section is read.
@@ -368,8 +368,8 @@ TEST(ModelFile, ClearMessages) {
             std::string::npos);
   EXPECT_NE(errorOf({}).find("not an .mfa model"), std::string::npos);
   auto v2 = full;
-  v2[10] = 3;
-  EXPECT_NE(errorOf(v2).find("version 3 is not supported"), std::string::npos);
+  v2[10] = 4;
+  EXPECT_NE(errorOf(v2).find("version 4 is not supported"), std::string::npos);
   v2[10] = 0;
   EXPECT_NE(errorOf(v2).find("version 0 is not supported"), std::string::npos);
   auto crc = full;

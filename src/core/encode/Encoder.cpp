@@ -12,8 +12,34 @@ Model encodeStructured(const StructuredGrid& grid, const EncodeOptions& options,
   fit.degree = options.degree;
   fit.controlCounts = options.controlCounts;
   fit.progress = options.progress;
-  if (options.adaptive) return fitStructuredAdaptive(grid, fit, *options.adaptive, report);
-  return fitStructured(grid, fit, report);
+  const CodingOptions& coding = options.coding;
+  const bool countsGiven = options.controlCounts[0] > 0;
+  if (coding.budget.kind != BudgetKind::kNone) {
+    if (options.adaptive)
+      throw Error("a size or quality budget chooses the control points itself; it does not "
+                  "combine with an error bound (--max-error)");
+    return encodeToBudget(grid, fit, coding, countsGiven, report);
+  }
+  if (!coding.coder) {
+    if (options.adaptive) return fitStructuredAdaptive(grid, fit, *options.adaptive, report);
+    return fitStructured(grid, fit, report);
+  }
+  FitReport local;
+  FitReport& r = report ? *report : local;
+  if (!options.adaptive)
+    return codeFittedModel(fitStructured(grid, fit, &r), grid, coding, 0.0, countsGiven, &r);
+  AdaptiveOptions adaptive = *options.adaptive;
+  const bool lossy = *coding.coder == ControlCoder::kZfp;
+  if (lossy && coding.tolerance == 0.0) adaptive.maxRelativeError *= 0.5;
+  const Model fitted = fitStructuredAdaptive(grid, fit, adaptive, &r);
+  const double bound =
+      options.adaptive->maxRelativeError * (fitted.valueMax() - fitted.valueMin());
+  Model m = codeFittedModel(fitted, grid, coding, lossy ? bound : 0.0, countsGiven, &r);
+  // The bound the user gave, judged on the decoded model.
+  r.targetRelativeError = options.adaptive->maxRelativeError;
+  r.reachedTarget = r.maxRelativeError() <= r.targetRelativeError;
+  if (!r.reachedTarget && r.stopReason.empty()) r.stopReason = "the coded model misses the bound";
+  return m;
 }
 
 Index3 maskDimsFor(const ScatteredData& data, const MaskOptions& options) {
@@ -31,6 +57,10 @@ Model encodeScattered(const ScatteredData& data, const EncodeOptions& options, F
   fit.controlCounts = options.controlCounts;
   fit.smoothing = options.smoothing;
   fit.progress = options.progress;
+  if (options.coding.budget.kind != BudgetKind::kNone ||
+      (options.coding.coder && *options.coding.coder == ControlCoder::kZfp))
+    throw Error("meshes and point clouds take --coding float32 or lossless; zfp coding and "
+                "budgets (--bits-per-sample, --psnr, --rms-error) are for regular grids");
   FitReport local;
   FitReport& r = report ? *report : local;
   Model model = options.adaptive ? fitScatteredAdaptive(data, fit, *options.adaptive, &r)
@@ -48,6 +78,11 @@ Model encodeScattered(const ScatteredData& data, const EncodeOptions& options, F
     r.maskKind = maskKindName(model.mask().kind());
     r.maskDims = model.mask().dims();
     r.maskInsideFraction = model.mask().insideFraction();
+    r.modelBytes = modelFileSize(model);
+  }
+  if (options.coding.coder) {
+    model.setControlCoding({*options.coding.coder, 0.0});
+    r.coding = controlCoderName(*options.coding.coder);
     r.modelBytes = modelFileSize(model);
   }
   return model;

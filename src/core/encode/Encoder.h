@@ -10,6 +10,7 @@
 #include <string>
 
 #include "core/encode/AdaptiveEncoder.h"
+#include "core/encode/CodingChoice.h"
 #include "core/encode/FitReport.h"
 #include "core/encode/ScatteredEncoder.h"
 #include "core/encode/StructuredEncoder.h"
@@ -31,9 +32,13 @@ struct EncodeOptions {
   double smoothing = kDefaultSmoothing;  // scattered inputs only
   std::optional<AdaptiveOptions> adaptive;
   MaskOptions mask;
+  CodingOptions coding;  // grids; scattered inputs take a given float32 or lossless coder
   std::function<void(double fraction, const std::string& stage)> progress;
 };
 
+// A fit (fixed, adaptive, or the candidates of a budget) and the coding of its control points
+// (CodingChoice.h). With --max-error and zfp coding, the fit gets half the bound and the coding
+// the room the fit leaves, so that the decoded model keeps the bound.
 Model encodeStructured(const StructuredGrid& grid, const EncodeOptions& options,
                        FitReport* report = nullptr);
 

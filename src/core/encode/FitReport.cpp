@@ -1,5 +1,8 @@
 #include "core/encode/FitReport.h"
 
+#include <cmath>
+#include <limits>
+
 #include "core/model/ModelFile.h"
 
 namespace mfadvr {
@@ -22,7 +25,19 @@ FitReport fitReportOf(const Model& model) {
   r.encoder = p.encoder;
   r.field = p.field;
   r.fieldAssociation = p.fieldAssociation;
+  r.coding = controlCoderName(model.controlCoding().coder);
+  r.codingTolerance = model.controlCoding().tolerance;
   return r;
+}
+
+double FitReport::psnr() const {
+  if (rmsError <= 0.0) return std::numeric_limits<double>::infinity();
+  return 20.0 * std::log10(valueRange() / rmsError);
+}
+
+double FitReport::bitsPerSample() const {
+  const std::int64_t n = points > 0 ? points : samples[0] * samples[1] * samples[2];
+  return n > 0 ? 8.0 * static_cast<double>(modelBytes) / static_cast<double>(n) : 0.0;
 }
 
 }  // namespace mfadvr

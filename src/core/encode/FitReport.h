@@ -42,10 +42,19 @@ struct FitReport {
   Index3 maskDims{0, 0, 0};
   double maskInsideFraction = 1.0;
 
+  // Control-point coding (core/model/ControlCoding.h; errors above are of the decoded model).
+  std::string coding = "float32";
+  double codingTolerance = 0.0;  // zfp: the largest change of a control point
+  std::string codingNote;        // what the encoder chose and why (defaults, bounds, budgets)
+
   double valueRange() const { return valueMax - valueMin; }
   // Errors relative to the value range (0 when the data are constant and fitted exactly).
   double maxRelativeError() const { return relative(maxError); }
   double rmsRelativeError() const { return relative(rmsError); }
+  // PSNR over the value range, dB, from the RMS error (+inf for an exact model).
+  double psnr() const;
+  // File bits per input sample (or point).
+  double bitsPerSample() const;
   double compressionRatio() const {
     return modelBytes > 0 ? static_cast<double>(inputBytes) / static_cast<double>(modelBytes) : 0;
   }

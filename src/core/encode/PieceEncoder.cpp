@@ -77,7 +77,8 @@ Model encodeStructuredPiece(const StructuredGrid& pieceGrid, const Index3& whole
         piece.adaptive->maxControlCounts[a] =
             std::min<std::int64_t>(piece.adaptive->maxControlCounts[a], pieceGrid.dims[a]);
   Model m = encodeStructured(pieceGrid, piece, report);
-  return Model(m.spline(), m.domain(), valueMin, valueMax, m.provenance());
+  m.setValueRange(valueMin, valueMax);
+  return m;
 }
 
 std::vector<ModelBlock> encodeStructuredBlocks(const StructuredGrid& grid, const Index3& blocks,

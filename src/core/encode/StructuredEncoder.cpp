@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <sstream>
+#include <span>
 
 #include "core/encode/KnotPlacement.h"
 #include "core/model/ModelFile.h"
@@ -152,7 +153,68 @@ Index3 rotate(const Index3& d, std::int64_t newLast) {
   return {d[1], d[2], newLast};
 }
 
+// The spline with control points `ctrl` (n, x fastest) at the samples of `sampling`, separably.
+std::vector<double> evaluateOnSamples(const std::array<AxisSampling, 3>& sampling,
+                                      std::span<const float> ctrl, Index3 dims) {
+  std::vector<double> recon(ctrl.begin(), ctrl.end()), tmp;
+  for (int a = 0; a < 3; ++a) {
+    passAlongFastest(recon, dims, sampling[a].samples, tmp, AxisEvaluator(sampling[a]));
+    recon.swap(tmp);
+    dims = rotate(dims, sampling[a].samples);
+  }
+  return recon;
+}
+
 }  // namespace
+
+std::vector<double> splineOnGrid(const TensorBSpline& spline, const Index3& dims) {
+  return splineOnGrid(spline, dims, 0, dims[2]);
+}
+
+std::vector<double> splineOnGrid(const TensorBSpline& spline, const Index3& dims,
+                                 std::int64_t zBegin, std::int64_t zEnd) {
+  if (zBegin < 0 || zEnd > dims[2] || zBegin >= zEnd)
+    throw Error("splineOnGrid: empty or out-of-range z slab");
+  std::array<AxisSampling, 3> sampling;
+  for (int a = 0; a < 3; ++a) sampling[a] = sampleAxis(spline.knots(a), dims[a]);
+  if (zBegin == 0 && zEnd == dims[2])
+    return evaluateOnSamples(sampling, spline.controlPoints(), spline.counts());
+  // The slab's samples see control planes first[zBegin] .. first[zEnd - 1] + p alone.
+  AxisSampling& z = sampling[2];
+  const int p = z.degree, w = p + 1;
+  const int c0 = z.first[static_cast<size_t>(zBegin)];
+  const int c1 = z.first[static_cast<size_t>(zEnd - 1)] + p;
+  AxisSampling slab;
+  slab.degree = p;
+  slab.controlCount = c1 - c0 + 1;
+  slab.samples = zEnd - zBegin;
+  for (std::int64_t i = zBegin; i < zEnd; ++i) {
+    slab.first.push_back(z.first[static_cast<size_t>(i)] - c0);
+    const double* wi = &z.weights[static_cast<size_t>(i * w)];
+    slab.weights.insert(slab.weights.end(), wi, wi + w);
+  }
+  z = std::move(slab);
+  const Index3 n = spline.counts();
+  const size_t plane = static_cast<size_t>(n[0] * n[1]);
+  const auto& ctrl = spline.controlPoints();
+  return evaluateOnSamples(sampling,
+                           std::span<const float>(ctrl.data() + c0 * plane,
+                                                  static_cast<size_t>(z.controlCount) * plane),
+                           {n[0], n[1], z.controlCount});
+}
+
+SampleErrors errorsOnGrid(const TensorBSpline& spline, const StructuredGrid& grid) {
+  const std::vector<double> recon = splineOnGrid(spline, grid.dims);
+  SampleErrors e;
+  double sumSq = 0.0;
+  for (size_t i = 0; i < recon.size(); ++i) {
+    const double d = std::abs(recon[i] - grid.values[i]);
+    e.max = std::max(e.max, d);
+    sumSq += d * d;
+  }
+  e.rms = recon.empty() ? 0.0 : std::sqrt(sumSq / static_cast<double>(recon.size()));
+  return e;
+}
 
 std::array<std::vector<double>, 3> curveSpanErrors(const StructuredGrid& grid,
                                                    const std::array<KnotVector, 3>& knots) {
@@ -273,15 +335,9 @@ Model fitStructuredWithKnots(const StructuredGrid& grid, std::array<KnotVector, 
   std::vector<float> ctrl(coeffs.size());
   for (size_t i = 0; i < coeffs.size(); ++i) ctrl[i] = static_cast<float>(coeffs[i]);
 
-  // Error of the stored (float32) model at every input sample, evaluated separably.
+  // Error of the stored (float32) model at every input sample.
   progress(0.75, "error");
-  std::vector<double> recon(ctrl.begin(), ctrl.end()), tmp;
-  dims = n;
-  for (int a = 0; a < 3; ++a) {
-    passAlongFastest(recon, dims, grid.dims[a], tmp, AxisEvaluator(sampling[a]));
-    recon.swap(tmp);
-    dims = rotate(dims, grid.dims[a]);
-  }
+  const std::vector<double> recon = evaluateOnSamples(sampling, ctrl, n);
   double maxErr = 0.0, sumSq = 0.0;
   double vmin = grid.values.empty() ? 0.0 : grid.values[0], vmax = vmin;
   if (spanErrors)

@@ -41,6 +41,20 @@ Model fitStructuredWithKnots(const StructuredGrid& grid, std::array<KnotVector, 
 std::array<std::vector<double>, 3> curveSpanErrors(const StructuredGrid& grid,
                                                    const std::array<KnotVector, 3>& knots);
 
+// The spline's values at every sample of a grid of `dims` samples spanning its parameter box
+// (x fastest), evaluated separably (as fast as a fit).
+std::vector<double> splineOnGrid(const TensorBSpline& spline, const Index3& dims);
+// The samples of that grid with z in [zBegin, zEnd) only (x fastest), from the control planes
+// they depend on: a slab's work and memory, for decoding large grids slab by slab.
+std::vector<double> splineOnGrid(const TensorBSpline& spline, const Index3& dims,
+                                 std::int64_t zBegin, std::int64_t zEnd);
+
+struct SampleErrors {
+  double max = 0.0, rms = 0.0;  // absolute
+};
+// The spline against every sample of `grid`.
+SampleErrors errorsOnGrid(const TensorBSpline& spline, const StructuredGrid& grid);
+
 // Resolves 0 entries of options.controlCounts and validates everything against the grid.
 Index3 resolveControlCounts(const StructuredGrid& grid, const StructuredFitOptions& options);
 

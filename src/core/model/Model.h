@@ -7,10 +7,12 @@
 // (docs/architecture.md, Parameter space and gradients). Points outside the box are clamped onto
 // it.
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <string>
 
 #include "core/mask/DomainMask.h"
+#include "core/model/ControlCoding.h"
 #include "core/model/DomainBox.h"
 #include "core/spline/TensorBSpline.h"
 #include "core/util/Vec.h"
@@ -44,6 +46,11 @@ class Model {
   const DomainBox& domain() const { return domain_; }
   double valueMin() const { return valueMin_; }
   double valueMax() const { return valueMax_; }
+  // The range transfer functions normalize by (e.g. the whole volume's, for one block of it).
+  void setValueRange(double valueMin, double valueMax) {
+    valueMin_ = valueMin;
+    valueMax_ = valueMax;
+  }
   const Provenance& provenance() const { return provenance_; }
   Provenance& provenance() { return provenance_; }
 
@@ -53,6 +60,16 @@ class Model {
   void setMask(DomainMask mask) { mask_ = std::move(mask); }
   bool inside(const Vec3d& x) const {
     return mask_.insideParameter(domain_.toParameter(x));  // clamps onto the box
+  }
+
+  // How the file stores the control points (ControlCoding.h). The coded bytes, when present, are
+  // the ones the model was read from or coded to (codeControlPoints): they decode to
+  // spline().controlPoints() exactly, and the writer stores them as they are.
+  const ControlCoding& controlCoding() const { return coding_; }
+  const std::string* codedControlPoints() const { return codedControls_.get(); }
+  void setControlCoding(ControlCoding coding, std::shared_ptr<const std::string> coded = nullptr) {
+    coding_ = coding;
+    codedControls_ = std::move(coded);
   }
 
   // Spacing of the data the model stands for, per axis: the recorded sample grid's, else the
@@ -78,6 +95,8 @@ class Model {
   double valueMin_ = 0.0, valueMax_ = 0.0;
   Provenance provenance_;
   DomainMask mask_;
+  ControlCoding coding_;
+  std::shared_ptr<const std::string> codedControls_;  // shared: models are copied freely
 };
 
 }  // namespace mfadvr

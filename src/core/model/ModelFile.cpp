@@ -93,8 +93,19 @@ std::string compressedMask(const DomainMask& mask) {
   return out;
 }
 
+// The control-point section as the model's coding stores it: the bytes the model was read from or
+// coded to when it holds them, else coded now.
+std::shared_ptr<const std::string> codedControls(const Model& m) {
+  if (const std::string* kept = m.codedControlPoints())
+    return std::shared_ptr<const std::string>(std::shared_ptr<const std::string>{}, kept);
+  const TensorBSpline& s = m.spline();
+  return std::make_shared<const std::string>(
+      encodeControlPoints(s.controlPoints(), s.counts(), m.controlCoding()));
+}
+
 // compressedMaskBytes: the size of the mask section (ignored without a mask).
-std::string headerText(const Model& m, std::int64_t compressedMaskBytes) {
+std::string headerText(const Model& m, std::int64_t controlBytes,
+                       std::int64_t compressedMaskBytes) {
   const TensorBSpline& s = m.spline();
   const DomainBox& d = m.domain();
   json h = {{"format", "mfadvr-model"},
@@ -104,6 +115,9 @@ std::string headerText(const Model& m, std::int64_t compressedMaskBytes) {
             {"domain_max", {d.max[0], d.max[1], d.max[2]}},
             {"value_range", {m.valueMin(), m.valueMax()}},
             {"provenance", provenanceToJson(m.provenance())}};
+  const ControlCoding& c = m.controlCoding();
+  h["control_points"] = {{"coding", controlCoderName(c.coder)}, {"bytes", controlBytes}};
+  if (c.coder == ControlCoder::kZfp) h["control_points"]["tolerance"] = c.tolerance;
   if (!m.mask().empty())
     h["mask"] = {{"kind", maskKindName(m.mask().kind())},
                  {"dims", m.mask().dims()},
@@ -124,18 +138,18 @@ Vec3d vec3(const json& j, const char* key) {
 
 std::string serializeModel(const Model& model) {
   const std::string mask = model.mask().empty() ? std::string() : compressedMask(model.mask());
-  const std::string header = headerText(model, static_cast<std::int64_t>(mask.size()));
+  const auto ctrl = codedControls(model);
+  const std::string header = headerText(model, static_cast<std::int64_t>(ctrl->size()),
+                                        static_cast<std::int64_t>(mask.size()));
   std::string out;
-  out.reserve(kPrefixBytes + header.size() + 4 * model.spline().controlPoints().size() +
-              mask.size() + 4096);
+  out.reserve(kPrefixBytes + header.size() + ctrl->size() + mask.size() + 4096);
   out.append(kMagic, sizeof(kMagic));
   appendBytes(out, kModelFormatVersion);
   appendBytes(out, static_cast<std::uint32_t>(header.size()));
   out += header;
   for (int a = 0; a < 3; ++a)
     for (double k : model.spline().knots(a).knots()) appendBytes(out, k);
-  const auto& ctrl = model.spline().controlPoints();
-  out.append(reinterpret_cast<const char*>(ctrl.data()), ctrl.size() * sizeof(float));
+  out += *ctrl;
   out += mask;
   appendBytes(out, crc(reinterpret_cast<const std::uint8_t*>(out.data()), out.size()));
   return out;
@@ -147,8 +161,9 @@ std::int64_t modelFileSize(const Model& model) {
   std::int64_t knots = 0;
   for (int a = 0; a < 3; ++a)
     knots += static_cast<std::int64_t>(model.spline().knots(a).knots().size());
-  return static_cast<std::int64_t>(kPrefixBytes + headerText(model, mask).size()) + 8 * knots +
-         4 * static_cast<std::int64_t>(model.spline().controlPoints().size()) + mask + 4;
+  const auto ctrl = static_cast<std::int64_t>(codedControls(model)->size());
+  return static_cast<std::int64_t>(kPrefixBytes + headerText(model, ctrl, mask).size()) +
+         8 * knots + ctrl + mask + 4;
 }
 
 Model parseModel(std::span<const std::uint8_t> b, const std::string& name,
@@ -182,6 +197,8 @@ Model parseModel(std::span<const std::uint8_t> b, const std::string& name,
   std::optional<MaskKind> maskKind;  // version 2 on; a version-1 file has no mask
   Index3 maskDims{0, 0, 0};
   std::int64_t storedMaskBytes = 0;  // compressed size
+  ControlCoding coding;                // version 3 on; before: float32
+  std::int64_t storedControlBytes = -1;
   try {
     h = json::parse(b.begin() + kPrefixBytes, b.begin() + kPrefixBytes + headerBytes);
     if (h.value("format", "") != "mfadvr-model") throw bad("header is not an mfadvr-model header");
@@ -196,6 +213,25 @@ Model parseModel(std::span<const std::uint8_t> b, const std::string& name,
     hi = vec3(h, "domain_max");
     range = h.at("value_range").get<std::array<double, 2>>();
     if (h.contains("provenance")) prov = provenanceFromJson(h.at("provenance"));
+    if (version >= 3) {
+      const json& c = h.at("control_points");
+      if (!c.is_object()) throw bad("control_points must be an object");
+      const json& name = c.at("coding");
+      if (!name.is_string()) throw bad("control-point coding must be a string");
+      try {
+        coding.coder = parseControlCoder(name.get<std::string>());
+      } catch (const Error& e) {
+        throw bad(e.what());
+      }
+      storedControlBytes = integerOr(c, "bytes", -1);
+      if (coding.coder == ControlCoder::kZfp) {
+        const json& t = c.at("tolerance");
+        if (!t.is_number()) throw bad("zfp tolerance must be a number");
+        coding.tolerance = t.get<double>();
+        if (!(std::isfinite(coding.tolerance) && coding.tolerance > 0.0))
+          throw bad("zfp tolerance must be positive and finite");
+      }
+    }
     if (version >= 2 && h.contains("mask")) {
       const json& m = h.at("mask");
       if (!m.is_object()) throw bad("mask must be an object");
@@ -239,8 +275,13 @@ Model parseModel(std::span<const std::uint8_t> b, const std::string& name,
   const std::int64_t ctrlCount = n[0] * n[1] * n[2];
   if (ctrlCount > std::numeric_limits<std::int64_t>::max() / 8)
     throw bad("too many control points");
+  if (version < 3) storedControlBytes = 4 * ctrlCount;
+  if (storedControlBytes < 1 || storedControlBytes > maxCodedControlBytes(n, coding))
+    throw bad("control-point byte count is missing or out of range for " +
+              std::to_string(ctrlCount) + " control points coded " +
+              controlCoderName(coding.coder));
   const std::int64_t expected = static_cast<std::int64_t>(kPrefixBytes + headerBytes) +
-                                8 * knotCount + 4 * ctrlCount + storedMaskBytes + 4;
+                                8 * knotCount + storedControlBytes + storedMaskBytes + 4;
   if (static_cast<std::int64_t>(b.size()) != expected)
     throw bad("size is " + std::to_string(b.size()) + " bytes but the header describes " +
               std::to_string(expected) +
@@ -261,13 +302,26 @@ Model parseModel(std::span<const std::uint8_t> b, const std::string& name,
       throw bad(std::string("knots of axis ") + "xyz"[a] + ": " + e.what());
     }
   }
-  std::vector<float> ctrl(static_cast<size_t>(ctrlCount));
-  std::memcpy(ctrl.data(), b.data() + offset, ctrl.size() * sizeof(float));
-  offset += ctrl.size() * sizeof(float);
+  const auto controlSection = b.subspan(offset, static_cast<size_t>(storedControlBytes));
+  offset += controlSection.size();
+  std::vector<float> ctrl;
+  try {
+    ctrl = decodeControlPoints(controlSection, n, coding);
+  } catch (const Error& e) {
+    throw bad(e.what());
+  }
   for (float c : ctrl)
     if (!std::isfinite(c)) throw bad("a control point is NaN or infinite");
   Model model(TensorBSpline(std::move(knots), std::move(ctrl)), DomainBox{lo, hi}, range[0],
               range[1], std::move(prov));
+  // Keep the coded bytes of lossy codings, so that writing the model again stores the same
+  // bytes (coding decoded values again would move them once more).
+  if (coding.coder == ControlCoder::kZfp)
+    model.setControlCoding(coding, std::make_shared<const std::string>(
+                                       reinterpret_cast<const char*>(controlSection.data()),
+                                       controlSection.size()));
+  else
+    model.setControlCoding(coding);
   if (maskKind) {
     std::vector<std::uint8_t> packed(static_cast<size_t>(packedMaskBytes));
     uLongf size = static_cast<uLongf>(packed.size());

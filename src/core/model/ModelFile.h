@@ -1,14 +1,16 @@
 #pragma once
-// The .mfa model file (format version 2; docs/model-format.md describes every byte).
+// The .mfa model file (format version 3; docs/model-format.md describes every byte).
 //
 //   magic "MFADVR\r\n\x1a\n" (10 bytes) | u32 version | u32 header length H | H bytes JSON header
-//   | knots: float64 per axis, x then y then z | control points: float32, x fastest
+//   | knots: float64 per axis, x then y then z | control points, x fastest, coded as the header's
+//   "control_points" says (ControlCoding.h; versions 1 and 2: float32, no such entry)
 //   | [mask nodes: bit-packed, x fastest, least significant bit first; when the header has "mask"]
 //   | u32 CRC-32
 //
 // All integers and floats little-endian; the CRC-32 (zlib) covers every byte before it. Loading
 // checks everything before trusting it, so that any damaged file gives an Error, never a crash.
-// Writing always produces version 2; reading accepts version 1 (no mask section) and 2.
+// Writing always produces version 3; reading accepts version 1 (no mask section), 2 (float32
+// control points only) and 3.
 #include <cstdint>
 #include <filesystem>
 #include <span>
@@ -18,7 +20,7 @@
 
 namespace mfadvr {
 
-inline constexpr std::uint32_t kModelFormatVersion = 2;        // written
+inline constexpr std::uint32_t kModelFormatVersion = 3;        // written
 inline constexpr std::uint32_t kOldestModelFormatVersion = 1;  // oldest read
 
 std::string serializeModel(const Model& model);

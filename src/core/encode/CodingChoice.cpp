@@ -1,0 +1,335 @@
+#include "core/encode/CodingChoice.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <sstream>
+
+#include "core/model/ModelFile.h"
+#include "core/util/Error.h"
+
+namespace mfadvr {
+namespace {
+
+// A coded model and what it costs and loses, measured.
+struct Coded {
+  Model model;
+  SampleErrors errors;
+  std::int64_t controlBytes = 0;
+  int exponent = 0;  // zfp tolerance 2^exponent
+};
+
+std::string text(double v, const char* format = "%.4g") {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, format, v);
+  return buf;
+}
+
+std::string tolerancePhrase(int exponent) {
+  return "2^" + std::to_string(exponent) + " = " + text(std::ldexp(1.0, exponent));
+}
+
+class Coder {
+ public:
+  Coder(const Model& fit, const StructuredGrid& grid, ControlCoder coder)
+      : fit_(fit), grid_(grid), coder_(coder) {}
+
+  // The model coded with tolerance 2^exponent (zfp; ignored otherwise), cached.
+  const Coded& at(int exponent) {
+    if (coder_ != ControlCoder::kZfp) exponent = 0;
+    auto it = cache_.find(exponent);
+    if (it != cache_.end()) return it->second;
+    ControlCoding c{coder_, coder_ == ControlCoder::kZfp ? std::ldexp(1.0, exponent) : 0.0};
+    Coded k{codeControlPoints(fit_, c), {}, 0, exponent};
+    k.errors = coder_ == ControlCoder::kLossless || coder_ == ControlCoder::kFloat32
+                   ? SampleErrors{fit_.provenance().maxError, fit_.provenance().rmsError}
+                   : errorsOnGrid(k.model.spline(), grid_);
+    k.controlBytes = static_cast<std::int64_t>(k.model.codedControlPoints()->size());
+    return cache_.emplace(exponent, std::move(k)).first->second;
+  }
+
+ private:
+  const Model& fit_;
+  const StructuredGrid& grid_;
+  ControlCoder coder_;
+  std::map<int, Coded> cache_;
+};
+
+// The exponents worth trying for data of this range: from far below float32 resolution of the
+// range (where coding no longer adds error) to the range itself (where every block is nearly
+// empty).
+std::pair<int, int> exponentRange(const Model& fit) {
+  const double scale = std::max({std::abs(fit.valueMin()), std::abs(fit.valueMax()),
+                                 fit.valueMax() - fit.valueMin(), 1e-30});
+  const int top = static_cast<int>(std::ceil(std::log2(scale)));
+  return {top - 26, top + 1};
+}
+
+// Largest k in [lo, hi] with pass(k), for pass true up to some k* and false after; lo - 1 when
+// none passes.
+template <class Pass>
+int largestPassing(int lo, int hi, Pass pass) {
+  if (!pass(lo)) return lo - 1;
+  while (lo < hi) {
+    const int mid = lo + (hi - lo + 1) / 2;
+    if (pass(mid))
+      lo = mid;
+    else
+      hi = mid - 1;
+  }
+  return lo;
+}
+
+// Smallest k in [lo, hi] with pass(k), for pass false up to some k* and true after; hi + 1 when
+// none passes.
+template <class Pass>
+int smallestPassing(int lo, int hi, Pass pass) {
+  if (!pass(hi)) return hi + 1;
+  while (lo < hi) {
+    const int mid = lo + (hi - lo) / 2;
+    if (pass(mid))
+      hi = mid;
+    else
+      lo = mid + 1;
+  }
+  return hi;
+}
+
+// The coded model with the errors it states measured on it; `report` (optional) becomes its
+// report, keeping the fit's time and adaptive history.
+Model finish(Coded c, FitReport* report, const std::string& note) {
+  Provenance& p = c.model.provenance();
+  p.maxError = c.errors.max;
+  p.rmsError = c.errors.rms;
+  if (report) {
+    p.fitSeconds = report->seconds;
+    FitReport r = fitReportOf(c.model);
+    r.rounds = report->rounds;
+    r.targetRelativeError = report->targetRelativeError;
+    r.reachedTarget = report->reachedTarget;
+    r.stopReason = report->stopReason;
+    r.codingNote = note;
+    *report = r;
+  }
+  return std::move(c.model);
+}
+
+}  // namespace
+
+bool isIntegerSampleType(const std::string& type) {
+  static const char* kTypes[] = {"int8",  "uint8",  "int16", "uint16",
+                                 "int32", "uint32", "int64", "uint64"};
+  return std::find(std::begin(kTypes), std::end(kTypes), type) != std::end(kTypes);
+}
+
+double psnrOf(double range, double rms) {
+  if (rms <= 0.0) return std::numeric_limits<double>::infinity();
+  return 20.0 * std::log10(range / rms);
+}
+
+ControlCoder resolvedCoder(const CodingOptions& options) {
+  if (options.coder) return *options.coder;
+  return options.budget.kind != BudgetKind::kNone ? ControlCoder::kZfp : ControlCoder::kFloat32;
+}
+
+Model codeFittedModel(const Model& fit, const StructuredGrid& grid, const CodingOptions& options,
+                      double maxError, bool countsGiven, FitReport* report) {
+  const auto start = std::chrono::steady_clock::now();
+  const ControlCoder coder = resolvedCoder(options);
+  Coder coded(fit, grid, coder);
+  std::string note;
+  int k = 0;
+  if (coder == ControlCoder::kZfp) {
+    const auto [lo, hi] = exponentRange(fit);
+    const bool integer = isIntegerSampleType(grid.sampleType);
+    if (options.tolerance > 0.0) {
+      k = static_cast<int>(std::floor(std::log2(options.tolerance)));
+      note = "zfp tolerance " + tolerancePhrase(k) + " (--coding-tolerance " +
+             text(options.tolerance) + ", rounded down to a power of two)";
+    } else if (maxError > 0.0) {
+      // Room the fit left under the bound; the model moves by at most the tolerance.
+      const double room = maxError - fit.provenance().maxError;
+      k = largestPassing(lo, std::max(lo, static_cast<int>(std::floor(std::log2(
+                                              std::max(room, std::ldexp(1.0, lo)))))),
+                         [&](int e) { return coded.at(e).errors.max <= maxError; });
+      if (k < lo) {
+        // No tolerance keeps the bound: store the fit losslessly instead.
+        CodingOptions lossless = options;
+        lossless.coder = ControlCoder::kLossless;
+        Model m = codeFittedModel(fit, grid, lossless, 0.0, countsGiven, report);
+        if (report)
+          report->codingNote = "lossless: the fit leaves no room for a zfp tolerance under the "
+                               "error bound";
+        return m;
+      }
+      note = "zfp tolerance " + tolerancePhrase(k) + ": the largest that keeps the error bound " +
+             text(maxError) + " (the fit alone: " + text(fit.provenance().maxError) + ")";
+    } else if (integer) {
+      // The largest tolerance whose decoded model still rounds to every sample: the B-spline
+      // averages the control points' coding errors, so the model moves far less than the
+      // tolerance (measured, not assumed).
+      const int floorK = static_cast<int>(std::floor(std::log2(kIntegerDefaultTolerance)));
+      k = largestPassing(floorK, floorK + 5, [&](int e) {
+        return coded.at(e).errors.max < kIntegerRoundingBound;
+      });
+      if (k < floorK) k = floorK;  // the fit itself misses by half a step (a --ctrl model)
+      note = "zfp tolerance " + tolerancePhrase(k) +
+             ", the default of integer samples: the largest (from " +
+             text(kIntegerDefaultTolerance) +
+             " up) whose decoded model rounds back to every sample it was fitted to";
+      const std::int64_t cap = grid.inputBytes;
+      if (!countsGiven && cap > 0 && coded.at(k).controlBytes > cap) {
+        const int raised = smallestPassing(k, hi, [&](int e) {
+          return coded.at(e).controlBytes <= cap;
+        });
+        if (raised <= hi) {
+          k = raised;
+          note = "zfp tolerance " + tolerancePhrase(k) +
+                 ": raised further to keep the model within the input's " + std::to_string(cap) +
+                 " bytes (--coding lossless or --coding-tolerance for more)";
+        }
+      }
+    } else {
+      const double range = std::max(fit.valueMax() - fit.valueMin(), 1e-30);
+      k = static_cast<int>(std::floor(std::log2(kFloatDefaultRelativeTolerance * range)));
+      note = "zfp tolerance " + tolerancePhrase(k) + " (the default: 1e-5 of the value range)";
+    }
+  } else if (coder == ControlCoder::kLossless) {
+    note = "lossless (byte-shuffled float32, zstd): the fitted model bit for bit";
+  } else {
+    note = "float32, uncoded";
+  }
+  const Coded& c = coded.at(k);
+  if (report)
+    report->seconds +=
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return finish(c, report, note);
+}
+
+Model encodeToBudget(const StructuredGrid& grid, const StructuredFitOptions& fit,
+                     const CodingOptions& options, bool countsGiven, FitReport* report) {
+  const auto start = std::chrono::steady_clock::now();
+  const ModelBudget& budget = options.budget;
+  if (budget.kind == BudgetKind::kNone) throw Error("encodeToBudget needs a budget");
+  if (!(std::isfinite(budget.value) && budget.value > 0.0))
+    throw Error("the budget must be a positive number");
+  const ControlCoder coder = resolvedCoder(options);
+  if (coder == ControlCoder::kZfp && options.tolerance > 0.0)
+    throw Error("a budget chooses the zfp tolerance: give one or the other");
+  const double samples = static_cast<double>(grid.sampleCount());
+  const std::int64_t byteCap =
+      budget.kind == BudgetKind::kBitsPerSample
+          ? static_cast<std::int64_t>(std::floor(budget.value * samples / 8.0))
+          : 0;
+
+  // Candidate control grids: the given one, or a share of the samples on every axis.
+  std::vector<Index3> counts;
+  const Index3 given = resolveControlCounts(grid, fit);
+  if (countsGiven) {
+    counts.push_back(given);
+  } else {
+    for (double share : {1.0, 0.8, 0.65, 0.5, 0.4, 0.32, 0.25}) {
+      Index3 n{};
+      for (int a = 0; a < 3; ++a)
+        n[a] = std::clamp<std::int64_t>(std::llround(share * static_cast<double>(grid.dims[a])),
+                                        fit.degree[a] + 1, grid.dims[a]);
+      if (counts.empty() || n != counts.back()) counts.push_back(n);
+    }
+  }
+
+  std::optional<Coded> best;
+  double bestFitRms = 0.0;
+  std::string tried;
+  double range = 0.0, targetRms = 0.0;
+  for (size_t i = 0; i < counts.size(); ++i) {
+    StructuredFitOptions f = fit;
+    f.controlCounts = counts[i];
+    if (fit.progress)
+      fit.progress(static_cast<double>(i) / static_cast<double>(counts.size()),
+                   "candidate " + std::to_string(i + 1) + " of " + std::to_string(counts.size()));
+    StructuredFitOptions quiet = f;
+    quiet.progress = nullptr;
+    const Model model = fitStructured(grid, quiet);
+    range = model.valueMax() - model.valueMin();
+    if (budget.kind == BudgetKind::kPsnr)
+      targetRms = range > 0.0 ? range / std::pow(10.0, budget.value / 20.0) : 0.0;
+    else if (budget.kind == BudgetKind::kRmsError)
+      targetRms = budget.value;
+    const double fitRms = model.provenance().rmsError;
+    Coder coded(model, grid, coder);
+    const auto [lo, hi] = exponentRange(model);
+    std::optional<int> k;
+    if (budget.kind == BudgetKind::kBitsPerSample) {
+      const int e = smallestPassing(lo, hi, [&](int x) { return coded.at(x).controlBytes <= byteCap; });
+      if (e <= hi) k = e;
+    } else if (fitRms <= targetRms) {
+      const int e = largestPassing(lo, hi, [&](int x) { return coded.at(x).errors.rms <= targetRms; });
+      if (e >= lo) k = e;
+    }
+    std::ostringstream line;
+    line << counts[i][0] << "x" << counts[i][1] << "x" << counts[i][2] << ": ";
+    if (!k) {
+      line << (budget.kind == BudgetKind::kBitsPerSample ? "over the budget at any tolerance"
+                                                        : "the fit alone misses the target (" +
+                                                              text(psnrOf(range, fitRms), "%.1f") +
+                                                              " dB)");
+      tried += "  " + line.str() + "\n";
+      // Fewer control points only lose more (error targets) or cannot be smaller than a miss of
+      // the byte budget by much; keep looking only while nothing was found.
+      if (best && budget.kind != BudgetKind::kBitsPerSample) break;
+      continue;
+    }
+    const Coded& c = coded.at(*k);
+    line << text(8.0 * static_cast<double>(c.controlBytes) / samples, "%.3f") << " bits/sample, "
+         << text(psnrOf(range, c.errors.rms), "%.2f") << " dB"
+         << (coder == ControlCoder::kZfp ? ", tolerance " + tolerancePhrase(*k) : std::string());
+    tried += "  " + line.str() + "\n";
+    const bool better = !best || (budget.kind == BudgetKind::kBitsPerSample
+                                      ? c.errors.rms < best->errors.rms
+                                      : c.controlBytes < best->controlBytes);
+    if (better) {
+      best = c;
+      bestFitRms = fitRms;
+    } else if (budget.kind == BudgetKind::kBitsPerSample ? c.errors.rms > 1.5 * best->errors.rms
+                                                         : c.controlBytes > 1.2 * best->controlBytes) {
+      break;  // past the best: fewer control points keep losing
+    }
+  }
+  if (!best) {
+    std::ostringstream m;
+    m << "no model of " << grid.source << " meets ";
+    if (budget.kind == BudgetKind::kBitsPerSample)
+      m << "--bits-per-sample " << budget.value;
+    else if (budget.kind == BudgetKind::kPsnr)
+      m << "--psnr " << budget.value << " dB";
+    else
+      m << "--rms-error " << budget.value;
+    m << ":\n" << tried;
+    if (budget.kind != BudgetKind::kBitsPerSample)
+      m << "(an interpolating fit of every sample reaches the most; a higher degree or "
+           "--coding lossless may help)";
+    else
+      m << "(raise the budget, or give fewer control points with --ctrl)";
+    throw Error(m.str());
+  }
+  std::ostringstream note;
+  note << (budget.kind == BudgetKind::kBitsPerSample
+               ? "the most accurate of the candidates within "
+               : "the smallest of the candidates that meets ")
+       << (budget.kind == BudgetKind::kBitsPerSample ? text(budget.value) + " bits/sample"
+           : budget.kind == BudgetKind::kPsnr        ? text(budget.value) + " dB PSNR"
+                                                     : "an RMS error of " + text(budget.value))
+       << " (fit alone: " << text(psnrOf(range, bestFitRms), "%.2f") << " dB); candidates:\n"
+       << tried;
+  if (report) {
+    report->seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    report->rounds = 0;
+  }
+  if (fit.progress) fit.progress(1.0, "done");
+  return finish(std::move(*best), report, note.str());
+}
+
+}  // namespace mfadvr
