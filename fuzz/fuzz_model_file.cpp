@@ -1,9 +1,12 @@
 // libFuzzer target: the .mfa loaders (one model, multi-block) must turn any byte string into
-// models or an Error.
+// models or an Error. The files' checksums keep mutations away from the coded control points,
+// so the input is also read as a coded section of its own: a selector byte (bit 7: zfp, else
+// lossless; bits 0-6: the control grid 5 x 4 x (1 + bits % 8)) and the payload.
 #include <cstdint>
 #include <span>
 
 #include "core/model/BlockModelFile.h"
+#include "core/model/ControlCoding.h"
 #include "core/model/ModelFile.h"
 #include "core/util/Error.h"
 
@@ -13,6 +16,20 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, size_t size) {
     (void)m.valueGradient(mfadvr::Vec3d::Zero());
     (void)m.inside(mfadvr::Vec3d::Zero());
   } catch (const mfadvr::Error&) {
+  }
+  if (size >= 1) {
+    const bool zfp = (data[0] & 0x80) != 0;
+    const mfadvr::Index3 dims{5, 4, 1 + (data[0] & 0x7f) % 8};
+    const mfadvr::ControlCoding coding{zfp ? mfadvr::ControlCoder::kZfp
+                                           : mfadvr::ControlCoder::kLossless,
+                                       1e-3};
+    try {
+      const auto ctrl =
+          mfadvr::decodeControlPoints(std::span<const std::uint8_t>(data + 1, size - 1), dims,
+                                      coding);
+      if (ctrl.size() != static_cast<size_t>(dims[0] * dims[1] * dims[2])) __builtin_trap();
+    } catch (const mfadvr::Error&) {
+    }
   }
   try {
     for (const auto& b : mfadvr::parseBlockModels(std::span<const std::uint8_t>(data, size)))

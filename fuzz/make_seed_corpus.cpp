@@ -8,6 +8,7 @@
 #include "core/encode/PieceEncoder.h"
 #include "core/encode/StructuredEncoder.h"
 #include "core/model/BlockModelFile.h"
+#include "core/model/ControlCoding.h"
 #include "core/model/ModelFile.h"
 
 int main(int argc, char** argv) {
@@ -23,6 +24,22 @@ int main(int argc, char** argv) {
     const auto m =
         mfadvr::fitStructured(mfadvr::sampleBuiltinSpec("builtin:marschner-lobb:6x5x4"), o);
     mfadvr::saveModel(m, models / ("seed" + std::to_string(i++) + ".mfa"));
+  }
+  for (const mfadvr::ControlCoding c :
+       {mfadvr::ControlCoding{mfadvr::ControlCoder::kLossless, 0.0},
+        mfadvr::ControlCoding{mfadvr::ControlCoder::kZfp, 1e-3}}) {
+    // Coded control points (format version 3).
+    mfadvr::StructuredFitOptions o;
+    o.controlCounts = {5, 4, 4};
+    const auto m = mfadvr::codeControlPoints(
+        mfadvr::fitStructured(mfadvr::sampleBuiltinSpec("builtin:marschner-lobb:6x5x4"), o), c);
+    mfadvr::saveModel(m, models / ("seed" + std::to_string(i++) + ".mfa"));
+    // The coded section alone, in the form the fuzzer's second half reads (see
+    // fuzz_model_file.cpp): a selector byte, then the payload.
+    const std::string payload = mfadvr::encodeControlPoints(m.spline().controlPoints(), {5, 4, 4}, c);
+    std::ofstream(models / ("seed-payload" + std::to_string(i++) + ".bin"), std::ios::binary)
+        << static_cast<char>(c.coder == mfadvr::ControlCoder::kZfp ? 0x83 : 0x03)
+        << payload;
   }
   {
     // A masked model: 3 x 4 x 5 = 60 nodes, so the last mask byte has padding bits.

@@ -47,7 +47,7 @@ TEST(MaskCli, InfoReportsTheMask) {
   auto r = test::runMfadvr("info " + masked + " --json");
   ASSERT_EQ(r.status, 0) << r.err;
   auto j = nlohmann::json::parse(r.out);
-  EXPECT_EQ(j["format_version"], 2);
+  EXPECT_EQ(j["format_version"], 3);
   EXPECT_EQ(j["mask"]["kind"], "point-coverage");
   EXPECT_EQ(j["mask"]["dims"], nlohmann::json({2, 2, 2}));
   EXPECT_DOUBLE_EQ(j["mask"]["inside_fraction"].get<double>(), 0.5);
