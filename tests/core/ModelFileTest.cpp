@@ -406,13 +406,33 @@ TEST(ModelFile, SemanticValidationBehindValidChecksum) {
   std::memcpy(nan.data() + nan.size() - 8, &q, 4);
   fixChecksum(nan);
   EXPECT_NE(errorOf(nan).find("NaN"), std::string::npos);
+  // Knots are stored as float64 only where no rule gives them: a model without its sample grid.
+  Model noRule = smallModel();
+  noRule.provenance().sampleDims = {0, 0, 0};
+  const auto storedKnots = bytesOf(serializeModel(noRule));
+  EXPECT_NE(headerOf(serializeModel(noRule)).find("\"rule\":\"stored\""), std::string::npos);
   std::uint32_t hlen;
-  std::memcpy(&hlen, full.data() + 14, 4);
-  auto knots = full;
+  std::memcpy(&hlen, storedKnots.data() + 14, 4);
+  auto knots = storedKnots;
   const double k = 0.9;  // second knot of x: breaks clamping
   std::memcpy(knots.data() + 18 + hlen + 8, &k, 8);
   fixChecksum(knots);
   EXPECT_NE(errorOf(knots).find("knots"), std::string::npos);
+
+  // Knot rules: the placement for the recorded samples, checked before use.
+  const std::string rule = "{\"rule\":\"samples\",\"samples\":9}";
+  EXPECT_NE(headerOf(serializeModel(smallModel())).find(rule), std::string::npos);
+  EXPECT_NE(errorOf(withHeader(full, rule, "{\"rule\":\"samples\",\"samples\":5}"))
+                .find("fewer samples than control points"),
+            std::string::npos);
+  EXPECT_NE(errorOf(withHeader(full, rule, "{\"rule\":\"spline\"}")).find("unknown knot rule"),
+            std::string::npos);
+  EXPECT_NE(errorOf(withHeader(full, rule, "{\"rule\":\"samples\",\"samples\":1e99}")), "");
+  EXPECT_NE(errorOf(withHeader(full, rule, "{\"rule\":\"samples\"}")), "");
+  EXPECT_NE(errorOf(withHeader(full, rule, "7")), "");
+  // A rule where the knots were stored leaves bytes over: a size error, never a misread.
+  EXPECT_NE(errorOf(withHeader(full, rule, "{\"rule\":\"stored\"}")).find("truncated"),
+            std::string::npos);
 }
 
 // A deterministic mini-fuzz: random multi-byte edits with the checksum repaired, so that the
