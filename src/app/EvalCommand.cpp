@@ -18,6 +18,27 @@ std::string defaultDataDir() {
   return MFADVR_DEFAULT_DATA_DIR;
 }
 
+// Prints where the report is; exit status 1 when an experiment failed, an input was skipped or
+// the plots were not made.
+int reportSummary(const eval::EvaluationSummary& s) {
+  std::printf("report: %s (%d matches, %d differences with the paper), %.0f s\n",
+              s.report.c_str(), s.matches, s.differences, s.seconds);
+  int status = 0;
+  for (const auto& f : s.failed) {
+    std::fprintf(stderr, "mfadvr: error: experiment '%s' failed (see the report)\n", f.c_str());
+    status = 1;
+  }
+  for (const auto& p : s.problems) {
+    std::fprintf(stderr, "mfadvr: error: input skipped: %s\n", p.c_str());
+    status = 1;
+  }
+  if (!s.plotError.empty()) {
+    std::fprintf(stderr, "mfadvr: error: plots not made: %s\n", s.plotError.c_str());
+    status = 1;
+  }
+  return status;
+}
+
 }  // namespace
 
 Command addEvalCommand(CLI::App& app) {
@@ -67,7 +88,47 @@ Command addEvalCommand(CLI::App& app) {
                   "Leave out VTK's renderers (they need an X display: use xvfb-run -a)");
   paper->add_flag("-q,--quiet", o->quiet, "No progress on stderr");
 
-  auto run = [o, paper]() -> int {
+  // `eval compression`: the compression study alone (the `compression` experiment), with the
+  // options that apply to it.
+  auto c = std::make_shared<Options>();
+  CLI::App* compression = sub->add_subcommand(
+      "compression",
+      "Rate-distortion of coded MFA models against ZFP (fixed-rate, fixed-accuracy) and "
+      "downsampling at equal bytes: volume PSNR, rendered-image PSNR/SSIM and memory, on "
+      "Marschner-Lobb, VTK's Wavelet source and the standard volumes (docs/compression.md); the "
+      "same as `eval paper --only compression`");
+  compression->add_option("--out", c->out, "Output folder (created; files in it are replaced)")
+      ->required();
+  compression->add_flag("--quick", c->eval.quick,
+                        "Two small volumes at 0.5, 1 and 2 bits/sample, 96x96 images (seconds)");
+  compression->add_option("--volume", c->eval.volumes,
+                          "Add a structured volume (repeatable; any format `render` reads)");
+  compression
+      ->add_option("--data", c->dataDir,
+                   "Folder with the standard data sets (fuel, neghip, nucleon, bonsai); missing "
+                   "ones are skipped")
+      ->capture_default_str();
+  compression->add_option("--threads", c->eval.threads, "Ray-casting threads (0: all cores)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  compression->add_flag("-q,--quiet", c->quiet, "No progress on stderr");
+
+  auto run = [o, c, paper, compression]() -> int {
+    if (compression->parsed()) {
+      c->eval.only = {"compression"};
+      c->noPlots = true;  // the study's table is its figure; bench/compression_rd.py plots
+      c->noVtk = true;
+      std::string commandLine = "mfadvr eval compression --out " + c->out;
+      if (c->eval.quick) commandLine += " --quick";
+      for (const auto& v : c->eval.volumes) commandLine += " --volume " + v;
+      *o = *c;
+      o->eval.out = o->out;
+      o->eval.dataDir = o->dataDir;
+      o->eval.plots = false;
+      o->eval.vtk = false;
+      o->eval.progress = !o->quiet;
+      return reportSummary(eval::runPaperEvaluation(o->eval, commandLine));
+    }
     if (!paper->parsed()) return 2;
     o->eval.out = o->out;
     o->eval.dataDir = o->dataDir;
@@ -83,23 +144,7 @@ Command addEvalCommand(CLI::App& app) {
     for (const auto& m : o->eval.meshes) commandLine += " --mesh " + m;
     if (o->noVtk) commandLine += " --no-vtk";
     if (o->noPlots) commandLine += " --no-plots";
-    const eval::EvaluationSummary s = eval::runPaperEvaluation(o->eval, commandLine);
-    std::printf("report: %s (%d matches, %d differences with the paper), %.0f s\n",
-                s.report.c_str(), s.matches, s.differences, s.seconds);
-    int status = 0;
-    for (const auto& f : s.failed) {
-      std::fprintf(stderr, "mfadvr: error: experiment '%s' failed (see the report)\n", f.c_str());
-      status = 1;
-    }
-    for (const auto& p : s.problems) {
-      std::fprintf(stderr, "mfadvr: error: input skipped: %s\n", p.c_str());
-      status = 1;
-    }
-    if (!s.plotError.empty()) {
-      std::fprintf(stderr, "mfadvr: error: plots not made: %s\n", s.plotError.c_str());
-      status = 1;
-    }
-    return status;
+    return reportSummary(eval::runPaperEvaluation(o->eval, commandLine));
   };
   return {sub, run};
 }

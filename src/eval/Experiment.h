@@ -42,6 +42,7 @@ ExperimentReport runUnstructuredGallery(const EvalContext&);  // Fig. 9
 ExperimentReport runParameterQuality(const EvalContext&);     // Fig. 10
 ExperimentReport runQueryTiming(const EvalContext&);          // Fig. 12
 ExperimentReport runRenderPerformance(const EvalContext&);    // Fig. 11
+ExperimentReport runCompressionStudy(const EvalContext&);     // beyond the paper: compression
 
 }  // namespace mfadvr::eval
 

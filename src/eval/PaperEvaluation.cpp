@@ -26,6 +26,8 @@ const std::vector<Experiment>& paperExperiments() {
       {"params", "MFA parameters vs rendering quality", "Fig. 10", runParameterQuality},
       {"query", "MFA parameters vs query time", "Fig. 12", runQueryTiming},
       {"performance", "Render time vs data size", "Fig. 11", runRenderPerformance},
+      {"compression", "Compact models: rate-distortion against ZFP and downsampling",
+       "future work: compression", runCompressionStudy},
   };
   return experiments;
 }

@@ -15,7 +15,8 @@ import shutil
 import subprocess
 import sys
 
-EXPERIMENTS = ["value", "tables", "structured", "unstructured", "params", "query", "performance"]
+EXPERIMENTS = ["value", "tables", "structured", "unstructured", "params", "query", "performance",
+               "compression"]
 
 
 def read(out, name):
@@ -117,6 +118,24 @@ def main():
         expect_columns(out, "fig09_unstructured.csv",
                        ["dataset", "points", "cells", "method", "render_seconds", "image"],
                        4 * len(unstructured))
+
+    # Compression: Marschner-Lobb and the small scans present, 3 rates, 5 methods (ZFP's
+    # fixed-accuracy mode may be missing at a rate where it cannot make a stream that small).
+    compression = read(out, "compression_rd.csv")
+    volumes = 1 + len(structured)
+    expect({r["volume"] for r in compression} == {"marschner-lobb 32^3"} | set(structured),
+           "compression volumes: %s" % sorted({r["volume"] for r in compression}))
+    expect(4 * 3 * volumes <= len(compression) <= 5 * 3 * volumes,
+           "compression: %d rows" % len(compression))
+    for r in compression:
+        expect(float(r["bits_per_sample"]) > 0 and float(r["volume_psnr"]) > 10,
+               "compression row %s" % r)
+        if r["method"] == "mfa-coded":
+            # The budget bounds the control points; the header and knots add under 2 KB.
+            samples = 32 ** 3 if r["volume"].startswith("marschner") else \
+                (64 ** 3 if r["volume"].startswith("fuel") else 41 ** 3)
+            expect(float(r["bits_per_sample"]) <= float(r["rate"]) + 8 * 2048 / samples,
+                   "compression: the coded model exceeds its budget: %s" % r)
 
     with open(os.path.join(out, "report.md")) as f:
         report = f.read()

@@ -1,0 +1,119 @@
+#include "core/model/ZfpArray.h"
+
+#include <zfp.h>
+
+#include <cmath>
+#include <cstring>
+
+#include "core/util/Error.h"
+
+namespace mfadvr {
+namespace {
+
+// RAII for ZFP's C objects: a stream in the given mode over a 3-D float field.
+class ZfpCodec {
+ public:
+  ZfpCodec(float* data, const Index3& dims, const ZfpSettings& settings)
+      : field_(zfp_field_3d(data, zfp_type_float, static_cast<size_t>(dims[0]),
+                            static_cast<size_t>(dims[1]), static_cast<size_t>(dims[2]))),
+        stream_(zfp_stream_open(nullptr)) {
+    if (!field_ || !stream_) {
+      release();
+      throw Error("cannot set up the zfp coder");
+    }
+    if (!(std::isfinite(settings.parameter) && settings.parameter > 0.0)) {
+      release();
+      throw Error(std::string("the zfp ") +
+                  (settings.mode == ZfpSettings::Mode::kRate ? "rate" : "tolerance") +
+                  " must be a positive number");
+    }
+    if (settings.mode == ZfpSettings::Mode::kRate)
+      zfp_stream_set_rate(stream_, settings.parameter, zfp_type_float, 3, zfp_false);
+    else
+      zfp_stream_set_accuracy(stream_, settings.parameter);
+  }
+  ~ZfpCodec() { release(); }
+  ZfpCodec(const ZfpCodec&) = delete;
+  ZfpCodec& operator=(const ZfpCodec&) = delete;
+
+  // Bytes of the longest stream ZFP writes for the field in this mode. Its decoder, whatever the
+  // bits, reads no more per block than this bound allows.
+  size_t maximumBytes() const { return zfp_stream_maximum_size(stream_, field_); }
+
+  // Runs ZFP over `words` (64-bit words: ZFP reads and writes whole words) of `bytes` bytes.
+  size_t compress(void* words, size_t bytes) {
+    attach(words, bytes);
+    return zfp_compress(stream_, field_);
+  }
+  size_t decompress(void* words, size_t bytes) {
+    attach(words, bytes);
+    return zfp_decompress(stream_, field_);
+  }
+
+ private:
+  void attach(void* words, size_t bytes) {
+    if (bits_) stream_close(bits_);
+    bits_ = stream_open(words, bytes);
+    if (!bits_) throw Error("cannot set up the zfp coder");
+    zfp_stream_set_bit_stream(stream_, bits_);
+    zfp_stream_rewind(stream_);
+  }
+  void release() {
+    if (bits_) stream_close(bits_);
+    if (stream_) zfp_stream_close(stream_);
+    if (field_) zfp_field_free(field_);
+    bits_ = nullptr;
+    stream_ = nullptr;
+    field_ = nullptr;
+  }
+  zfp_field* field_ = nullptr;
+  zfp_stream* stream_ = nullptr;
+  bitstream* bits_ = nullptr;
+};
+
+size_t wordsFor(size_t bytes) {
+  return (bytes + sizeof(std::uint64_t) - 1) / sizeof(std::uint64_t);
+}
+
+void checkCount(size_t count, const Index3& dims) {
+  if (static_cast<std::int64_t>(count) != dims[0] * dims[1] * dims[2])
+    throw Error("the zfp array does not hold dims[0] x dims[1] x dims[2] values");
+}
+
+}  // namespace
+
+std::int64_t zfpMaxBytes(const Index3& dims, const ZfpSettings& settings) {
+  ZfpCodec codec(nullptr, dims, settings);
+  return static_cast<std::int64_t>(codec.maximumBytes());
+}
+
+std::string zfpCompress(std::span<const float> values, const Index3& dims,
+                        const ZfpSettings& settings) {
+  checkCount(values.size(), dims);
+  // ZFP takes a non-const pointer for both directions; compression only reads it.
+  ZfpCodec codec(const_cast<float*>(values.data()), dims, settings);
+  std::vector<std::uint64_t> words(wordsFor(codec.maximumBytes()));
+  const size_t size = codec.compress(words.data(), words.size() * sizeof(std::uint64_t));
+  if (size == 0) throw Error("zfp could not compress the array");
+  return std::string(reinterpret_cast<const char*>(words.data()), size);
+}
+
+std::vector<float> zfpDecompress(std::span<const std::uint8_t> bytes, const Index3& dims,
+                                 const ZfpSettings& settings) {
+  std::vector<float> values(static_cast<size_t>(dims[0] * dims[1] * dims[2]));
+  ZfpCodec codec(values.data(), dims, settings);
+  const size_t maximum = codec.maximumBytes();
+  if (bytes.size() > maximum)
+    throw Error("the zfp stream is longer than its mode can produce");
+  // ZFP's decoder does not know where the stream ends: decode from a zero-padded copy of the
+  // largest size, so that damaged bits cannot make it read past the buffer.
+  std::vector<std::uint64_t> words(wordsFor(maximum) + 1, 0);
+  std::memcpy(words.data(), bytes.data(), bytes.size());
+  const size_t used = codec.decompress(words.data(), words.size() * sizeof(std::uint64_t));
+  if (used == 0 || used > wordsFor(bytes.size()) * sizeof(std::uint64_t))
+    throw Error(std::string("the zfp stream is corrupt (it ") +
+                (used == 0 ? "does not decode" : "runs past its end") + ")");
+  return values;
+}
+
+}  // namespace mfadvr
