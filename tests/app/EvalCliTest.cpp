@@ -94,3 +94,23 @@ TEST(CliEval, UnreadableMeshIsSkippedAndReported) {
       "unstructured", "--mesh", "broken.vtu",
       "<VTKFile type=\"UnstructuredGrid\"><UnstructuredGrid><Piece NumberOfPoints=\"4\"");
 }
+
+TEST(CliEval, CompressionStudyWritesItsTable) {
+  const auto out = tmp("eval_compression");
+  // No standard data: the study runs on Marschner-Lobb alone and says which files it missed.
+  const auto r = runMfadvr("eval compression --quick -q --data " + (out / "no-data").string() +
+                           " --out " + out.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  const std::string csv = slurp(out / "compression_rd.csv");
+  EXPECT_EQ(csv.rfind("volume,rate,method,bits_per_sample,volume_psnr,image_psnr,image_ssim,"
+                      "memory_bytes\n",
+                      0),
+            0u)
+      << csv;
+  for (const char* method : {"mfa-coded", "mfa-ls-float32", "zfp-rate", "downsampled-cubic"})
+    EXPECT_NE(csv.find(method), std::string::npos) << method;
+  const std::string report = slurp(out / "report.md");
+  EXPECT_NE(report.find("rate-distortion against ZFP"), std::string::npos);
+  EXPECT_NE(report.find("fuel_64x64x64_uint8.raw"), std::string::npos) << "names the missing file";
+  EXPECT_EQ(runMfadvr("eval compression --quick").status, 2);  // --out is required
+}
