@@ -14,6 +14,7 @@
 #include "core/encode/CodingChoice.h"
 #include "core/encode/Encoder.h"
 #include "core/model/ModelFile.h"
+#include "core/model/ZfpArray.h"
 #include "core/util/Crc32.h"
 
 namespace mfadvr {
@@ -103,6 +104,28 @@ TEST(ControlCoding, DamagedPayloadsAreErrorsOrValuesNeverCrashes) {
     EXPECT_THROW(decodeControlPoints(bytesOf(huge), d, c), Error);
   }
   EXPECT_THROW(parseControlCoder("gzip"), Error);
+}
+
+TEST(ZfpArray, FixedRateTakesItsBitsAndDecodesDamagedStreamsSafely) {
+  const Index3 d{16, 12, 8};
+  const std::vector<float> v = smoothGrid(d);
+  const ZfpSettings rate{ZfpSettings::Mode::kRate, 4.0};
+  const std::string stream = zfpCompress(v, d, rate);
+  EXPECT_EQ(stream.size(), v.size() * 4 / 8);  // 4 bits per value, whole 4^3 blocks
+  const std::vector<float> back = zfpDecompress(bytesOf(stream), d, rate);
+  EXPECT_LT(maxDifference(back, v), 20.0);
+  EXPECT_GT(maxDifference(back, v), 0.0);  // lossy at 4 bits per value
+  std::mt19937 rng(3);
+  for (int trial = 0; trial < 200; ++trial) {
+    std::string bad = stream.substr(0, rng() % (stream.size() + 1));
+    if (!bad.empty()) bad[rng() % bad.size()] ^= 0x5a;
+    try {
+      EXPECT_EQ(zfpDecompress(bytesOf(bad), d, rate).size(), v.size());
+    } catch (const Error&) {
+    }
+  }
+  EXPECT_THROW(zfpCompress(v, d, {ZfpSettings::Mode::kRate, 0.0}), Error);
+  EXPECT_THROW(zfpCompress(std::span<const float>(v).first(10), d, rate), Error);
 }
 
 Model fittedModel() {
