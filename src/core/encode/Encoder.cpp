@@ -35,6 +35,29 @@ Model encodeStructured(const StructuredGrid& grid, const EncodeOptions& options,
   const double bound =
       options.adaptive->maxRelativeError * (fitted.valueMax() - fitted.valueMin());
   Model m = codeFittedModel(fitted, grid, coding, lossy ? bound : 0.0, countsGiven, &r);
+  if (lossy && coding.tolerance == 0.0 && bound > 0.0) {
+    // The interpolating model, coded to the same bound, is often the smaller file: its control
+    // points are as smooth as the data, where a least-squares fit with slightly fewer points
+    // than samples has rough ones (measured on an 8-bit scan: 0.67 against 6.9 bits/sample).
+    FitReport interpolating;
+    StructuredFitOptions all = fit;
+    all.controlCounts = {0, 0, 0};
+    all.progress = nullptr;
+    Model alt = codeFittedModel(fitStructured(grid, all, &interpolating), grid, coding, bound,
+                                countsGiven, &interpolating);
+    if (interpolating.maxError <= bound && interpolating.modelBytes < r.modelBytes) {
+      interpolating.rounds = r.rounds;
+      interpolating.stopReason = r.stopReason;
+      interpolating.seconds += r.seconds;
+      interpolating.codingNote += "; chosen over the adaptive fit (" +
+                                  std::to_string(r.controlCounts[0]) + "x" +
+                                  std::to_string(r.controlCounts[1]) + "x" +
+                                  std::to_string(r.controlCounts[2]) + " control points, " +
+                                  std::to_string(r.modelBytes) + " bytes): smaller";
+      r = interpolating;
+      m = std::move(alt);
+    }
+  }
   // The bound the user gave, judged on the decoded model.
   r.targetRelativeError = options.adaptive->maxRelativeError;
   r.reachedTarget = r.maxRelativeError() <= r.targetRelativeError;

@@ -38,7 +38,8 @@ struct EncodeOptions {
 
 // A fit (fixed, adaptive, or the candidates of a budget) and the coding of its control points
 // (CodingChoice.h). With --max-error and zfp coding, the fit gets half the bound and the coding
-// the room the fit leaves, so that the decoded model keeps the bound.
+// the room the fit leaves, so that the decoded model keeps the bound; the interpolating model
+// coded to the same bound replaces it when its file is smaller.
 Model encodeStructured(const StructuredGrid& grid, const EncodeOptions& options,
                        FitReport* report = nullptr);
 
