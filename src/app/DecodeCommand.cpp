@@ -18,13 +18,14 @@
 #include <vtkTypeUInt8Array.h>
 #include <vtkXMLImageDataWriter.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
-#include <limits>
+#include <memory>
+#include <sstream>
 
 #include "app/Commands.h"
 #include "app/FitReportOutput.h"
@@ -32,6 +33,7 @@
 #include "core/decode/GridDecoder.h"
 #include "core/model/BlockModelFile.h"
 #include "core/model/ModelFile.h"
+#include "core/util/AtomicFile.h"
 #include "core/util/Error.h"
 
 namespace mfadvr::app {
@@ -123,38 +125,6 @@ std::string nrrdHeader(const DecodeGrid& g, const SampleType& t, const std::stri
   h << "\n";
   return h.str();
 }
-
-// A file written under a temporary name and renamed over the target when complete.
-class StreamedFile {
- public:
-  explicit StreamedFile(std::filesystem::path path)
-      : path_(std::move(path)), temp_(path_.string() + ".partial") {
-    out_.open(temp_, std::ios::binary | std::ios::trunc);
-    if (!out_) throw Error("cannot write " + temp_.string() + ": " + std::strerror(errno));
-  }
-  ~StreamedFile() {
-    if (!done_) {
-      out_.close();
-      std::error_code ec;
-      std::filesystem::remove(temp_, ec);
-    }
-  }
-  void write(const std::string& bytes) {
-    out_.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-    if (!out_) throw Error("cannot write " + temp_.string() + " (disk full?)");
-  }
-  void commit() {
-    out_.close();
-    if (!out_) throw Error("cannot write " + temp_.string());
-    std::filesystem::rename(temp_, path_);
-    done_ = true;
-  }
-
- private:
-  std::filesystem::path path_, temp_;
-  std::ofstream out_;
-  bool done_ = false;
-};
 
 template <class ArrayT, class T>
 vtkSmartPointer<vtkDataArray> vtkArrayFrom(const std::string& bytes, std::int64_t n) {
@@ -254,27 +224,23 @@ Command addDecodeCommand(CLI::App& app) {
           model.provenance().field.empty() ? "MFA value" : model.provenance().field;
       array->SetName(field.c_str());
       image->GetPointData()->SetScalars(array);
-      const std::string temp = o->output + ".partial.vti";
+      AtomicFileWriter file(o->output);
       vtkNew<vtkXMLImageDataWriter> writer;
-      writer->SetFileName(temp.c_str());
+      writer->SetFileName(file.temporaryPath().c_str());
       writer->SetInputData(image);
       writer->SetDataModeToAppended();
       writer->SetCompressorTypeToZLib();
-      if (writer->Write() != 1) {
-        std::error_code ec;
-        std::filesystem::remove(temp, ec);
-        throw Error("cannot write " + o->output);
-      }
-      std::filesystem::rename(temp, o->output);
+      if (writer->Write() != 1) throw Error("cannot write " + o->output);
+      file.commit();
     } else {
       std::filesystem::path dataPath = o->output;
-      std::unique_ptr<StreamedFile> header;
+      std::unique_ptr<AtomicFileWriter> header;
       if (ext == ".nhdr") {
         dataPath.replace_extension(".raw");
-        header = std::make_unique<StreamedFile>(o->output);
+        header = std::make_unique<AtomicFileWriter>(o->output);
         header->write(nrrdHeader(grid, *type, o->model, dataPath.filename().string()));
       }
-      StreamedFile data(dataPath);
+      AtomicFileWriter data(dataPath);
       if (ext == ".nrrd") data.write(nrrdHeader(grid, *type, o->model, ""));
       decodeBySlabs(model, grid, slab, [&](std::int64_t, std::int64_t z1, auto values) {
         std::string bytes;

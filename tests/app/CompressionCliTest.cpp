@@ -63,7 +63,9 @@ TEST(CompressionCli, IntegerScansAreCodedByDefaultAndDecodeBackExactly) {
   const std::string back = test::slurp(out);
   ASSERT_EQ(back.size(), input.size());
   EXPECT_EQ(std::memcmp(back.data(), input.data(), input.size()), 0);
-  EXPECT_FALSE(std::filesystem::exists(out + ".partial"));
+  // Written atomically: no temporary file is left beside it.
+  for (const auto& e : std::filesystem::directory_iterator(dir))
+    EXPECT_EQ(e.path().filename().string().find(".tmp."), std::string::npos) << e.path();
 
   // info names the coding.
   const auto info = runMfadvr("info " + model);

@@ -124,11 +124,6 @@ bool isIntegerSampleType(const std::string& type) {
   return std::find(std::begin(kTypes), std::end(kTypes), type) != std::end(kTypes);
 }
 
-double psnrOf(double range, double rms) {
-  if (rms <= 0.0) return std::numeric_limits<double>::infinity();
-  return 20.0 * std::log10(range / rms);
-}
-
 ControlCoder resolvedCoder(const CodingOptions& options) {
   if (options.coder) return *options.coder;
   return options.budget.kind != BudgetKind::kNone ? ControlCoder::kZfp : ControlCoder::kFloat32;

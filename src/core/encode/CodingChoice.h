@@ -63,7 +63,4 @@ Model codeFittedModel(const Model& fit, const StructuredGrid& grid, const Coding
 Model encodeToBudget(const StructuredGrid& grid, const StructuredFitOptions& fit,
                      const CodingOptions& options, bool countsGiven, FitReport* report);
 
-// 20 log10(range / rms); +inf for rms 0.
-double psnrOf(double range, double rms);
-
 }  // namespace mfadvr

@@ -30,9 +30,13 @@ FitReport fitReportOf(const Model& model) {
   return r;
 }
 
+double psnrOf(double range, double rms) {
+  if (rms <= 0.0) return std::numeric_limits<double>::infinity();
+  return 20.0 * std::log10(range / rms);
+}
+
 double FitReport::psnr() const {
-  if (rmsError <= 0.0) return std::numeric_limits<double>::infinity();
-  return 20.0 * std::log10(valueRange() / rmsError);
+  return psnrOf(valueRange(), rmsError);
 }
 
 double FitReport::bitsPerSample() const {

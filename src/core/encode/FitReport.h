@@ -63,6 +63,9 @@ struct FitReport {
   double relative(double e) const { return valueRange() > 0.0 ? e / valueRange() : e; }
 };
 
+// PSNR in dB of an RMS error over a value range: 20 log10(range / rms); +inf for rms 0.
+double psnrOf(double range, double rms);
+
 // The report fields a model records itself: source, input size, degree, control counts, value
 // range, errors, fit time (from its provenance), encoder and file size. Encoders add the rest.
 FitReport fitReportOf(const Model& model);

@@ -20,11 +20,6 @@ std::int64_t countOf(const Index3& dims) {
   return dims[0] * dims[1] * dims[2];
 }
 
-void checkTolerance(const ControlCoding& c) {
-  if (c.coder == ControlCoder::kZfp && !(std::isfinite(c.tolerance) && c.tolerance > 0.0))
-    throw Error("the zfp coding tolerance must be a positive number");
-}
-
 std::string shuffledZstd(std::span<const float> ctrl) {
   const size_t n = ctrl.size();
   const auto* raw = reinterpret_cast<const std::uint8_t*>(ctrl.data());
@@ -81,7 +76,6 @@ std::int64_t maxCodedControlBytes(const Index3& dims, const ControlCoding& codin
     case ControlCoder::kLossless:
       return static_cast<std::int64_t>(ZSTD_compressBound(static_cast<size_t>(4 * count)));
     case ControlCoder::kZfp:
-      checkTolerance(coding);
       return zfpMaxBytes(dims, {ZfpSettings::Mode::kAccuracy, coding.tolerance});
   }
   return 0;
@@ -96,7 +90,6 @@ std::string encodeControlPoints(std::span<const float> ctrl, const Index3& dims,
       return std::string(reinterpret_cast<const char*>(ctrl.data()), ctrl.size() * sizeof(float));
     case ControlCoder::kLossless: return shuffledZstd(ctrl);
     case ControlCoder::kZfp:
-      checkTolerance(coding);
       return zfpCompress(ctrl, dims, {ZfpSettings::Mode::kAccuracy, coding.tolerance});
   }
   return {};

@@ -12,40 +12,57 @@
 
 namespace mfadvr {
 
-void writeFileAtomically(const std::filesystem::path& path, std::string_view bytes) {
+AtomicFileWriter::AtomicFileWriter(std::filesystem::path target) : target_(std::move(target)) {
   const std::filesystem::path dir =
-      path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
-  std::string tmpl = (dir / (path.filename().string() + ".tmp.XXXXXX")).string();
-  const int fd = mkstemp(tmpl.data());
-  if (fd < 0) throw Error("cannot write " + path.string() + ": " + std::strerror(errno));
-  auto fail = [&](const std::string& what) {
-    const int err = errno;
-    ::close(fd);
-    ::unlink(tmpl.c_str());
-    throw Error("cannot write " + path.string() + ": " + what + ": " + std::strerror(err));
-  };
+      target_.has_parent_path() ? target_.parent_path() : std::filesystem::path(".");
+  std::string tmpl = (dir / (target_.filename().string() + ".tmp.XXXXXX")).string();
+  fd_ = mkstemp(tmpl.data());
+  if (fd_ < 0) throw Error("cannot write " + target_.string() + ": " + std::strerror(errno));
+  temporary_ = tmpl;
+}
+
+AtomicFileWriter::~AtomicFileWriter() {
+  if (committed_) return;
+  if (fd_ >= 0) ::close(fd_);
+  ::unlink(temporary_.c_str());
+}
+
+void AtomicFileWriter::fail(const std::string& what) {
+  const int err = errno;
+  if (fd_ >= 0) ::close(fd_);
+  fd_ = -1;
+  ::unlink(temporary_.c_str());
+  committed_ = true;  // nothing left to clean up
+  throw Error("cannot write " + target_.string() + ": " + what + ": " + std::strerror(err));
+}
+
+void AtomicFileWriter::write(std::string_view bytes) {
   size_t done = 0;
   while (done < bytes.size()) {
-    const ssize_t w = ::write(fd, bytes.data() + done, bytes.size() - done);
+    const ssize_t w = ::write(fd_, bytes.data() + done, bytes.size() - done);
     if (w < 0) {
       if (errno == EINTR) continue;
       fail("write failed");
     }
     done += static_cast<size_t>(w);
   }
+}
+
+void AtomicFileWriter::commit() {
   // mkstemp creates 0600 files; give the result the usual permissions for a data file.
-  ::fchmod(fd, 0644);
-  if (::fsync(fd) != 0) fail("fsync failed");
-  if (::close(fd) != 0) {
-    const int err = errno;
-    ::unlink(tmpl.c_str());
-    throw Error("cannot write " + path.string() + ": " + std::strerror(err));
-  }
-  if (::rename(tmpl.c_str(), path.c_str()) != 0) {
-    const int err = errno;
-    ::unlink(tmpl.c_str());
-    throw Error("cannot write " + path.string() + ": " + std::strerror(err));
-  }
+  ::fchmod(fd_, 0644);
+  if (::fsync(fd_) != 0) fail("fsync failed");
+  const int fd = fd_;
+  fd_ = -1;
+  if (::close(fd) != 0) fail("close failed");
+  if (::rename(temporary_.c_str(), target_.c_str()) != 0) fail("rename failed");
+  committed_ = true;
+}
+
+void writeFileAtomically(const std::filesystem::path& path, std::string_view bytes) {
+  AtomicFileWriter file(path);
+  file.write(bytes);
+  file.commit();
 }
 
 }  // namespace mfadvr
