@@ -54,8 +54,10 @@ void EncodeCliOptions::addTo(CLI::App* sub, const std::string& group) {
       ->check(CLI::Range(1, 1000))
       ->group(group);
   sub->add_option("--smooth", smooth,
-                  "Scattered data: smoothing weight lambda >= 0 of the curvature penalty "
-                  "(default 1e-2; see docs/encoding.md)")
+                  "Smoothing weight lambda >= 0 of the roughness penalty, or 'auto' (grids: "
+                  "chosen by generalized cross-validation). Damps wavelengths below about "
+                  "2 pi lambda^(1/4) knot spans. Grids: default 0 (no smoothing; "
+                  "docs/denoise.md); scattered data: default 1e-2 (docs/encoding.md)")
       ->group(group);
   sub->add_option("--mask-res", maskRes,
                   "Scattered data: domain-mask nodes N (longest axis) or NX,NY,NZ (default: 128 "
@@ -86,7 +88,15 @@ EncodeOptions EncodeCliOptions::parse() const {
   EncodeOptions o;
   o.degree = fit.degree;
   o.controlCounts = fit.controlCounts;
-  if (!smooth.empty()) o.smoothing = parsePositive("--smooth", smooth, true);
+  if (smooth == "auto") {
+    o.autoSmoothing = true;
+  } else if (!smooth.empty()) {
+    const double v = parseNumberList("--smooth", smooth, 1, 1)[0];
+    if (!(v >= 0.0) || !std::isfinite(v))
+      throw CLI::ValidationError("--smooth",
+                                 "must be a finite number >= 0 or 'auto', got '" + smooth + "'");
+    o.smoothing = v;
+  }
   if (!maxError.empty()) {
     AdaptiveOptions a;
     a.maxRelativeError = parsePositive("--max-error", maxError, false);

@@ -128,9 +128,13 @@ Command addEncodeCommand(CLI::App& app) {
     const bool scattered = isScatteredInput(o->input);
     if (o->strict && !options.adaptive)
       throw CLI::ValidationError("--strict", "applies to adaptive encoding; give --max-error too");
-    if (!scattered && (!o->encode.smooth.empty() || !o->encode.maskRes.empty() || o->encode.noMask))
+    if (scattered && options.autoSmoothing)
+      throw CLI::ValidationError("--smooth",
+                                 "'auto' is for regular grids; give meshes and point clouds a "
+                                 "weight (default 1e-2)");
+    if (!scattered && (!o->encode.maskRes.empty() || o->encode.noMask))
       throw CLI::ValidationError(
-          "--smooth/--mask-res/--no-mask",
+          "--mask-res/--no-mask",
           "apply to meshes and point clouds; " + o->input + " is a regular grid");
     if (o->ghost >= 0 && o->blocks.empty())
       throw CLI::ValidationError("--ghost", "applies with --blocks");

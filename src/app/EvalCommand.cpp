@@ -21,8 +21,8 @@ std::string defaultDataDir() {
 // Prints where the report is; exit status 1 when an experiment failed, an input was skipped or
 // the plots were not made.
 int reportSummary(const eval::EvaluationSummary& s) {
-  std::printf("report: %s (%d matches, %d differences with the paper), %.0f s\n",
-              s.report.c_str(), s.matches, s.differences, s.seconds);
+  std::printf("report: %s (%d matches, %d differences with the paper), %.0f s\n", s.report.c_str(),
+              s.matches, s.differences, s.seconds);
   int status = 0;
   for (const auto& f : s.failed) {
     std::fprintf(stderr, "mfadvr: error: experiment '%s' failed (see the report)\n", f.c_str());
@@ -53,8 +53,7 @@ void addSharedOptions(CLI::App* sub, EvalCliOptions& o, const std::string& quick
   sub->add_flag("--quick", o.eval.quick, quickHelp);
   sub->add_option("--volume", o.eval.volumes, volumeHelp);
   sub->add_option("--data", o.dataDir,
-                  "Folder with the standard data sets (" + dataSets +
-                      "); missing ones are skipped")
+                  "Folder with the standard data sets (" + dataSets + "); missing ones are skipped")
       ->capture_default_str();
   sub->add_option("--threads", o.eval.threads, "Ray-casting threads (0: all cores)")
       ->capture_default_str()
@@ -131,8 +130,23 @@ Command addEvalCommand(CLI::App& app) {
                    "Add a structured volume (repeatable; any format `render` reads)",
                    "fuel, neghip, nucleon, bonsai");
 
-  auto run = [o, c, paper, compression]() -> int {
+  // `eval denoise`: the noise-reduction experiment alone (no VTK renderers, no plots).
+  auto d = std::make_shared<EvalCliOptions>();
+  d->noPlots = d->noVtk = true;
+  d->eval.only = {"denoise"};
+  CLI::App* denoise = sub->add_subcommand(
+      "denoise",
+      "Smoothing fits of noisy and quantized samples (Marschner-Lobb, the CT head phantom) "
+      "against the clean function's truth, beside every grid filter, and real scans with and "
+      "without smoothing (docs/denoise.md); the same as `eval paper --only denoise`");
+  addSharedOptions(denoise, *d, "41^3 grids, 8-bit and 3% noise only, 128x128 images (a minute)",
+                   "Add a real scan, rendered with and without smoothing (repeatable; any format "
+                   "`render` reads)",
+                   "neghip, bonsai");
+
+  auto run = [o, c, d, paper, compression, denoise]() -> int {
     if (compression->parsed()) return runEvaluation(*c, "compression");
+    if (denoise->parsed()) return runEvaluation(*d, "denoise");
     if (!paper->parsed()) return 2;
     return runEvaluation(*o, "paper");
   };

@@ -42,6 +42,9 @@ std::string formatFitReport(const FitReport& r, const std::string& modelPath) {
   if (r.points > 0)
     o << "smoothing       " << fmt("%g", r.smoothing) << "  (solver: " << r.solverIterations
       << " CG iterations, residual " << fmt("%.2e", r.solverResidual) << ")\n";
+  else if (r.smoothing > 0.0 || !r.smoothingNote.empty())
+    o << "smoothing       "
+      << (r.smoothingNote.empty() ? "lambda " + fmt("%g", r.smoothing) : r.smoothingNote) << "\n";
   if (r.rounds > 0)
     o << "adaptive        bound " << fmt("%.3e", r.targetRelativeError)
       << " of the value range: " << (r.reachedTarget ? "reached" : "NOT reached") << " after "
@@ -106,15 +109,21 @@ nlohmann::json fitReportJson(const FitReport& r, const std::string& modelPath) {
       {"compression_ratio", r.compressionRatio()},
       {"bits_per_sample", r.bitsPerSample()},
       {"psnr", std::isfinite(r.psnr()) ? nlohmann::json(r.psnr()) : nlohmann::json(nullptr)},
-      {"coding", {{"method", r.coding},
-                  {"tolerance", r.coding == "zfp" ? nlohmann::json(r.codingTolerance)
-                                                  : nlohmann::json(nullptr)},
-                  {"note", r.codingNote}}},
+      {"coding",
+       {{"method", r.coding},
+        {"tolerance",
+         r.coding == "zfp" ? nlohmann::json(r.codingTolerance) : nlohmann::json(nullptr)},
+        {"note", r.codingNote}}},
       {"model", modelPath.empty() ? nlohmann::json(nullptr) : nlohmann::json(modelPath)}};
   j["solver"] = r.points > 0 ? nlohmann::json{{"smoothing", r.smoothing},
                                               {"iterations", r.solverIterations},
                                               {"residual", r.solverResidual}}
                              : nlohmann::json(nullptr);
+  j["smoothing"] = {{"lambda", r.smoothing},
+                    {"automatic", !r.smoothingNote.empty()},
+                    {"noise_estimate", r.smoothingNote.empty() ? nlohmann::json(nullptr)
+                                                               : nlohmann::json(r.noiseEstimate)},
+                    {"note", r.smoothingNote}};
   j["adaptive"] = r.rounds > 0 ? nlohmann::json{{"max_relative_error_bound", r.targetRelativeError},
                                                 {"rounds", r.rounds},
                                                 {"reached", r.reachedTarget},

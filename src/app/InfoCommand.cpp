@@ -162,6 +162,7 @@ Command addInfoCommand(CLI::App& app) {
                   << p.sampleDims[2] << "  " << p.sampleType << "\n";
             out << "encoder         " << p.encoder << ", " << p.fitSeconds << " s, " << p.created
                 << ", mfadvr " << p.toolVersion << "\n";
+            if (p.smoothing > 0.0) out << "smoothing       lambda " << p.smoothing << "\n";
             out << "max error       " << p.maxError << "  ("
                 << (range > 0 ? p.maxError / range : p.maxError) << " of the range)\n";
             out << "rms error       " << p.rmsError << "  ("

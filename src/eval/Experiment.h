@@ -43,6 +43,7 @@ ExperimentReport runParameterQuality(const EvalContext&);     // Fig. 10
 ExperimentReport runQueryTiming(const EvalContext&);          // Fig. 12
 ExperimentReport runRenderPerformance(const EvalContext&);    // Fig. 11
 ExperimentReport runCompressionStudy(const EvalContext&);     // beyond the paper: compression
+ExperimentReport runDenoiseStudy(const EvalContext&);         // beyond the paper: noise reduction
 
 }  // namespace mfadvr::eval
 

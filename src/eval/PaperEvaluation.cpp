@@ -28,6 +28,8 @@ const std::vector<Experiment>& paperExperiments() {
       {"performance", "Render time vs data size", "Fig. 11", runRenderPerformance},
       {"compression", "Compact models: rate-distortion against ZFP and downsampling",
        "future work: compression", runCompressionStudy},
+      {"denoise", "Noise reduction: smoothing fits of noisy and quantized samples",
+       "future work: noise reduction", runDenoiseStudy},
   };
   return experiments;
 }

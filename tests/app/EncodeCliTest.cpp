@@ -77,18 +77,51 @@ TEST(EncodeCli, RejectsContradictoryOptions) {
   for (const std::string args :
        {"builtin:gaussian-beam:16 --max-ctrl 8", "builtin:gaussian-beam:16 --max-error 0",
         "builtin:gaussian-beam:16 --max-error -1", "builtin:gaussian-beam:16 --strict",
-        "builtin:gaussian-beam:16 --smooth 0.1", "builtin:gaussian-beam:16 --no-mask",
+        "builtin:gaussian-beam:16 --smooth -0.1", "builtin:gaussian-beam:16 --smooth nan",
+        "builtin:gaussian-beam:16 --smooth inf", "builtin:gaussian-beam:16 --smooth automatic",
+        "builtin:gaussian-beam:16 --no-mask",
         "builtin:gaussian-beam:16 --max-error 1e-2 --max-rounds 0"}) {
     const auto r = runMfadvr("encode " + args);
     EXPECT_EQ(r.status, 2) << args << "\n" << r.err;
   }
   const auto dir = test::scratchDir();
   const std::string cloud = writeBallCloud(dir, 200);
-  for (const std::string args :
-       {" --smooth -1", " --mask-res 1", " --no-mask --mask-res 16", " --spacing 2"}) {
+  for (const std::string args : {" --smooth -1", " --smooth auto", " --mask-res 1",
+                                 " --no-mask --mask-res 16", " --spacing 2"}) {
     const auto r = runMfadvr("encode " + cloud + args);
     EXPECT_EQ(r.status, 2) << args << "\n" << r.err;
   }
+}
+
+// Grids take --smooth L and --smooth auto; the report and the model say what was chosen.
+TEST(EncodeCli, GridSmoothingIsReportedAndStored) {
+  const auto dir = test::scratchDir();
+  const std::string model = (dir / "smooth.mfa").string();
+  const auto fixed = runMfadvr("encode builtin:gaussian-beam:24 --smooth 0.05 --json -o " + model);
+  ASSERT_EQ(fixed.status, 0) << fixed.err;
+  auto j = parseJson(fixed);
+  EXPECT_DOUBLE_EQ(j["smoothing"]["lambda"].get<double>(), 0.05);
+  EXPECT_FALSE(j["smoothing"]["automatic"].get<bool>());
+  EXPECT_DOUBLE_EQ(loadModel(model).provenance().smoothing, 0.05);
+  const auto info = runMfadvr("info " + model);
+  EXPECT_NE(info.out.find("smoothing       lambda 0.05"), std::string::npos) << info.out;
+
+  const auto automatic = runMfadvr("encode builtin:gaussian-beam:24 --smooth auto -o " + model);
+  ASSERT_EQ(automatic.status, 0) << automatic.err;
+  EXPECT_NE(automatic.out.find("by generalized cross-validation"), std::string::npos)
+      << automatic.out;
+  EXPECT_GT(loadModel(model).provenance().smoothing, 0.0);
+
+  // Blocks share one lambda, chosen on the whole grid.
+  const std::string blocks = (dir / "blocks.mfa").string();
+  const auto b =
+      runMfadvr("encode builtin:gaussian-beam:24 --smooth auto --blocks 2,1,1 --json -o " + blocks);
+  ASSERT_EQ(b.status, 0) << b.err;
+  j = parseJson(b);
+  ASSERT_EQ(j["block_reports"].size(), 2u);
+  const double lambda = j["block_reports"][0]["smoothing"]["lambda"].get<double>();
+  EXPECT_GT(lambda, 0.0);
+  EXPECT_EQ(j["block_reports"][1]["smoothing"]["lambda"].get<double>(), lambda);
 }
 
 TEST(EncodeCli, PointCloudGetsACoverageMaskAndRenders) {

@@ -16,7 +16,7 @@ import subprocess
 import sys
 
 EXPERIMENTS = ["value", "tables", "structured", "unstructured", "params", "query", "performance",
-               "compression"]
+               "compression", "denoise"]
 
 
 def read(out, name):
@@ -136,6 +136,17 @@ def main():
                 (64 ** 3 if r["volume"].startswith("fuel") else 41 ** 3)
             expect(float(r["bits_per_sample"]) <= float(r["rate"]) + 8 * 2048 / samples,
                    "compression: the coded model exceeds its budget: %s" % r)
+
+    # Noise reduction: two functions x 41^3 x (8-bit, 3% noise): 9 methods and 5 swept lambdas.
+    denoise = read(out, "denoise.csv")
+    expect(len(denoise) == 2 * 2 * (9 + 5), "denoise: %d rows" % len(denoise))
+    for r in denoise:
+        expect(float(r["psnr"]) > 10 and float(r["samples_psnr"]) > 15, "denoise row %s" % r)
+    noisy = {r["method"]: r for r in denoise
+             if r["function"] == "ct-head" and r["degradation"] == "n3"}
+    expect(float(noisy["mfa-auto"]["lambda"]) > 0 and
+           float(noisy["mfa-auto"]["samples_psnr"]) > float(noisy["mfa"]["samples_psnr"]) + 2,
+           "denoise: --smooth auto does not reduce 3%% noise: %s" % noisy["mfa-auto"])
 
     with open(os.path.join(out, "report.md")) as f:
         report = f.read()

@@ -6,18 +6,22 @@
 
 namespace mfadvr {
 
-Model encodeStructured(const StructuredGrid& grid, const EncodeOptions& options,
-                       FitReport* report) {
+namespace {
+
+Model encodeStructuredFit(const StructuredGrid& grid, const EncodeOptions& options,
+                          FitReport* report) {
   StructuredFitOptions fit;
   fit.degree = options.degree;
   fit.controlCounts = options.controlCounts;
+  fit.smoothing = options.smoothing.value_or(0.0);
   fit.progress = options.progress;
   const CodingOptions& coding = options.coding;
   const bool countsGiven = options.controlCounts[0] > 0;
   if (coding.budget.kind != BudgetKind::kNone) {
     if (options.adaptive)
-      throw Error("a size or quality budget chooses the control points itself; it does not "
-                  "combine with an error bound (--max-error)");
+      throw Error(
+          "a size or quality budget chooses the control points itself; it does not "
+          "combine with an error bound (--max-error)");
     return encodeToBudget(grid, fit, coding, countsGiven, report);
   }
   if (!coding.coder) {
@@ -32,8 +36,7 @@ Model encodeStructured(const StructuredGrid& grid, const EncodeOptions& options,
   const bool lossy = *coding.coder == ControlCoder::kZfp;
   if (lossy && coding.tolerance == 0.0) adaptive.maxRelativeError *= 0.5;
   const Model fitted = fitStructuredAdaptive(grid, fit, adaptive, &r);
-  const double bound =
-      options.adaptive->maxRelativeError * (fitted.valueMax() - fitted.valueMin());
+  const double bound = options.adaptive->maxRelativeError * (fitted.valueMax() - fitted.valueMin());
   Model m = codeFittedModel(fitted, grid, coding, lossy ? bound : 0.0, countsGiven, &r);
   if (lossy && coding.tolerance == 0.0 && bound > 0.0) {
     // The interpolating model, coded to the same bound, is often the smaller file: its control
@@ -49,11 +52,10 @@ Model encodeStructured(const StructuredGrid& grid, const EncodeOptions& options,
       interpolating.rounds = r.rounds;
       interpolating.stopReason = r.stopReason;
       interpolating.seconds += r.seconds;
-      interpolating.codingNote += "; chosen over the adaptive fit (" +
-                                  std::to_string(r.controlCounts[0]) + "x" +
-                                  std::to_string(r.controlCounts[1]) + "x" +
-                                  std::to_string(r.controlCounts[2]) + " control points, " +
-                                  std::to_string(r.modelBytes) + " bytes): smaller";
+      interpolating.codingNote +=
+          "; chosen over the adaptive fit (" + std::to_string(r.controlCounts[0]) + "x" +
+          std::to_string(r.controlCounts[1]) + "x" + std::to_string(r.controlCounts[2]) +
+          " control points, " + std::to_string(r.modelBytes) + " bytes): smaller";
       r = interpolating;
       m = std::move(alt);
     }
@@ -62,6 +64,43 @@ Model encodeStructured(const StructuredGrid& grid, const EncodeOptions& options,
   r.targetRelativeError = options.adaptive->maxRelativeError;
   r.reachedTarget = r.maxRelativeError() <= r.targetRelativeError;
   if (!r.reachedTarget && r.stopReason.empty()) r.stopReason = "the coded model misses the bound";
+  return m;
+}
+
+}  // namespace
+
+EncodeOptions withChosenSmoothing(const StructuredGrid& grid, const EncodeOptions& options,
+                                  SmoothingChoice* choice) {
+  EncodeOptions out = options;
+  if (!options.autoSmoothing) return out;
+  if (options.smoothing)
+    throw Error("give either a smoothing weight or automatic smoothing, not both");
+  StructuredFitOptions fit;
+  fit.degree = options.degree;
+  fit.controlCounts = options.adaptive ? Index3{0, 0, 0} : options.controlCounts;
+  fit.progress = options.progress;
+  SmoothingSearch search;
+  search.quantizationStep = options.quantizationStep.value_or(0.0);
+  SmoothingChoice c = chooseSmoothing(grid, fit, search);
+  out.smoothing = c.lambda;
+  out.autoSmoothing = false;
+  if (choice) *choice = std::move(c);
+  return out;
+}
+
+Model encodeStructured(const StructuredGrid& grid, const EncodeOptions& options,
+                       FitReport* report) {
+  if (options.smoothing) validateSmoothing(*options.smoothing);
+  SmoothingChoice choice;
+  const EncodeOptions resolved = withChosenSmoothing(grid, options, &choice);
+  FitReport local;
+  FitReport& r = report ? *report : local;
+  Model m = encodeStructuredFit(grid, resolved, &r);
+  r.smoothing = resolved.smoothing.value_or(0.0);
+  if (options.autoSmoothing) {
+    r.noiseEstimate = choice.noiseRms;
+    r.smoothingNote = choice.note;
+  }
   return m;
 }
 
@@ -78,12 +117,17 @@ Model encodeScattered(const ScatteredData& data, const EncodeOptions& options, F
   ScatteredFitOptions fit;
   fit.degree = options.degree;
   fit.controlCounts = options.controlCounts;
-  fit.smoothing = options.smoothing;
+  if (options.autoSmoothing)
+    throw Error(
+        "automatic smoothing (--smooth auto) is for regular grids; give meshes and "
+        "point clouds a weight (--smooth L; default 1e-2)");
+  fit.smoothing = options.smoothing.value_or(kDefaultSmoothing);
   fit.progress = options.progress;
   if (options.coding.budget.kind != BudgetKind::kNone ||
       (options.coding.coder && *options.coding.coder == ControlCoder::kZfp))
-    throw Error("meshes and point clouds take --coding float32 or lossless; zfp coding and "
-                "budgets (--bits-per-sample, --psnr, --rms-error) are for regular grids");
+    throw Error(
+        "meshes and point clouds take --coding float32 or lossless; zfp coding and "
+        "budgets (--bits-per-sample, --psnr, --rms-error) are for regular grids");
   FitReport local;
   FitReport& r = report ? *report : local;
   Model model = options.adaptive ? fitScatteredAdaptive(data, fit, *options.adaptive, &r)

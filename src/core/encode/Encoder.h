@@ -13,6 +13,7 @@
 #include "core/encode/CodingChoice.h"
 #include "core/encode/FitReport.h"
 #include "core/encode/ScatteredEncoder.h"
+#include "core/encode/SmoothingChoice.h"
 #include "core/encode/StructuredEncoder.h"
 #include "core/grid/StructuredGrid.h"
 #include "core/mesh/ScatteredData.h"
@@ -28,20 +29,34 @@ struct MaskOptions {
 
 struct EncodeOptions {
   Degree3 degree{3, 3, 3};
-  Index3 controlCounts{0, 0, 0};         // 0: the default (fixed fits) or the start (adaptive)
-  double smoothing = kDefaultSmoothing;  // scattered inputs only
+  Index3 controlCounts{0, 0, 0};  // 0: the default (fixed fits) or the start (adaptive)
+  // lambda of the roughness penalty (core/spline/DerivativePenalty.h); none: kDefaultSmoothing
+  // for scattered inputs, 0 (no smoothing) for grids.
+  std::optional<double> smoothing;
+  // Grids: lambda chosen by generalized cross-validation (SmoothingChoice.h) instead.
+  bool autoSmoothing = false;
+  // With autoSmoothing: the samples are multiples of this step, taken as a floor on their noise
+  // (SmoothingChoice.h). Off unless given: measured on quantized phantoms it over-smooths more
+  // often than it helps (docs/denoise.md), so integer scans get plain GCV too.
+  std::optional<double> quantizationStep;
   std::optional<AdaptiveOptions> adaptive;
   MaskOptions mask;
   CodingOptions coding;  // grids; scattered inputs take a given float32 or lossless coder
   std::function<void(double fraction, const std::string& stage)> progress;
 };
 
-// A fit (fixed, adaptive, or the candidates of a budget) and the coding of its control points
-// (CodingChoice.h). With --max-error and zfp coding, the fit gets half the bound and the coding
-// the room the fit leaves, so that the decoded model keeps the bound; the interpolating model
-// coded to the same bound replaces it when its file is smaller.
+// A fit (fixed, adaptive, or the candidates of a budget), smoothed when asked (with
+// options.autoSmoothing, lambda is chosen first, on the whole grid), and the coding of its control
+// points (CodingChoice.h). With --max-error and zfp coding, the fit gets half the bound and the
+// coding the room the fit leaves, so that the decoded model keeps the bound; the interpolating
+// model coded to the same bound replaces it when its file is smaller.
 Model encodeStructured(const StructuredGrid& grid, const EncodeOptions& options,
                        FitReport* report = nullptr);
+
+// options with autoSmoothing replaced by the lambda chosen for `grid` (for fitting pieces of one
+// grid with one lambda); `choice` receives the choice when made.
+EncodeOptions withChosenSmoothing(const StructuredGrid& grid, const EncodeOptions& options,
+                                  SmoothingChoice* choice = nullptr);
 
 // Fits the points, then voxelizes the mask: mesh occupancy when the data have cells (default
 // 128 nodes along the longest box axis), point coverage otherwise (default resolution from the

@@ -20,6 +20,7 @@ FitReport fitReportOf(const Model& model) {
   r.valueMax = model.valueMax();
   r.maxError = p.maxError;
   r.rmsError = p.rmsError;
+  r.smoothing = p.smoothing;
   r.inputBytes = p.inputBytes;
   r.modelBytes = modelFileSize(model);
   r.encoder = p.encoder;

@@ -27,9 +27,14 @@ struct FitReport {
   // Scattered inputs (points == 0 for grids).
   std::int64_t points = 0;
   std::string inputKind;        // "tetrahedral mesh", "point cloud", ...
-  double smoothing = 0.0;       // regularization weight lambda
+  double smoothing = 0.0;       // regularization weight lambda (grids too, with --smooth)
   int solverIterations = 0;     // conjugate-gradient iterations, all levels and rounds
   double solverResidual = 0.0;  // relative residual |b - Ax| / |b| of the last solve
+
+  // Grids with --smooth auto: the noise level estimated with the chosen lambda (absolute, RMS;
+  // 0 when lambda was given) and what the choice saw.
+  double noiseEstimate = 0.0;
+  std::string smoothingNote;
 
   // Adaptive encoding (rounds == 0 when the control counts were fixed).
   int rounds = 0;

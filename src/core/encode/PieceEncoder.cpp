@@ -90,7 +90,8 @@ std::vector<ModelBlock> encodeStructuredBlocks(const StructuredGrid& grid, const
   const std::int64_t count = blocks[0] * blocks[1] * blocks[2];
   std::vector<ModelBlock> out;
   out.reserve(static_cast<size_t>(count));
-  EncodeOptions quiet = options;
+  // One lambda for every block, chosen on the whole grid: blocks must agree across their faces.
+  EncodeOptions quiet = withChosenSmoothing(grid, options);
   quiet.progress = nullptr;
   for (std::int64_t k = 0; k < blocks[2]; ++k)
     for (std::int64_t j = 0; j < blocks[1]; ++j)

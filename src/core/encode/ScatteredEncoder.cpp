@@ -15,6 +15,7 @@
 
 #include "core/model/ModelFile.h"
 #include "core/spline/BasisFunctions.h"
+#include "core/spline/DerivativePenalty.h"
 #include "core/util/Error.h"
 #include "core/util/UtcTime.h"
 
@@ -231,21 +232,16 @@ RowSparse assembleBasis(const std::vector<Vec3d>& params, const std::array<KnotV
   return N;
 }
 
-// D: one row per second-derivative coefficient along each axis. The first derivative of a
-// B-spline has the coefficients d_i = (c_{i+1} - c_i) / (g_{i+1} - g_i), the second
-// e_i = (d_{i+1} - d_i) / l_i with l_i = (u_{i+p+1} - u_{i+2}) / (p - 1) (for p = 1, where the
-// second derivative is a sum of jumps, l_i = (g_{i+2} - g_i) / 2). Each row is scaled by the
-// square root of l_i times the basis integrals (u_{j+p+1} - u_j) / (p + 1) of the other two
-// axes, so that |D c|^2 approximates the integral of the squared second derivatives (mass
-// lumping), and by h^2 (h: the mean knot span of the axis), which measures curvature per span
-// rather than per unit: the penalty damps what the control grid can barely resolve, whatever
-// its size. Multilinear functions have zero penalty: they are not biased.
+// D: the second-derivative penalty rows of each axis (core/spline/DerivativePenalty.h) times
+// the square roots of the basis integrals (u_{j+p+1} - u_j) / (p + 1) of the other two axes, so
+// that |D c|^2 approximates h^4 times the integral of the squared second derivatives (mass
+// lumping). Multilinear functions have zero penalty: they are not biased, and spans without
+// points get the smoothest continuation of their surroundings.
 RowSparse assembleSecondDifferences(const std::array<KnotVector, 3>& knots) {
   const std::int64_t n[3] = {knots[0].controlCount(), knots[1].controlCount(),
                              knots[2].controlCount()};
-  std::array<std::vector<double>, 3> g, mass;
+  std::array<std::vector<double>, 3> mass;
   for (int a = 0; a < 3; ++a) {
-    g[a] = grevilleAbscissae(knots[a]);
     const int p = knots[a].degree();
     const auto& u = knots[a].knots();
     mass[a].resize(static_cast<size_t>(n[a]));
@@ -257,28 +253,20 @@ RowSparse assembleSecondDifferences(const std::array<KnotVector, 3>& knots) {
   std::vector<Eigen::Triplet<double, int>> t;
   std::int64_t rows = 0;
   for (int a = 0; a < 3; ++a) {
-    if (n[a] < 3) continue;
-    const int p = knots[a].degree();
-    const auto& u = knots[a].knots();
+    const DerivativePenalty d = derivativePenalty(knots[a], kScatteredPenaltyOrder);
+    const int w = d.order + 1;
     const int b = (a + 1) % 3, c = (a + 2) % 3;
-    const double h = 1.0 / static_cast<double>(n[a] - p);  // mean knot span
-    for (std::int64_t i = 0; i + 2 < n[a]; ++i) {
-      const double g0 = g[a][static_cast<size_t>(i + 1)] - g[a][static_cast<size_t>(i)];
-      const double g1 = g[a][static_cast<size_t>(i + 2)] - g[a][static_cast<size_t>(i + 1)];
-      const double l =
-          p >= 2 ? (u[static_cast<size_t>(i + p + 1)] - u[static_cast<size_t>(i + 2)]) / (p - 1)
-                 : 0.5 * (g[a][static_cast<size_t>(i + 2)] - g[a][static_cast<size_t>(i)]);
-      if (!(g0 > 0.0 && g1 > 0.0 && l > 0.0)) continue;
-      const double w[3] = {1.0 / (g0 * l), -(1.0 / g0 + 1.0 / g1) / l, 1.0 / (g1 * l)};
+    for (int r = 0; r < d.rows(); ++r) {
+      const std::int64_t i = d.first[static_cast<size_t>(r)];
+      const double* wr = &d.weights[static_cast<size_t>(r * w)];
       for (std::int64_t k = 0; k < n[c]; ++k)
         for (std::int64_t j = 0; j < n[b]; ++j) {
           const double scale =
-              h * h *
-              std::sqrt(l * mass[b][static_cast<size_t>(j)] * mass[c][static_cast<size_t>(k)]);
+              std::sqrt(mass[b][static_cast<size_t>(j)] * mass[c][static_cast<size_t>(k)]);
           const std::int64_t base = i * stride[a] + j * stride[b] + k * stride[c];
-          for (int e = 0; e < 3; ++e)
+          for (int e = 0; e < w; ++e)
             t.emplace_back(static_cast<int>(rows), static_cast<int>(base + e * stride[a]),
-                           scale * w[e]);
+                           scale * wr[e]);
           ++rows;
         }
     }
@@ -354,7 +342,7 @@ Model fitScatteredWithKnots(const ScatteredData& data, std::array<KnotVector, 3>
   const RowSparse diff = assembleSecondDifferences(knots);
   sys.penalty = RowSparse(diff.transpose()) * diff;
   sys.dataScale = 1.0 / static_cast<double>(params.size());
-  sys.lambda = options.smoothing;
+  sys.lambda = penaltyWeight(options.smoothing, kScatteredPenaltyOrder);
   Eigen::VectorXd diagonal = sys.dataScale * columnSquaredNorms(sys.basisT);
   if (sys.lambda > 0.0) diagonal += sys.lambda * sys.penalty.diagonal();
   sys.inverseDiagonal = diagonal.unaryExpr([](double d) { return d > 0.0 ? 1.0 / d : 0.0; });
@@ -445,6 +433,7 @@ Model fitScatteredWithKnots(const ScatteredData& data, std::array<KnotVector, 3>
   prov.inputPoints = data.pointCount();
   prov.fieldAssociation = data.fieldAssociation;
   prov.encoder = "scattered-least-squares";
+  prov.smoothing = options.smoothing;
   prov.created = utcNow();
   prov.toolVersion = MFADVR_VERSION;
   prov.maxError = maxErr;

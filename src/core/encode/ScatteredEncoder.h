@@ -6,7 +6,7 @@
 //   du_a^2)^2
 // over the P input points, where h_a = 1 / (n_a - p_a) is the mean knot span of axis a. The
 // integral is approximated through the second-derivative coefficients of the spline (mass
-// lumping). lambda is dimensionless: both terms scale with the square of the values, and h^4
+// lumping, core/spline/DerivativePenalty.h). lambda is dimensionless: both terms scale with the square of the values, and h^4
 // makes the penalty measure curvature per knot span, so that one lambda damps the same part of
 // what the control grid can resolve at any control count (frequencies above about
 // 1 / (h lambda^(1/4)) radians per unit parameter). The penalty makes the system definite, so
@@ -32,6 +32,9 @@
 namespace mfadvr {
 
 inline constexpr double kDefaultSmoothing = 1e-2;
+// Second derivatives (core/spline/DerivativePenalty.h): regions without points get the
+// smoothest, nearly linear continuation of their surroundings. Grids penalize order p + 1.
+inline constexpr int kScatteredPenaltyOrder = 2;
 
 struct ScatteredFitOptions {
   Degree3 degree{3, 3, 3};

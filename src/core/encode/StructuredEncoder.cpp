@@ -6,12 +6,13 @@
 
 #include <chrono>
 #include <cmath>
-#include <sstream>
 #include <span>
+#include <sstream>
 
 #include "core/encode/KnotPlacement.h"
 #include "core/model/ModelFile.h"
 #include "core/spline/BasisFunctions.h"
+#include "core/spline/DerivativePenalty.h"
 #include "core/util/Error.h"
 #include "core/util/UtcTime.h"
 
@@ -25,6 +26,7 @@ const char* axisName(int a) {
 // The non-zero basis functions at each sample of one axis: sample i touches control points
 // first[i] .. first[i] + p with weights w[i*(p+1) ..].
 struct AxisSampling {
+  KnotVector knots;
   int degree = 0;
   int controlCount = 0;
   std::int64_t samples = 0;
@@ -34,6 +36,7 @@ struct AxisSampling {
 
 AxisSampling sampleAxis(const KnotVector& kv, std::int64_t samples) {
   AxisSampling s;
+  s.knots = kv;
   s.degree = kv.degree();
   s.controlCount = kv.controlCount();
   s.samples = samples;
@@ -70,10 +73,15 @@ void passAlongFastest(const std::vector<double>& in, const Index3& dims, std::in
   });
 }
 
-// Least-squares fit of every line of one axis: solves (N^T N) c = N^T f.
+// Least-squares fit of every line of one axis: solves (N^T N + m mu D^T D) c = N^T f, where m is
+// the sample count, D the axis's penalty of order p + 1 (core/spline/DerivativePenalty.h) and
+// mu = penaltyWeight(lambda, p + 1): the 1-D form of the mean squared error plus lambda's
+// penalty. The tensor product of these solves is the separable smoother; to first order in
+// lambda it minimizes the scattered fit's objective (the penalty of each axis weighted by the
+// other axes' data terms), plus products of two or three axes' penalties.
 class AxisFitter {
  public:
-  explicit AxisFitter(AxisSampling s) : s_(std::move(s)) {
+  explicit AxisFitter(AxisSampling s, double smoothing = 0.0) : s_(std::move(s)) {
     const int w = s_.degree + 1;
     std::vector<Eigen::Triplet<double>> t;
     t.reserve(static_cast<size_t>(s_.samples * w * w));
@@ -82,26 +90,51 @@ class AxisFitter {
       for (int r = 0; r < w; ++r)
         for (int q = 0; q < w; ++q) t.emplace_back(s_.first[i] + r, s_.first[i] + q, wi[r] * wi[q]);
     }
-    // A vanishing second-difference penalty (1e-10 of the mean diagonal) keeps the system
-    // definite when sample and knot phases drift against each other (n just below N) and
-    // a basis function is seen only at the tails of its support; on well-conditioned systems
-    // it changes the fit far below float32 resolution.
-    double trace = 0.0;
-    for (const auto& e : t)
-      if (e.row() == e.col()) trace += e.value();
-    const double lambda = 1e-10 * trace / s_.controlCount;
     const int n = s_.controlCount;
-    for (int r = 1; r + 1 < n; ++r) {
-      const int idx[3] = {r - 1, r, r + 1};
-      const double d[3] = {1.0, -2.0, 1.0};
-      for (int a = 0; a < 3; ++a)
-        for (int b = 0; b < 3; ++b) t.emplace_back(idx[a], idx[b], lambda * d[a] * d[b]);
+    if (smoothing > 0.0) {
+      const DerivativePenalty d = derivativePenalty(s_.knots, s_.degree + 1);
+      const double mu = static_cast<double>(s_.samples) * penaltyWeight(smoothing, d.order);
+      const int k = d.order + 1;
+      for (int r = 0; r < d.rows(); ++r) {
+        const double* dr = &d.weights[static_cast<size_t>(r * k)];
+        const int f = d.first[static_cast<size_t>(r)];
+        for (int a = 0; a < k; ++a)
+          for (int b = 0; b < k; ++b) t.emplace_back(f + a, f + b, mu * dr[a] * dr[b]);
+      }
+    } else {
+      // A vanishing second-difference penalty (1e-10 of the mean diagonal) keeps the system
+      // definite when sample and knot phases drift against each other (n just below N) and
+      // a basis function is seen only at the tails of its support; on well-conditioned systems
+      // it changes the fit far below float32 resolution.
+      double trace = 0.0;
+      for (const auto& e : t)
+        if (e.row() == e.col()) trace += e.value();
+      const double lambda = 1e-10 * trace / s_.controlCount;
+      for (int r = 1; r + 1 < n; ++r) {
+        const int idx[3] = {r - 1, r, r + 1};
+        const double d[3] = {1.0, -2.0, 1.0};
+        for (int a = 0; a < 3; ++a)
+          for (int b = 0; b < 3; ++b) t.emplace_back(idx[a], idx[b], lambda * d[a] * d[b]);
+      }
     }
     Eigen::SparseMatrix<double> normal(n, n);
     normal.setFromTriplets(t.begin(), t.end());
     llt_.compute(normal);
     if (llt_.info() != Eigen::Success)
       throw Error("the least-squares system is singular (too few samples per knot span)");
+  }
+
+  // The trace of the axis's hat matrix N (N^T N + m mu D^T D)^-1 N^T: its effective number of
+  // parameters (the control count without smoothing).
+  double hatTrace() const {
+    const int w = s_.degree + 1, n = s_.controlCount;
+    Eigen::MatrixXd gram = Eigen::MatrixXd::Zero(n, n);
+    for (std::int64_t i = 0; i < s_.samples; ++i) {
+      const double* wi = &s_.weights[static_cast<size_t>(i * w)];
+      for (int r = 0; r < w; ++r)
+        for (int q = 0; q < w; ++q) gram(s_.first[i] + r, s_.first[i] + q) += wi[r] * wi[q];
+    }
+    return llt_.solve(gram).trace();
   }
 
   void operator()(const Eigen::Map<const Eigen::MatrixXd>& lines, Eigen::MatrixXd& out) const {
@@ -197,10 +230,10 @@ std::vector<double> splineOnGrid(const TensorBSpline& spline, const Index3& dims
   const Index3 n = spline.counts();
   const size_t plane = static_cast<size_t>(n[0] * n[1]);
   const auto& ctrl = spline.controlPoints();
-  return evaluateOnSamples(sampling,
-                           std::span<const float>(ctrl.data() + c0 * plane,
-                                                  static_cast<size_t>(z.controlCount) * plane),
-                           {n[0], n[1], z.controlCount});
+  return evaluateOnSamples(
+      sampling,
+      std::span<const float>(ctrl.data() + c0 * plane, static_cast<size_t>(z.controlCount) * plane),
+      {n[0], n[1], z.controlCount});
 }
 
 SampleErrors errorsOnGrid(const TensorBSpline& spline, const StructuredGrid& grid) {
@@ -255,7 +288,27 @@ std::array<std::vector<double>, 3> curveSpanErrors(const StructuredGrid& grid,
   return result;
 }
 
+void validateSmoothing(double lambda) {
+  if (!(lambda >= 0.0) || !(lambda <= kMaxGridSmoothing)) {
+    std::ostringstream m;
+    m << "the smoothing weight must be a number in 0.." << kMaxGridSmoothing << ", got " << lambda;
+    if (lambda > kMaxGridSmoothing)
+      m << " (above it only the polynomials of the model's degree are left)";
+    throw Error(m.str());
+  }
+}
+
+double effectiveParameters(const std::array<KnotVector, 3>& knots, const Index3& dims,
+                           double smoothing) {
+  validateSmoothing(smoothing);
+  double trace = 1.0;
+  for (int a = 0; a < 3; ++a)
+    trace *= AxisFitter(sampleAxis(knots[a], dims[a]), smoothing).hatTrace();
+  return trace;
+}
+
 Index3 resolveControlCounts(const StructuredGrid& grid, const StructuredFitOptions& options) {
+  validateSmoothing(options.smoothing);
   Index3 n{};
   for (int a = 0; a < 3; ++a) {
     const int p = options.degree[a];
@@ -301,6 +354,7 @@ Model fitStructuredWithKnots(const StructuredGrid& grid, std::array<KnotVector, 
                              std::array<std::vector<double>, 3>* spanErrors) {
   const auto start = std::chrono::steady_clock::now();
   grid.validate();
+  validateSmoothing(options.smoothing);
   Index3 n{};
   Degree3 degree{};
   for (int a = 0; a < 3; ++a) {
@@ -326,7 +380,7 @@ Model fitStructuredWithKnots(const StructuredGrid& grid, std::array<KnotVector, 
   for (int a = 0; a < 3; ++a) {
     progress(a / 4.0, a == 0 ? "fit x" : (a == 1 ? "fit y" : "fit z"));
     std::vector<double>& out = (a % 2 == 0) ? bufA : bufB;
-    passAlongFastest(*in, dims, n[a], out, AxisFitter(sampling[a]));
+    passAlongFastest(*in, dims, n[a], out, AxisFitter(sampling[a], options.smoothing));
     dims = rotate(dims, n[a]);
     in = &out;
   }
@@ -371,7 +425,8 @@ Model fitStructuredWithKnots(const StructuredGrid& grid, std::array<KnotVector, 
   prov.sampleType = grid.sampleType;
   prov.sampleDims = grid.dims;
   prov.inputBytes = grid.inputBytes;
-  prov.encoder = "structured-least-squares";
+  prov.encoder = options.smoothing > 0.0 ? "structured-smoothing" : "structured-least-squares";
+  prov.smoothing = options.smoothing;
   prov.created = utcNow();
   prov.toolVersion = MFADVR_VERSION;
   prov.maxError = maxErr;

@@ -1,10 +1,14 @@
 #pragma once
-// Least-squares fit of a tensor-product B-spline to samples on a regular grid.
+// Least-squares fit of a tensor-product B-spline to samples on a regular grid, optionally
+// penalized (smoothing: the roughness penalty of core/spline/DerivativePenalty.h, of order p + 1
+// on every axis, so that polynomials of the model's degree are not biased).
 //
 // The fit is separable: the tensor least-squares solution equals one 1-D least-squares solve
 // per axis applied to every grid line along it (the pseudo-inverse of a Kronecker product is the
 // Kronecker product of the pseudo-inverses). Each axis factors its banded normal matrix once and
-// solves all lines with it, in parallel. Control counts equal to the sample counts interpolate.
+// solves all lines with it, in parallel. Control counts equal to the sample counts interpolate
+// (without smoothing). With smoothing each axis solves (N^T N + m mu D^T D) c = N^T f instead,
+// still one banded factorization per axis: the tensor product of 1-D smoothers.
 #include <array>
 #include <functional>
 #include <string>
@@ -19,12 +23,15 @@ namespace mfadvr {
 struct StructuredFitOptions {
   Degree3 degree{3, 3, 3};
   Index3 controlCounts{0, 0, 0};  // 0 on an axis: as many control points as samples
+  // lambda >= 0 of the roughness penalty (DerivativePenalty.h); 0: plain least squares.
+  double smoothing = 0.0;
   // Called on the calling thread between stages with the fraction done and the stage name.
   std::function<void(double fraction, const std::string& stage)> progress;
 };
 
 // Throws mfadvr::Error for degrees outside 1..7, counts below degree + 1 or above the sample
-// count, grids with fewer than two samples on an axis, and non-finite samples.
+// count, grids with fewer than two samples on an axis, non-finite samples and a smoothing weight
+// that is negative or not finite.
 Model fitStructured(const StructuredGrid& grid, const StructuredFitOptions& options,
                     FitReport* report = nullptr);
 
@@ -57,5 +64,17 @@ SampleErrors errorsOnGrid(const TensorBSpline& spline, const StructuredGrid& gri
 
 // Resolves 0 entries of options.controlCounts and validates everything against the grid.
 Index3 resolveControlCounts(const StructuredGrid& grid, const StructuredFitOptions& options);
+
+// The effective number of parameters of the fit with these knots and smoothing weight: the
+// trace of its hat matrix (the product over the axes of the 1-D traces; the control count when
+// lambda is 0). Generalized cross-validation divides by P minus it.
+double effectiveParameters(const std::array<KnotVector, 3>& knots, const Index3& dims,
+                           double smoothing);
+
+// The largest smoothing weight of a grid fit: its cut-off wavelength is 60 knot spans, and the
+// penalty then outweighs the data term by 1e8 (a larger ratio would leave the solve singular).
+inline constexpr double kMaxGridSmoothing = 1e4;
+// Throws mfadvr::Error unless 0 <= lambda <= kMaxGridSmoothing.
+void validateSmoothing(double lambda);
 
 }  // namespace mfadvr

@@ -34,6 +34,7 @@ struct Provenance {
   double fitSeconds = 0.0;
   double maxError = 0.0;  // absolute, over all input samples
   double rmsError = 0.0;  // absolute
+  double smoothing = 0.0;  // lambda of the roughness penalty (DerivativePenalty.h); 0: none
 };
 
 class Model {

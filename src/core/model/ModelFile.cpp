@@ -70,6 +70,8 @@ Provenance provenanceFromJson(const json& j) {
   p.fitSeconds = j.value("fit_seconds", 0.0);
   p.maxError = j.value("max_error", 0.0);
   p.rmsError = j.value("rms_error", 0.0);
+  p.smoothing = j.value("smoothing", 0.0);
+  if (!(p.smoothing >= 0.0) || !std::isfinite(p.smoothing)) p.smoothing = 0.0;
   return p;
 }
 

@@ -157,6 +157,8 @@ int vtkMFAEncoder::RequestData(vtkInformation*, vtkInformationVector** inInfo,
       mfadvr::StructuredGrid grid = mfadvr::gridFromVtkImage(image, field, source);
       grid.validate();
       fromImage = true;
+      // Smoothing is the scattered fit's regularization here; images are fitted plainly.
+      options.smoothing.reset();
       const int* dataExtent = image->GetExtent();
       for (int a = 0; a < 3; ++a) firstIndex[a] = dataExtent[2 * a];
       int own[6];
