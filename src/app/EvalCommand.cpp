@@ -3,6 +3,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
+#include <memory>
+#include <utility>
 
 #include "app/Commands.h"
 #include "eval/PaperEvaluation.h"
@@ -61,6 +63,18 @@ void addSharedOptions(CLI::App* sub, EvalCliOptions& o, const std::string& quick
   sub->add_flag("-q,--quiet", o.quiet, "No progress on stderr");
 }
 
+// A subcommand running the one experiment `name` (no VTK renderers, no plots).
+std::pair<std::shared_ptr<EvalCliOptions>, CLI::App*> addSingleExperiment(
+    CLI::App* parent, const std::string& name, const std::string& description,
+    const std::string& quickHelp, const std::string& volumeHelp, const std::string& dataSets) {
+  auto options = std::make_shared<EvalCliOptions>();
+  options->noPlots = options->noVtk = true;
+  options->eval.only = {name};
+  CLI::App* app = parent->add_subcommand(name, description);
+  addSharedOptions(app, *options, quickHelp, volumeHelp, dataSets);
+  return {options, app};
+}
+
 int runEvaluation(EvalCliOptions& o, const std::string& command) {
   o.eval.out = o.out;
   o.eval.dataDir = o.dataDir;
@@ -114,37 +128,28 @@ Command addEvalCommand(CLI::App& app) {
   paper->add_flag("--no-vtk", o->noVtk,
                   "Leave out VTK's renderers (they need an X display: use xvfb-run -a)");
 
-  // `eval compression`: the compression experiment alone; it needs neither VTK's renderers nor
-  // the plot script (bench/compression_rd.py plots rate-distortion curves).
-  auto c = std::make_shared<EvalCliOptions>();
-  c->noPlots = c->noVtk = true;
-  c->eval.only = {"compression"};
-  CLI::App* compression = sub->add_subcommand(
-      "compression",
+  // `eval compression` and `eval denoise`: one experiment alone; neither needs VTK's renderers
+  // nor the plot script (bench/compression_rd.py plots rate-distortion curves).
+  const auto [c, compression] = addSingleExperiment(
+      sub, "compression",
       "Rate-distortion of coded MFA models against ZFP (fixed-rate, fixed-accuracy) and "
       "downsampling at equal bytes: volume PSNR, rendered-image PSNR/SSIM and memory, on "
       "Marschner-Lobb, VTK's Wavelet source and the standard volumes (docs/compression.md); the "
-      "same as `eval paper --only compression`");
-  addSharedOptions(compression, *c,
-                   "Two small volumes at 0.5, 1 and 2 bits/sample, 96x96 images (seconds)",
-                   "Add a structured volume (repeatable; any format `render` reads)",
-                   "fuel, neghip, nucleon, bonsai");
-
-  // `eval denoise`: the noise-reduction experiment alone (no VTK renderers, no plots).
-  auto d = std::make_shared<EvalCliOptions>();
-  d->noPlots = d->noVtk = true;
-  d->eval.only = {"denoise"};
-  CLI::App* denoise = sub->add_subcommand(
-      "denoise",
+      "same as `eval paper --only compression`",
+      "Two small volumes at 0.5, 1 and 2 bits/sample, 96x96 images (seconds)",
+      "Add a structured volume (repeatable; any format `render` reads)",
+      "fuel, neghip, nucleon, bonsai");
+  const auto [d, denoise] = addSingleExperiment(
+      sub, "denoise",
       "Smoothing fits of noisy and quantized samples (Marschner-Lobb, the CT head phantom) "
       "against the clean function's truth, beside every grid filter, and real scans with and "
-      "without smoothing (docs/denoise.md); the same as `eval paper --only denoise`");
-  addSharedOptions(denoise, *d, "41^3 grids, 8-bit and 3% noise only, 128x128 images (a minute)",
-                   "Add a real scan, rendered with and without smoothing (repeatable; any format "
-                   "`render` reads)",
-                   "neghip, bonsai");
+      "without smoothing (docs/denoise.md); the same as `eval paper --only denoise`",
+      "41^3 grids, 8-bit and 3% noise only, 128x128 images (seconds)",
+      "Add a real scan, rendered with and without smoothing (repeatable; any format `render` "
+      "reads)",
+      "neghip, bonsai");
 
-  auto run = [o, c, d, paper, compression, denoise]() -> int {
+  auto run = [o, c = c, d = d, paper, compression = compression, denoise = denoise]() -> int {
     if (compression->parsed()) return runEvaluation(*c, "compression");
     if (denoise->parsed()) return runEvaluation(*d, "denoise");
     if (!paper->parsed()) return 2;
