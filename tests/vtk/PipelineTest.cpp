@@ -121,6 +121,20 @@ TEST(MFAEncoder, FitsImageDataWithTheGivenControlCounts) {
   EXPECT_GT(encoder->GetLastMaxRelativeError(), 0.0);
 }
 
+// Images are fitted plainly unless ImageSmoothing is set; Smoothing is for scattered data.
+TEST(MFAEncoder, ImageSmoothingSmoothsImagesOnly) {
+  vtkNew<vtkMFAEncoder> encoder;
+  encoder->SetInputData(imageOf(mlGrid(17)));
+  encoder->SetSmoothing(0.5);
+  encoder->Update();
+  EXPECT_LT(encoder->GetLastMaxRelativeError(), 1e-5);  // interpolating, unsmoothed
+  encoder->SetImageSmoothing(0.05);
+  encoder->Update();
+  EXPECT_GT(encoder->GetLastMaxRelativeError(), 1e-3);
+  encoder->SetImageSmoothing(-1.0);
+  EXPECT_EQ(encoder->GetImageSmoothing(), 0.0);
+}
+
 TEST(MFAEncoder, AdaptiveFitMeetsTheBound) {
   vtkNew<vtkMFAEncoder> encoder;
   encoder->SetInputData(imageOf(mlGrid(33)));

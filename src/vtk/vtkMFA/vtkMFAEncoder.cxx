@@ -46,6 +46,7 @@ void vtkMFAEncoder::PrintSelf(ostream& os, vtkIndent indent) {
      << this->MaxNumberOfControlPoints[1] << " " << this->MaxNumberOfControlPoints[2] << "\n";
   os << indent << "MaxRounds: " << this->MaxRounds << "\n";
   os << indent << "Smoothing: " << this->Smoothing << "\n";
+  os << indent << "ImageSmoothing: " << this->ImageSmoothing << "\n";
   os << indent << "DomainMask: " << this->DomainMask << "\n";
   os << indent << "MaskResolution: " << this->MaskResolution << "\n";
   os << indent << "GhostLevels: " << this->GhostLevels << "\n";
@@ -157,8 +158,8 @@ int vtkMFAEncoder::RequestData(vtkInformation*, vtkInformationVector** inInfo,
       mfadvr::StructuredGrid grid = mfadvr::gridFromVtkImage(image, field, source);
       grid.validate();
       fromImage = true;
-      // Smoothing is the scattered fit's regularization here; images are fitted plainly.
-      options.smoothing.reset();
+      // Smoothing is the scattered fit's regularization; images have their own weight.
+      options.smoothing = this->ImageSmoothing;
       const int* dataExtent = image->GetExtent();
       for (int a = 0; a < 3; ++a) firstIndex[a] = dataExtent[2 * a];
       int own[6];

@@ -85,6 +85,16 @@ class VTKMFA_EXPORT vtkMFAEncoder : public vtkMFAModelAlgorithm {
 
   //@{
   /**
+   * Image data: weight lambda of the roughness penalty, a smoothing fit for noisy or quantized
+   * samples (default 0: none; at most 1e4; docs/denoise.md). The same lambda for every piece, so
+   * that pieces agree; `mfadvr encode --smooth auto` chooses one from the data.
+   */
+  vtkSetClampMacro(ImageSmoothing, double, 0.0, 1e4);
+  vtkGetMacro(ImageSmoothing, double);
+  //@}
+
+  //@{
+  /**
    * Scattered inputs: whether the model gets a domain mask (default on), and the mask's nodes
    * along the longest box axis (0: the default for the kind of input).
    */
@@ -131,6 +141,7 @@ class VTKMFA_EXPORT vtkMFAEncoder : public vtkMFAModelAlgorithm {
   int MaxNumberOfControlPoints[3] = {0, 0, 0};
   int MaxRounds = 30;
   double Smoothing = 1e-2;
+  double ImageSmoothing = 0.0;
   bool DomainMask = true;
   int MaskResolution = 0;
 
