@@ -12,6 +12,7 @@
 #include "core/encode/PieceEncoder.h"
 #include "core/model/BlockModelFile.h"
 #include "core/model/ModelFile.h"
+#include "core/util/MemoryBudget.h"
 #include "io/ScatteredLoader.h"
 #include "io/VolumeLoader.h"
 
@@ -181,6 +182,15 @@ Command addEncodeCommand(CLI::App& app) {
                   << "\n";
       model = encodeScattered(data, options, &report);
     } else {
+      if (isBuiltinSpec(o->input) && o->blocks.empty() && !options.adaptive) {
+        // Known before sampling: refuse a fit that cannot fit in memory at once.
+        const Index3 dims = parseBuiltinSpec(o->input).dims;
+        Index3 counts = options.controlCounts;
+        for (int a = 0; a < 3; ++a)
+          if (counts[a] <= 0) counts[a] = dims[a];
+        requireMemory(structuredFitPeakBytes(dims, counts),
+                      "encoding " + o->input + " (fewer control points, --ctrl, need less)");
+      }
       const VolumeLoadOptions load = parseVolumeLoadOptions(o->spacing, o->origin, o->field);
       const StructuredGrid grid = loadStructuredVolume(o->input, load);
       printReaderNotes(grid);

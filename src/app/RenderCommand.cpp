@@ -86,7 +86,7 @@ int renderWithVtk(const Options& o, VtkMethod method, Clock::time_point start) {
   if (!o.quiet && !o.json) {
     if (settings.shade && !vtkMethodShades(method))
       std::cerr << "mfadvr render: warning: " << name << " does not shade; --shade is ignored\n";
-    if (o.render.step > 0 && !vtkMethodUsesSampleDistance(method))
+    if (o.render.step && !vtkMethodUsesSampleDistance(method))
       std::cerr << "mfadvr render: warning: " << name
                 << " integrates across each cell; --step is ignored\n";
   }

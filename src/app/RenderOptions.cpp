@@ -3,6 +3,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <set>
 
@@ -222,8 +223,20 @@ RenderSettings RenderOptions::settingsFor(const LoadedScene& scene) const {
   s.opacityUnitDistance = unitDistance > 0.0        ? unitDistance
                           : tfSpec.unitDistance > 0 ? tfSpec.unitDistance
                                                     : smallestSpacing;
-  if (step < 0.0 || !std::isfinite(step)) throw CLI::ValidationError("--step", "must be positive");
-  s.sampleDistance = step > 0.0 ? step : 0.5 * smallestSpacing;
+  if (step && (!(*step > 0.0) || !std::isfinite(*step)))
+    throw CLI::ValidationError("--step", "must be a positive distance (omit it for the default, "
+                                         "half the smallest data spacing)");
+  s.sampleDistance = step ? *step : 0.5 * smallestSpacing;
+  const double diagonal = (scene.boxMax - scene.boxMin).norm();
+  if (diagonal / s.sampleDistance > kMaxSamplesPerRay) {
+    char m[256];
+    std::snprintf(m, sizeof m,
+                  "%g would take %.3g samples along a ray through the %g-long box; at most %.0e "
+                  "(a step of at least %g)",
+                  s.sampleDistance, diagonal / s.sampleDistance, diagonal, kMaxSamplesPerRay,
+                  diagonal / kMaxSamplesPerRay);
+    throw CLI::ValidationError("--step", m);
+  }
   s.earlyTerminationOpacity = ert;
 
   s.shade = shade;

@@ -5,6 +5,7 @@
 // default step; its value range anchors normalized transfer functions).
 #include <CLI/CLI.hpp>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -19,7 +20,8 @@ struct RenderOptions {
   double viewAngle = 30.0, parallelScale = 0.0, azimuth = 0.0, elevation = 0.0, zoom = 1.0;
   bool parallel = false;
   std::string tf, colormap;
-  double unitDistance = 0.0, step = 0.0, ert = 0.99;
+  double unitDistance = 0.0, ert = 0.99;
+  std::optional<double> step;  // none: half the smallest data spacing
   bool shade = false, noHeadlight = false;
   float ambient = 0.3f, diffuse = 0.7f, specular = 0.2f, specularPower = 10.0f;
   std::vector<std::string> lights;
@@ -35,6 +37,10 @@ struct RenderOptions {
 
 // Adds --device (device/RenderDevice.h) to `sub`, storing into `choice`.
 void addDeviceOption(CLI::App* sub, std::string& choice);
+
+// The most samples a ray may take (box diagonal / step): a smaller step is refused before
+// rendering, where it would run for hours without a sign of progress.
+inline constexpr double kMaxSamplesPerRay = 1e6;
 
 // "WxH" -> width, height.
 void parseImageSize(const std::string& text, int& width, int& height);

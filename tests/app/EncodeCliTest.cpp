@@ -124,6 +124,14 @@ TEST(EncodeCli, GridSmoothingIsReportedAndStored) {
   EXPECT_EQ(j["block_reports"][1]["smoothing"]["lambda"].get<double>(), lambda);
 }
 
+// A job larger than the machine fails at once, saying what it needs and what there is.
+TEST(EncodeCli, RefusesWhatDoesNotFitInMemory) {
+  const auto r = runMfadvr("encode builtin:marschner-lobb:40000 -q");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("needs about"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("available"), std::string::npos) << r.err;
+}
+
 TEST(EncodeCli, PointCloudGetsACoverageMaskAndRenders) {
   const auto dir = test::scratchDir();
   const std::string cloud = writeBallCloud(dir, 3000);

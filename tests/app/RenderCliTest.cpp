@@ -92,6 +92,7 @@ TEST(CliRender, BadArgumentsFailCleanly) {
   const auto dir = test::scratchDir();
   const std::string out = " -o " + (dir / "x.png").string();
   const std::string in = "render builtin:gaussian-beam:8 --size 16x16";
+  test::CliResult r0;
   EXPECT_EQ(runMfadvr(in + " --method cubic" + out).status, 2);
   EXPECT_EQ(runMfadvr(in + " --size 0x10" + out).status, 2);
   EXPECT_EQ(runMfadvr(in + " --size 10" + out).status, 2);
@@ -99,6 +100,11 @@ TEST(CliRender, BadArgumentsFailCleanly) {
   EXPECT_EQ(runMfadvr(in + " --background 2,0,0" + out).status, 2);
   EXPECT_EQ(runMfadvr(in + " --method mfa --gradient-from trilinear" + out).status, 2);
   EXPECT_EQ(runMfadvr(in + " --step -1" + out).status, 2);
+  // 0 is not a silent "default", and a step that would take hours is refused up front.
+  EXPECT_EQ(runMfadvr(in + " --step 0" + out).status, 2);
+  r0 = runMfadvr(in + " --step 1e-9" + out);
+  EXPECT_EQ(r0.status, 2);
+  EXPECT_NE(r0.err.find("samples along a ray"), std::string::npos) << r0.err;
   EXPECT_EQ(runMfadvr(in).status, 2);  // no output
   auto r = runMfadvr(in + " --tf nonsense" + out);
   EXPECT_EQ(r.status, 1);

@@ -35,6 +35,15 @@ TEST(StructuredEncoder, InterpolatesWhenCountsEqualSamples) {
   }
 }
 
+// The memory estimate: 44 bytes per sample for an interpolating fit (8 input, 16 for the two
+// pass buffers, 4 control points, 16 for the error evaluation), less with fewer control points.
+TEST(StructuredEncoder, PeakMemoryEstimate) {
+  EXPECT_EQ(structuredFitPeakBytes({100, 100, 100}, {100, 100, 100}), 44 * 1000000);
+  const std::int64_t half = structuredFitPeakBytes({100, 100, 100}, {50, 50, 50});
+  EXPECT_EQ(half, 8 * 1000000 + 8 * (500000 + 250000) + 4 * 125000 + 8 * (500000 + 1000000));
+  EXPECT_LT(half, 44 * 1000000);
+}
+
 TEST(StructuredEncoder, ReportIsConsistent) {
   const StructuredGrid g = sampleBuiltinSpec("builtin:gaussian-beam:32x24x16");
   FitReport r;

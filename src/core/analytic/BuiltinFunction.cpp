@@ -7,6 +7,7 @@
 #include <tbb/parallel_for.h>
 
 #include "core/util/Error.h"
+#include "core/util/MemoryBudget.h"
 
 namespace mfadvr {
 namespace {
@@ -255,6 +256,11 @@ BuiltinSpec parseBuiltinSpec(const std::string& spec) {
 }
 
 StructuredGrid sampleBuiltin(const BuiltinFunction& f, const Index3& dims) {
+  for (int a = 0; a < 3; ++a)
+    if (dims[a] < 2) throw Error("a built-in function is sampled with at least 2 samples per axis");
+  requireMemory(8 * dims[0] * dims[1] * dims[2],
+                "sampling " + f.name() + " on " + std::to_string(dims[0]) + "x" +
+                    std::to_string(dims[1]) + "x" + std::to_string(dims[2]) + " samples");
   StructuredGrid g;
   g.dims = dims;
   const Vec3d lo = BuiltinFunction::domainMin(), hi = BuiltinFunction::domainMax();

@@ -14,6 +14,7 @@
 #include "core/spline/BasisFunctions.h"
 #include "core/spline/DerivativePenalty.h"
 #include "core/util/Error.h"
+#include "core/util/MemoryBudget.h"
 #include "core/util/UtcTime.h"
 
 namespace mfadvr {
@@ -298,6 +299,13 @@ void validateSmoothing(double lambda) {
   }
 }
 
+std::int64_t structuredFitPeakBytes(const Index3& N, const Index3& n) {
+  const std::int64_t samples = N[0] * N[1] * N[2], ctrl = n[0] * n[1] * n[2];
+  const std::int64_t fit = 8 * (n[0] * N[1] * N[2] + n[0] * n[1] * N[2]);
+  const std::int64_t evaluate = 8 * (N[0] * N[1] * n[2] + samples);
+  return 8 * samples + fit + 4 * ctrl + evaluate;
+}
+
 double effectiveParameters(const std::array<KnotVector, 3>& knots, const Index3& dims,
                            double smoothing) {
   validateSmoothing(smoothing);
@@ -367,6 +375,12 @@ Model fitStructuredWithKnots(const StructuredGrid& grid, std::array<KnotVector, 
       throw Error(m.str());
     }
   }
+  // The samples are held already; the rest is allocated from here on.
+  requireMemory(structuredFitPeakBytes(grid.dims, n) - 8 * grid.sampleCount(),
+                "fitting " + std::to_string(n[0]) + "x" + std::to_string(n[1]) + "x" +
+                    std::to_string(n[2]) + " control points to " + std::to_string(grid.dims[0]) +
+                    "x" + std::to_string(grid.dims[1]) + "x" + std::to_string(grid.dims[2]) +
+                    " samples (fewer control points, --ctrl, or --blocks need less)");
   auto progress = [&](double f, const char* stage) {
     if (options.progress) options.progress(f, stage);
   };
