@@ -199,21 +199,11 @@ std::vector<double> evaluateOnSamples(const std::array<AxisSampling, 3>& samplin
   return recon;
 }
 
-}  // namespace
-
-std::vector<double> splineOnGrid(const TensorBSpline& spline, const Index3& dims) {
-  return splineOnGrid(spline, dims, 0, dims[2]);
-}
-
-std::vector<double> splineOnGrid(const TensorBSpline& spline, const Index3& dims,
-                                 std::int64_t zBegin, std::int64_t zEnd) {
-  if (zBegin < 0 || zEnd > dims[2] || zBegin >= zEnd)
-    throw Error("splineOnGrid: empty or out-of-range z slab");
-  std::array<AxisSampling, 3> sampling;
-  for (int a = 0; a < 3; ++a) sampling[a] = sampleAxis(spline.knots(a), dims[a]);
-  if (zBegin == 0 && zEnd == dims[2])
-    return evaluateOnSamples(sampling, spline.controlPoints(), spline.counts());
-  // The slab's samples see control planes first[zBegin] .. first[zEnd - 1] + p alone.
+// The samples with z in [zBegin, zEnd) only (x fastest), from the control planes they depend
+// on: first[zBegin] .. first[zEnd - 1] + p. The same sums as the whole evaluation, bit for bit.
+std::vector<double> evaluateSlab(std::array<AxisSampling, 3> sampling, std::span<const float> ctrl,
+                                 const Index3& n, std::int64_t zBegin, std::int64_t zEnd) {
+  if (zBegin == 0 && zEnd == sampling[2].samples) return evaluateOnSamples(sampling, ctrl, n);
   AxisSampling& z = sampling[2];
   const int p = z.degree, w = p + 1;
   const int c0 = z.first[static_cast<size_t>(zBegin)];
@@ -228,25 +218,63 @@ std::vector<double> splineOnGrid(const TensorBSpline& spline, const Index3& dims
     slab.weights.insert(slab.weights.end(), wi, wi + w);
   }
   z = std::move(slab);
-  const Index3 n = spline.counts();
   const size_t plane = static_cast<size_t>(n[0] * n[1]);
-  const auto& ctrl = spline.controlPoints();
-  return evaluateOnSamples(
-      sampling,
-      std::span<const float>(ctrl.data() + c0 * plane, static_cast<size_t>(z.controlCount) * plane),
-      {n[0], n[1], z.controlCount});
+  return evaluateOnSamples(sampling,
+                           ctrl.subspan(c0 * plane, static_cast<size_t>(z.controlCount) * plane),
+                           {n[0], n[1], z.controlCount});
+}
+
+// z slabs of about 2^22 samples (32 MB of doubles), at least 16 planes so that the control
+// planes a slab shares with its neighbours (p of them) cost little.
+std::int64_t slabPlanes(const Index3& dims) {
+  const std::int64_t plane = std::max<std::int64_t>(1, dims[0] * dims[1]);
+  return std::clamp<std::int64_t>((std::int64_t(1) << 22) / plane, 16,
+                                  std::max<std::int64_t>(1, dims[2]));
+}
+
+// Calls visit(zBegin, zEnd, values) for consecutive z slabs covering the samples of `sampling`.
+template <class Visit>
+void forEachSlab(const std::array<AxisSampling, 3>& sampling, std::span<const float> ctrl,
+                 const Index3& n, const Visit& visit) {
+  const Index3 dims{sampling[0].samples, sampling[1].samples, sampling[2].samples};
+  const std::int64_t planes = slabPlanes(dims);
+  for (std::int64_t z0 = 0; z0 < dims[2]; z0 += planes) {
+    const std::int64_t z1 = std::min(dims[2], z0 + planes);
+    visit(z0, z1, evaluateSlab(sampling, ctrl, n, z0, z1));
+  }
+}
+
+}  // namespace
+
+std::vector<double> splineOnGrid(const TensorBSpline& spline, const Index3& dims) {
+  return splineOnGrid(spline, dims, 0, dims[2]);
+}
+
+std::vector<double> splineOnGrid(const TensorBSpline& spline, const Index3& dims,
+                                 std::int64_t zBegin, std::int64_t zEnd) {
+  if (zBegin < 0 || zEnd > dims[2] || zBegin >= zEnd)
+    throw Error("splineOnGrid: empty or out-of-range z slab");
+  std::array<AxisSampling, 3> sampling;
+  for (int a = 0; a < 3; ++a) sampling[a] = sampleAxis(spline.knots(a), dims[a]);
+  return evaluateSlab(std::move(sampling), spline.controlPoints(), spline.counts(), zBegin, zEnd);
 }
 
 SampleErrors errorsOnGrid(const TensorBSpline& spline, const StructuredGrid& grid) {
-  const std::vector<double> recon = splineOnGrid(spline, grid.dims);
+  std::array<AxisSampling, 3> sampling;
+  for (int a = 0; a < 3; ++a) sampling[a] = sampleAxis(spline.knots(a), grid.dims[a]);
   SampleErrors e;
   double sumSq = 0.0;
-  for (size_t i = 0; i < recon.size(); ++i) {
-    const double d = std::abs(recon[i] - grid.values[i]);
-    e.max = std::max(e.max, d);
-    sumSq += d * d;
-  }
-  e.rms = recon.empty() ? 0.0 : std::sqrt(sumSq / static_cast<double>(recon.size()));
+  forEachSlab(sampling, spline.controlPoints(), spline.counts(),
+              [&](std::int64_t z0, std::int64_t, const std::vector<double>& recon) {
+                const double* v = grid.values.data() + z0 * grid.dims[0] * grid.dims[1];
+                for (size_t i = 0; i < recon.size(); ++i) {
+                  const double d = std::abs(recon[i] - v[i]);
+                  e.max = std::max(e.max, d);
+                  sumSq += d * d;
+                }
+              });
+  const auto count = static_cast<double>(grid.sampleCount());
+  e.rms = count > 0 ? std::sqrt(sumSq / count) : 0.0;
   return e;
 }
 
@@ -301,9 +329,12 @@ void validateSmoothing(double lambda) {
 
 std::int64_t structuredFitPeakBytes(const Index3& N, const Index3& n) {
   const std::int64_t samples = N[0] * N[1] * N[2], ctrl = n[0] * n[1] * n[2];
-  const std::int64_t fit = 8 * (n[0] * N[1] * N[2] + n[0] * n[1] * N[2]);
-  const std::int64_t evaluate = 8 * (N[0] * N[1] * n[2] + samples);
-  return 8 * samples + fit + 4 * ctrl + evaluate;
+  // The y pass holds the x pass's output and its own; the z pass the y pass's and its own.
+  const std::int64_t passes =
+      8 * std::max(n[0] * N[1] * N[2] + n[0] * n[1] * N[2], n[0] * n[1] * N[2] + ctrl);
+  // The float32 copy is made while the coefficients live; the errors then take one slab.
+  const std::int64_t store = 8 * ctrl + 4 * ctrl;
+  return 8 * samples + std::max(passes, store) + 16 * slabPlanes(N) * N[0] * N[1];
 }
 
 double effectiveParameters(const std::array<KnotVector, 3>& knots, const Index3& dims,
@@ -387,49 +418,56 @@ Model fitStructuredWithKnots(const StructuredGrid& grid, std::array<KnotVector, 
 
   std::array<AxisSampling, 3> sampling;
   for (int a = 0; a < 3; ++a) sampling[a] = sampleAxis(knots[a], grid.dims[a]);
-  // Fit: x, then y, then z; each pass leaves the next axis fastest.
-  std::vector<double> bufA, bufB;
-  const std::vector<double>* in = &grid.values;
-  Index3 dims = grid.dims;
-  for (int a = 0; a < 3; ++a) {
-    progress(a / 4.0, a == 0 ? "fit x" : (a == 1 ? "fit y" : "fit z"));
-    std::vector<double>& out = (a % 2 == 0) ? bufA : bufB;
-    passAlongFastest(*in, dims, n[a], out, AxisFitter(sampling[a], options.smoothing));
-    dims = rotate(dims, n[a]);
-    in = &out;
+  // Fit: x, then y, then z; each pass leaves the next axis fastest. A pass's input is released
+  // as soon as it is consumed, so at most two coefficient arrays live at once.
+  std::vector<double> coeffs;
+  {
+    std::vector<double> in, out;
+    Index3 dims = grid.dims;
+    for (int a = 0; a < 3; ++a) {
+      progress(a / 4.0, a == 0 ? "fit x" : (a == 1 ? "fit y" : "fit z"));
+      passAlongFastest(a == 0 ? grid.values : in, dims, n[a], out,
+                       AxisFitter(sampling[a], options.smoothing));
+      dims = rotate(dims, n[a]);
+      std::vector<double>().swap(in);
+      in.swap(out);
+    }
+    coeffs.swap(in);  // n0 x n1 x n2, x fastest
   }
-  const std::vector<double>& coeffs = *in;  // n0 x n1 x n2, x fastest
-
   std::vector<float> ctrl(coeffs.size());
   for (size_t i = 0; i < coeffs.size(); ++i) ctrl[i] = static_cast<float>(coeffs[i]);
+  std::vector<double>().swap(coeffs);
 
-  // Error of the stored (float32) model at every input sample.
+  // Error of the stored (float32) model at every input sample, z slab by z slab.
   progress(0.75, "error");
-  const std::vector<double> recon = evaluateOnSamples(sampling, ctrl, n);
   double maxErr = 0.0, sumSq = 0.0;
   double vmin = grid.values.empty() ? 0.0 : grid.values[0], vmax = vmin;
   if (spanErrors)
     for (int a = 0; a < 3; ++a) (*spanErrors)[a].assign(static_cast<size_t>(n[a] - degree[a]), 0.0);
   size_t i = 0;
-  for (std::int64_t z = 0; z < grid.dims[2]; ++z)
-    for (std::int64_t y = 0; y < grid.dims[1]; ++y)
-      for (std::int64_t x = 0; x < grid.dims[0]; ++x, ++i) {
-        const double v = grid.values[i];
-        const double e = std::abs(recon[i] - v);
-        maxErr = std::max(maxErr, e);
-        sumSq += e * e;
-        vmin = std::min(vmin, v);
-        vmax = std::max(vmax, v);
-        if (spanErrors) {
-          // sampling.first is the span's first control point: span index - degree.
-          const std::int64_t at[3] = {x, y, z};
-          for (int a = 0; a < 3; ++a) {
-            double& worst = (*spanErrors)[a][static_cast<size_t>(sampling[a].first[at[a]])];
-            worst = std::max(worst, e);
-          }
-        }
-      }
-  const double rms = std::sqrt(sumSq / static_cast<double>(recon.size()));
+  forEachSlab(
+      sampling, ctrl, n, [&](std::int64_t z0, std::int64_t z1, const std::vector<double>& recon) {
+        size_t r = 0;
+        for (std::int64_t z = z0; z < z1; ++z)
+          for (std::int64_t y = 0; y < grid.dims[1]; ++y)
+            for (std::int64_t x = 0; x < grid.dims[0]; ++x, ++i, ++r) {
+              const double v = grid.values[i];
+              const double e = std::abs(recon[r] - v);
+              maxErr = std::max(maxErr, e);
+              sumSq += e * e;
+              vmin = std::min(vmin, v);
+              vmax = std::max(vmax, v);
+              if (spanErrors) {
+                // sampling.first is the span's first control point: span index - degree.
+                const std::int64_t at[3] = {x, y, z};
+                for (int a = 0; a < 3; ++a) {
+                  double& worst = (*spanErrors)[a][static_cast<size_t>(sampling[a].first[at[a]])];
+                  worst = std::max(worst, e);
+                }
+              }
+            }
+      });
+  const double rms = std::sqrt(sumSq / static_cast<double>(grid.sampleCount()));
   progress(1.0, "done");
 
   Provenance prov;
