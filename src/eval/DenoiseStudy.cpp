@@ -95,12 +95,9 @@ ExperimentReport runDenoiseStudy(const EvalContext& ctx) {
   const std::vector<Subject> subjects = {
       {"marschner-lobb", "step:0.5", "opacity step at 0.5 of the range (the isovalue 0.5)"},
       {"ct-head", "step:0.6", "opacity step at 0.6 of the range (200 HU: vessels and skull)"}};
-  const std::vector<std::pair<std::string, ReconstructionMethod>> filters = {
-      {"nearest", ReconstructionMethod::Nearest},
-      {"trilinear", ReconstructionMethod::Trilinear},
-      {"tricubic", ReconstructionMethod::Tricubic},
-      {"catmull-rom", ReconstructionMethod::CatmullRom},
-      {"bspline", ReconstructionMethod::BSpline}};
+  using RM = ReconstructionMethod;
+  const std::vector<RM> filters = {RM::Nearest, RM::Trilinear, RM::Tricubic, RM::CatmullRom,
+                                   RM::BSpline};
   // One step for every grid, fine enough for the 128^3 samples: equal truth images.
   const double step = 0.5 * 2.0 / 127.0;
 
@@ -209,10 +206,10 @@ ExperimentReport runDenoiseStudy(const EvalContext& ctx) {
 
         GoalRow row{subject.function, gridName, d.name, {}};
         ctx.log("denoise: " + subject.function + " " + gridName + ", " + d.name + ": rendering");
-        for (const auto& [name, method] : filters) {
+        for (const RM method : filters) {
           MethodSpec spec;
           spec.method = method;
-          row.r[name] = render(name, spec, nullptr, -1.0, true);
+          row.r[methodName(method)] = render(methodName(method), spec, nullptr, -1.0, true);
         }
         MethodSpec mfa;
         mfa.method = ReconstructionMethod::Mfa;
@@ -245,7 +242,7 @@ ExperimentReport runDenoiseStudy(const EvalContext& ctx) {
                         m.name == "sweep" ? "" : csvNumber(m.gradientOnly.ssim),
                         csvNumber(m.samplePsnr), path});
         };
-        for (const auto& [name, method] : filters) addRow(row.r[name]);
+        for (const RM method : filters) addRow(row.r[methodName(method)]);
         for (const char* name : {"mfa", "mfa-lsq", "mfa-auto", "mfa-best"}) addRow(row.r[name]);
         for (const MethodResult& r : swept) addRow(r);
 
