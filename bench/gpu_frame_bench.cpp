@@ -3,13 +3,15 @@
 //
 //   build/release/bench/mfadvr_gpu_bench [--size 1024x1024] [--frames 5] [--cpu-frames 2]
 //                                       [--scenes 256:3,512:2] [--no-cpu]
+//                                       [--model FILE.mfa ... [--tf step:0.2]]
 //
 // The control points are the function's samples on the control grid (no fit: the frame time
 // does not depend on how control points were found, and a 512^3 fit would dominate the run).
 // Frame times are medians; the GPU's include the per-frame uploads (transfer-function table,
 // empty-space flags) and the image's read-back, its kernel time is listed apart. The first GPU
 // frame (model upload, kernel load) is reported separately. Without a usable GPU it says why and
-// measures the CPU alone. Self-contained: scripts/pack-gpu-check.sh bundles it for a GPU machine.
+// measures the CPU alone. `--model` adds scenes of saved models (a sparse scan: the TF hides the
+// air), each rendered with empty-space skipping on and off on both devices. Self-contained: scripts/pack-gpu-check.sh bundles it for a GPU machine.
 #include <tbb/info.h>
 #include <tbb/parallel_for.h>
 #include <CLI/CLI.hpp>
@@ -17,12 +19,14 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <optional>
 
 #include "core/analytic/BuiltinFunction.h"
 #include "core/field/ModelField.h"
 #include "core/image/ImageMetrics.h"
+#include "core/model/ModelFile.h"
 #include "core/render/EmptySpaceGrid.h"
 #include "core/render/RayCaster.h"
 #include "gpu/CudaRenderer.h"
@@ -78,16 +82,103 @@ std::string cpuName() {
   return "unknown CPU";
 }
 
+
+// A saved model, shaded, camera at 20/10 degrees, step half the smallest control spacing.
+RenderSettings modelSettings(const Model& m, int width, int height, const std::string& tf) {
+  RenderSettings s;
+  s.width = width;
+  s.height = height;
+  s.camera.resetToBounds(m.domain().min, m.domain().max);
+  s.camera.azimuth(20);
+  s.camera.elevation(10);
+  s.transferFunction = parseTransferFunction(tf, "").resolved(m.valueMin(), m.valueMax());
+  double spacing = 1e300;
+  for (int a = 0; a < 3; ++a)
+    spacing = std::min(spacing, (m.domain().max[a] - m.domain().min[a]) /
+                                    std::max(1, m.spline().knots(a).controlCount() - 1));
+  s.sampleDistance = 0.5 * spacing;
+  s.opacityUnitDistance = spacing;
+  s.shade = true;
+  return s;
+}
+
+// Median frame and the last frame's image and counts of one device, skipping on or off.
+struct Timed {
+  double frame = 0.0, kernel = 0.0, first = 0.0;
+  RenderStats stats;
+  Image image;
+};
+
+Timed timeFrames(gpu::CudaRenderer* gpuRenderer, const ModelField& field, const RenderSettings& s,
+                 int frames) {
+  Timed t;
+  std::vector<double> times, kernel;
+  t.image = gpuRenderer ? gpuRenderer->renderModel(field, s, &t.stats)
+                        : renderVolume(field, s, &t.stats);
+  t.first = t.stats.seconds;
+  for (int i = 0; i < std::max(frames, 1); ++i) {
+    t.image = gpuRenderer ? gpuRenderer->renderModel(field, s, &t.stats)
+                          : renderVolume(field, s, &t.stats);
+    times.push_back(t.stats.seconds);
+    if (gpuRenderer) kernel.push_back(gpuRenderer->lastKernelSeconds());
+  }
+  t.frame = median(times);
+  if (!kernel.empty()) t.kernel = median(kernel);
+  return t;
+}
+
+void runModelScene(const std::string& path, const std::string& tf, int width, int height,
+                   int frames, int cpuFrames, bool noCpu, gpu::CudaRenderer* gpuRenderer) {
+  const Model model = loadModel(path);
+  RenderSettings s = modelSettings(model, width, height, tf);
+  EmptySpaceCache cache;
+  const ModelField field(model, &cache);
+  const std::string name = std::filesystem::path(path).filename().string();
+  std::printf("\n%s: %dx%dx%d control points, degree %d, TF %s, step %.4g\n", name.c_str(),
+              model.spline().knots(0).controlCount(), model.spline().knots(1).controlCount(),
+              model.spline().knots(2).controlCount(), model.spline().knots(0).degree(), tf.c_str(),
+              s.sampleDistance);
+  std::printf("%-4s %-8s %10s %9s %10s %11s %11s %s\n", "dev", "skipping", "frame s", "fps",
+              "kernel s", "M samples", "M skipped", "image vs skipping off");
+  for (gpu::CudaRenderer* dev : {gpuRenderer, static_cast<gpu::CudaRenderer*>(nullptr)}) {
+    if (dev == nullptr && noCpu) continue;
+    std::optional<Timed> on;
+    for (bool skip : {true, false}) {
+      s.skipEmptySpace = skip;
+      const Timed t = timeFrames(dev, field, s, dev ? frames : cpuFrames);
+      std::printf("%-4s %-8s %10.4f %9.2f %10s %11.1f %11.1f", dev ? "cuda" : "cpu",
+                  skip ? "on" : "off", t.frame, 1.0 / t.frame,
+                  dev ? std::to_string(t.kernel).c_str() : "-", t.stats.samples / 1e6,
+                  t.stats.skipped / 1e6);
+      if (on) {
+        const auto a = toImage8(on->image), b = toImage8(t.image);
+        std::printf(" %s", a.data == b.data ? "identical"
+                                                : ("PSNR " + std::to_string(compareImages(a, b).psnr)
+                                                   + " dB").c_str());
+      }
+      std::printf("\n");
+      if (skip) on = t;
+    }
+    if (dev == nullptr) break;
+  }
+}
+
 int run(int argc, char** argv) {
   std::string size = "1024x1024", scenes = "256:3,512:2";
   int frames = 5, cpuFrames = 2;
   bool noCpu = false;
+  std::vector<std::string> models;
+  std::string tf = "step:0.2";
   CLI::App app("GPU (CUDA) against CPU frame time of the MFA ray caster");
   app.add_option("--size", size, "Image size WxH")->capture_default_str();
   app.add_option("--frames", frames, "Timed GPU frames (median)")->capture_default_str();
   app.add_option("--cpu-frames", cpuFrames, "Timed CPU frames (median)")->capture_default_str();
   app.add_option("--scenes", scenes, "N:DEGREE list (N^3 control points)")->capture_default_str();
   app.add_flag("--no-cpu", noCpu, "GPU frames only");
+  app.add_option("--model", models, "Saved models (.mfa) to render as extra scenes")
+      ->check(CLI::ExistingFile);
+  app.add_option("--tf", tf, "Opacity TF of the --model scenes (as render --tf)")
+      ->capture_default_str();
   CLI11_PARSE(app, argc, argv);
   int width = 0, height = 0;
   if (std::sscanf(size.c_str(), "%dx%d", &width, &height) != 2 || width <= 0 || height <= 0) {
@@ -160,6 +251,9 @@ int run(int argc, char** argv) {
       std::printf("%-10s GPU vs CPU image: PSNR %.2f dB (model built in %.1f s)\n", name.c_str(),
                   compareImages(toImage8(*gpuImage), toImage8(*cpuImage)).psnr, buildSeconds);
   }
+  for (const std::string& path : models)
+    runModelScene(path, tf, width, height, frames, cpuFrames, noCpu,
+                  gpuRenderer ? &*gpuRenderer : nullptr);
   if (!gpuRenderer) std::printf("\nno GPU figures: %s\n", status.reason.c_str());
   return 0;
 }

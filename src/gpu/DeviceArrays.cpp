@@ -55,14 +55,14 @@ ModelView relocateModel(const ModelView& view, const std::vector<const void*>& c
 
 std::vector<HostArray> flagArrays(const EmptySpaceFlags& flags) {
   return {{flags.cells.data(), flags.cells.size(), "the empty-space flags"},
-          {flags.blocks.data(), flags.blocks.size(), "the empty-space blocks"}};
+          {flags.pyramid.data(), flags.pyramid.size(), "the empty-space pyramid"}};
 }
 
 ModelView relocateFlags(const ModelView& view, const std::vector<const void*>& copies) {
   if (copies.size() != 2) throw Error("device arrays: the flags need 2 copies");
   ModelView v = view;
   v.empty = static_cast<const std::uint8_t*>(copies[0]);
-  v.emptyBlocks = static_cast<const std::uint8_t*>(copies[1]);
+  v.emptyPyramid = static_cast<const std::uint8_t*>(copies[1]);
   return v;
 }
 

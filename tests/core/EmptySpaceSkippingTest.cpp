@@ -251,18 +251,34 @@ TEST(EmptySpaceCache, RebuildsOnlyWhenTheZeroSetChanges) {
       m.spline(), TransferFunctionTable(testTransferFunctions()[1], OpacityCorrection(0.5)));
   EXPECT_NE(other, first);
   EXPECT_NE(other->cells, first->cells);
-  // Blocks are empty exactly when all their cells are.
+  // Every level of the pyramid: a block is empty exactly when all its cells are; the last level
+  // is one block.
   const SpanRanges& r = *m.spline().spanRanges();
-  for (int k = 0; k < r.cells[2]; ++k)
-    for (int j = 0; j < r.cells[1]; ++j)
-      for (int i = 0; i < r.cells[0]; ++i) {
-        const int b =
-            i / kEmptyBlock +
-            other->blockCounts[0] * (j / kEmptyBlock + other->blockCounts[1] * (k / kEmptyBlock));
-        if (other->blocks[b]) {
-          EXPECT_TRUE(other->cells[i + r.cells[0] * (j + r.cells[1] * k)]);
+  ASSERT_GT(other->levels, 0);
+  const EmptyLevelView& top = other->level[other->levels - 1];
+  EXPECT_EQ(top.count[0] * top.count[1] * top.count[2], 1);
+  std::int64_t blocksChecked = 0, emptyBlocks = 0;
+  for (int l = 1; l <= other->levels; ++l) {
+    const EmptyLevelView& L = other->level[l - 1];
+    const int side = 1 << l;
+    for (int a = 0; a < 3; ++a) EXPECT_EQ(L.count[a], (r.cells[a] + side - 1) / side);
+    for (int bk = 0; bk < L.count[2]; ++bk)
+      for (int bj = 0; bj < L.count[1]; ++bj)
+        for (int bi = 0; bi < L.count[0]; ++bi) {
+          bool all = true;
+          for (int k = bk * side; k < std::min((bk + 1) * side, r.cells[2]); ++k)
+            for (int j = bj * side; j < std::min((bj + 1) * side, r.cells[1]); ++j)
+              for (int i = bi * side; i < std::min((bi + 1) * side, r.cells[0]); ++i)
+                all = all && other->cells[i + r.cells[0] * (j + r.cells[1] * k)];
+          const bool flag =
+              other->pyramid[L.offset + bi + L.count[0] * (bj + L.count[1] * std::int64_t(bk))];
+          EXPECT_EQ(flag, all) << "level " << l << " block " << bi << " " << bj << " " << bk;
+          ++blocksChecked;
+          emptyBlocks += flag;
         }
-      }
+  }
+  EXPECT_GT(emptyBlocks, 0);               // the test sees empty blocks ...
+  EXPECT_LT(emptyBlocks, blocksChecked);  // ... and non-empty ones
 }
 
 // A model wrapped so that renderVolume takes the generic field path (FieldRaySampler over the

@@ -108,7 +108,7 @@ TEST(DeviceArrays, RelocatedCopiesRenderTheCpuImage) {
         }
         if (view.empty) {
           EXPECT_TRUE(flags->owns(view.empty));
-          EXPECT_TRUE(flags->owns(view.emptyBlocks));
+          EXPECT_TRUE(flags->owns(view.emptyPyramid));
         }
         EXPECT_TRUE(frame.owns(params.tf.entries));
         if (params.rayEnd) {

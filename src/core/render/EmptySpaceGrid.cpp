@@ -1,10 +1,9 @@
 #include "core/render/EmptySpaceGrid.h"
 
-#include "core/render/kernel/SplineRaySampler.h"  // kEmptyBlock
-
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstring>
 
@@ -20,32 +19,49 @@ EmptySpaceFlags buildEmptySpaceFlags(const SpanRanges& r, const TransferFunction
   if (!table.mayBeTransparentOver(r.lowest - wholePad, r.highest + wholePad)) return out;
   std::vector<std::uint8_t>& flags = out.cells;
   flags.assign(static_cast<size_t>(n), 0);
+  std::atomic<std::int64_t> empties{0};
   tbb::parallel_for(tbb::blocked_range<std::int64_t>(0, n, 1 << 14), [&](const auto& range) {
+    std::int64_t count = 0;
     for (std::int64_t i = range.begin(); i < range.end(); ++i) {
       const float lo = r.min[i], hi = r.max[i];
       const float pad = skippingMargin(r, lo, hi);
       flags[i] = table.transparentOver(lo - pad, hi + pad) ? 1 : 0;
+      count += flags[i];
     }
+    empties += count;
   });
-  for (int a = 0; a < 3; ++a) out.blockCounts[a] = (r.cells[a] + kEmptyBlock - 1) / kEmptyBlock;
-  const int* b = out.blockCounts;
-  out.blocks.assign(static_cast<size_t>(b[0]) * b[1] * b[2], 1);
-  // One layer of blocks per task: the layers write disjoint blocks.
-  std::vector<std::int64_t> emptyPerLayer(static_cast<size_t>(b[2]), 0);
-  tbb::parallel_for(0, b[2], [&](int kb) {
-    std::int64_t empties = 0;
-    const int kEnd = std::min(r.cells[2], (kb + 1) * kEmptyBlock);
-    for (int k = kb * kEmptyBlock; k < kEnd; ++k)
-      for (int j = 0; j < r.cells[1]; ++j)
-        for (int i = 0; i < r.cells[0]; ++i) {
-          const bool empty =
-              flags[i + std::int64_t(r.cells[0]) * (j + std::int64_t(r.cells[1]) * k)];
-          empties += empty ? 1 : 0;
-          if (!empty) out.blocks[i / kEmptyBlock + b[0] * (j / kEmptyBlock + b[1] * kb)] = 0;
+  out.emptyCells = empties;
+
+  // The pyramid: its levels' sizes, then each level from the one below (a block is empty when
+  // its up to eight sub-blocks are), one layer of blocks per task.
+  std::int64_t size = 0;
+  for (const int* below = r.cells;
+       out.levels < kMaxEmptyLevels && (out.levels == 0 || below[0] > 1 || below[1] > 1 ||
+                                        below[2] > 1);
+       below = out.level[out.levels++].count) {
+    EmptyLevelView& L = out.level[out.levels];
+    for (int a = 0; a < 3; ++a) L.count[a] = (below[a] + 1) / 2;
+    L.offset = size;
+    size += std::int64_t(L.count[0]) * L.count[1] * L.count[2];
+  }
+  out.pyramid.assign(static_cast<size_t>(size), 0);
+  for (int l = 0; l < out.levels; ++l) {
+    const EmptyLevelView& L = out.level[l];
+    const std::uint8_t* below = l == 0 ? flags.data() : out.pyramid.data() + out.level[l - 1].offset;
+    const int* n = l == 0 ? r.cells : out.level[l - 1].count;
+    std::uint8_t* level = out.pyramid.data() + L.offset;
+    tbb::parallel_for(0, L.count[2], [&](int k) {
+      for (int j = 0; j < L.count[1]; ++j)
+        for (int i = 0; i < L.count[0]; ++i) {
+          bool empty = true;
+          for (int kk = 2 * k; kk < std::min(2 * k + 2, n[2]); ++kk)
+            for (int jj = 2 * j; jj < std::min(2 * j + 2, n[1]); ++jj)
+              for (int ii = 2 * i; ii < std::min(2 * i + 2, n[0]); ++ii)
+                empty = empty && below[ii + std::int64_t(n[0]) * (jj + std::int64_t(n[1]) * kk)];
+          level[i + std::int64_t(L.count[0]) * (j + std::int64_t(L.count[1]) * k)] = empty;
         }
-    emptyPerLayer[kb] = empties;
-  });
-  for (const std::int64_t e : emptyPerLayer) out.emptyCells += e;
+    });
+  }
   return out;
 }
 

@@ -19,18 +19,23 @@
 #include <vector>
 
 #include "core/render/TransferFunctionTable.h"
+#include "core/render/kernel/SplineRaySampler.h"  // EmptyLevelView
 #include "core/spline/TensorBSpline.h"
 
 namespace mfadvr {
 
-// One flag per cell, x fastest over SpanRanges::cells (non-zero: skip), and one per block of
-// kEmptyBlock^3 cells (non-zero: every cell of the block is empty), for a ray to cross large
-// empty regions a block at a time. When the transfer function leaves every value of the whole
-// spline visible, no cell can be empty: emptyCells is 0 and no flags are made.
+// One flag per cell, x fastest over SpanRanges::cells (non-zero: skip), and a pyramid over them
+// for a ray to cross large empty regions in one step: level l (1..levels) has one flag per
+// aligned block of 2^l cells per axis (clipped at the far faces), set when all of the block's
+// cells are empty; its flags start at pyramid[level[l - 1].offset], x fastest over
+// level[l - 1].count. Levels go up until one block covers the grid (at most kMaxEmptyLevels).
+// When the transfer function leaves every value of the whole spline visible, no cell can be
+// empty: emptyCells is 0 and no flags are made.
 struct EmptySpaceFlags {
   std::vector<std::uint8_t> cells;
-  std::vector<std::uint8_t> blocks;
-  int blockCounts[3] = {0, 0, 0};
+  std::vector<std::uint8_t> pyramid;
+  int levels = 0;
+  EmptyLevelView level[kMaxEmptyLevels];
   std::int64_t emptyCells = 0;
 };
 

@@ -34,8 +34,9 @@ ModelRenderSetup::ModelRenderSetup(const ModelField& field, const RenderSettings
     // Nothing to skip: the loop without the per-sample test.
     if (flags_->emptyCells > 0) {
       view_.empty = flags_->cells.data();
-      view_.emptyBlocks = flags_->blocks.data();
-      for (int a = 0; a < 3; ++a) view_.blocks[a] = flags_->blockCounts[a];
+      view_.emptyPyramid = flags_->pyramid.data();
+      view_.emptyLevels = flags_->levels;
+      for (int l = 0; l < flags_->levels; ++l) view_.emptyLevel[l] = flags_->level[l];
     }
   }
   setupSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -28,7 +28,7 @@ class ModelRenderSetup {
   bool masked() const { return view_.mask.nodes != nullptr; }
   // Whether the view carries empty-space flags (skipping on and something to skip).
   bool skips() const { return view_.empty != nullptr; }
-  // The flags behind view().empty / emptyBlocks, or null. Shared with the field's cache: the
+  // The flags behind view().empty / emptyPyramid, or null. Shared with the field's cache: the
   // same object comes back while the model and the transfer function's zero set are unchanged.
   std::shared_ptr<const EmptySpaceFlags> emptySpaceFlags() const {
     return skips() ? flags_ : nullptr;

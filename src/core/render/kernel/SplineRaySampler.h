@@ -14,8 +14,9 @@
 // Exact empty-space skipping (Skip): `empty` flags, per knot-span cell, that no value the spline
 // can take in the cell is visible (EmptySpaceGrid.h: by the B-spline convex-hull property a
 // cell's values lie within its control points' range, widened by the kernel's rounding). A
-// sample in such a cell is not evaluated, and the ray jumps to where it leaves the cell, or the
-// whole block of kEmptyBlock^3 cells around it when every cell of the block is empty.
+// sample in such a cell is not evaluated, and the ray jumps to where it leaves the largest
+// aligned empty block around it (a pyramid of flags over blocks of 2, 4, 8, ... cells per axis):
+// crossing empty space costs about one step per block, not per cell.
 #include <cstdint>
 
 #include "core/mask/MaskView.h"
@@ -24,6 +25,16 @@
 #include "core/spline/SplineLaneKernel.h"
 
 namespace mfadvr {
+
+// One coarser level of the empty-space flags (EmptySpaceFlags::pyramid): its block counts per
+// axis and where its flags start.
+struct EmptyLevelView {
+  int count[3] = {0, 0, 0};
+  std::int64_t offset = 0;
+};
+
+// Levels above the cells: 2^16 cells per axis and more are covered by blocks of 2^16 cells.
+inline constexpr int kMaxEmptyLevels = 16;
 
 // The model's placement and the optional skipping flags, shared by every ray.
 struct ModelView {
@@ -34,13 +45,14 @@ struct ModelView {
   // Per knot-span cell, x fastest over (count - degree) cells per axis: non-zero when the cell
   // is invisible under the current transfer function. Null: no skipping information.
   const std::uint8_t* empty = nullptr;
-  // Per block of kEmptyBlock^3 cells (x fastest, blocks[a] per axis): non-zero when every cell
-  // of the block is empty, so that a ray crosses a large empty region a block at a time.
-  const std::uint8_t* emptyBlocks = nullptr;
-  int blocks[3] = {0, 0, 0};
+  // The flags' pyramid: level l = 1..emptyLevels has one flag per block of 2^l x 2^l x 2^l cells
+  // (aligned at cell 0, clipped at the far faces; x fastest over emptyLevel[l - 1].count blocks,
+  // from emptyPyramid + emptyLevel[l - 1].offset), non-zero when every cell of the block is
+  // empty, so that a ray crosses a large empty region in one step.
+  const std::uint8_t* emptyPyramid = nullptr;
+  int emptyLevels = 0;
+  EmptyLevelView emptyLevel[kMaxEmptyLevels];
 };
-
-inline constexpr int kEmptyBlock = 8;
 
 // Shade: evaluate() also computes the basis derivatives (one Horner pass gives both), which
 // gradient() reuses.
@@ -103,23 +115,26 @@ class SplineRaySampler {
         (loc_[0].span - p_[0]) +
         cells_[0] * ((loc_[1].span - p_[1]) + std::int64_t(cells_[1]) * (loc_[2].span - p_[2]));
     if (!m_.empty[cell]) return false;
-    // The region to leave: the whole block of cells when it is all empty, else the cell. Its
-    // faces are knots; they are pulled in by far more than the rounding of a sample's
-    // parameter, so every sample before tLeave is found in this same empty region.
+    // The region to leave: the largest aligned block of the pyramid around the cell that is all
+    // empty (one flag per level, going up while it is set), else the cell. Its faces are knots;
+    // they are pulled in by far more than the rounding of a sample's parameter, so every sample
+    // before tLeave is found in this same empty region.
+    int c[3];  // the cell
+    for (int a = 0; a < 3; ++a) c[a] = loc_[a].span - p_[a];
+    int level = 0;
+    while (level < m_.emptyLevels) {
+      const EmptyLevelView& L = m_.emptyLevel[level];
+      const int s = level + 1;
+      const std::int64_t block =
+          (c[0] >> s) + L.count[0] * ((c[1] >> s) + std::int64_t(L.count[1]) * (c[2] >> s));
+      if (!m_.emptyPyramid[L.offset + block]) break;
+      level = s;
+    }
     int lo[3], hi[3];  // span range of the region on each axis
-    int c[3];
-    for (int a = 0; a < 3; ++a) c[a] = (loc_[a].span - p_[a]) / kEmptyBlock;
-    if (m_.emptyBlocks[c[0] + m_.blocks[0] * (c[1] + m_.blocks[1] * c[2])]) {
-      for (int a = 0; a < 3; ++a) {
-        lo[a] = p_[a] + c[a] * kEmptyBlock;
-        const int end = lo[a] + kEmptyBlock;
-        hi[a] = end < cells_[a] + p_[a] ? end : cells_[a] + p_[a];
-      }
-    } else {
-      for (int a = 0; a < 3; ++a) {
-        lo[a] = loc_[a].span;
-        hi[a] = loc_[a].span + 1;
-      }
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = p_[a] + ((c[a] >> level) << level);
+      const int end = lo[a] + (1 << level);
+      hi[a] = end < cells_[a] + p_[a] ? end : cells_[a] + p_[a];
     }
     constexpr double kInset = 1e-10;
     tLeave = INFINITY;
