@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <optional>
 #include <sstream>
 
 #include "core/model/ModelFile.h"
@@ -31,31 +32,58 @@ std::string tolerancePhrase(int exponent) {
   return "2^" + std::to_string(exponent) + " = " + text(std::ldexp(1.0, exponent));
 }
 
+// What coding with one tolerance gives, measured on the decoded model.
+struct Measured {
+  SampleErrors errors;
+  std::int64_t controlBytes = 0;
+};
+
+// Codes a zfp-coded fit at the tolerances a search asks for. Each tolerance is measured once;
+// only the last coded model is held, so that a search holds one candidate at a time (a decoded
+// candidate is as large as the fit).
 class Coder {
  public:
-  Coder(const Model& fit, const StructuredGrid& grid, ControlCoder coder)
-      : fit_(fit), grid_(grid), coder_(coder) {}
+  Coder(const Model& fit, const StructuredGrid& grid) : fit_(fit), grid_(grid) {}
 
-  // The model coded with tolerance 2^exponent (zfp; ignored otherwise), cached.
-  const Coded& at(int exponent) {
-    if (coder_ != ControlCoder::kZfp) exponent = 0;
-    auto it = cache_.find(exponent);
-    if (it != cache_.end()) return it->second;
-    ControlCoding c{coder_, coder_ == ControlCoder::kZfp ? std::ldexp(1.0, exponent) : 0.0};
-    Coded k{codeControlPoints(fit_, c), {}, 0, exponent};
-    k.errors = coder_ == ControlCoder::kLossless || coder_ == ControlCoder::kFloat32
-                   ? SampleErrors{fit_.provenance().maxError, fit_.provenance().rmsError}
-                   : errorsOnGrid(k.model.spline(), grid_);
-    k.controlBytes = static_cast<std::int64_t>(k.model.codedControlPoints()->size());
-    return cache_.emplace(exponent, std::move(k)).first->second;
+  // Errors and size of the model coded with tolerance 2^exponent.
+  const Measured& at(int exponent) {
+    auto it = measured_.find(exponent);
+    if (it != measured_.end()) return it->second;
+    code(exponent);
+    return measured_.emplace(exponent, Measured{last_->errors, last_->controlBytes}).first->second;
+  }
+
+  // The model coded with tolerance 2^exponent (coded again unless it was the last one).
+  Coded take(int exponent) {
+    if (!last_ || last_->exponent != exponent) code(exponent);
+    Coded out = std::move(*last_);
+    last_.reset();
+    return out;
   }
 
  private:
+  void code(int exponent) {
+    last_.reset();
+    Coded k{codeControlPoints(fit_, {ControlCoder::kZfp, std::ldexp(1.0, exponent)}), {}, 0,
+            exponent};
+    k.errors = errorsOnGrid(k.model.spline(), grid_);
+    k.controlBytes = codedControlBytes(k.model);
+    last_ = std::move(k);
+  }
+
   const Model& fit_;
   const StructuredGrid& grid_;
-  ControlCoder coder_;
-  std::map<int, Coded> cache_;
+  std::map<int, Measured> measured_;
+  std::optional<Coded> last_;
 };
+
+// Bytes of a fit's control points stored with a coder that is not zfp (float32: no coding).
+std::int64_t codedSize(const Model& m, ControlCoder coder) {
+  const std::vector<float>& ctrl = m.spline().controlPoints();
+  if (coder == ControlCoder::kFloat32) return 4 * static_cast<std::int64_t>(ctrl.size());
+  return static_cast<std::int64_t>(
+      encodeControlPoints(ctrl, m.spline().counts(), {coder, 0.0}).size());
+}
 
 // The exponents worth trying for data of this range: from far below float32 resolution of the
 // range (where coding no longer adds error) to the range itself (where every block is nearly
@@ -129,14 +157,36 @@ ControlCoder resolvedCoder(const CodingOptions& options) {
   return options.budget.kind != BudgetKind::kNone ? ControlCoder::kZfp : ControlCoder::kFloat32;
 }
 
-Model codeFittedModel(const Model& fit, const StructuredGrid& grid, const CodingOptions& options,
+Model codeFittedModel(Model fit, const StructuredGrid& grid, const CodingOptions& options,
                       double maxError, bool countsGiven, FitReport* report) {
   const auto start = std::chrono::steady_clock::now();
   const ControlCoder coder = resolvedCoder(options);
-  Coder coded(fit, grid, coder);
+  auto seconds = [&] {
+    if (report)
+      report->seconds +=
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  };
+  if (coder != ControlCoder::kZfp) {
+    // float32 stores the fit as it is and lossless codes it bit for bit: the fit itself is the
+    // model (no decoded copy), its errors those the fit measured.
+    const bool lossless = coder == ControlCoder::kLossless;
+    const ControlCoding coding{coder, 0.0};
+    std::shared_ptr<const std::string> payload;
+    if (lossless)
+      payload = std::make_shared<const std::string>(encodeControlPoints(
+          fit.spline().controlPoints(), fit.spline().counts(), coding));
+    const SampleErrors errors{fit.provenance().maxError, fit.provenance().rmsError};
+    fit.setControlCoding(coding, std::move(payload));
+    const std::int64_t bytes = codedControlBytes(fit);
+    seconds();
+    return finish(Coded{std::move(fit), errors, bytes, 0}, report,
+                  lossless ? "lossless (byte-shuffled float32, zstd): the fitted model bit for bit"
+                           : "float32, uncoded");
+  }
+  Coder coded(fit, grid);
   std::string note;
   int k = 0;
-  if (coder == ControlCoder::kZfp) {
+  {
     const auto [lo, hi] = exponentRange(fit);
     const bool integer = isIntegerSampleType(grid.sampleType);
     if (options.tolerance > 0.0) {
@@ -156,7 +206,7 @@ Model codeFittedModel(const Model& fit, const StructuredGrid& grid, const Coding
         // No tolerance keeps the bound: store the fit losslessly instead.
         CodingOptions lossless = options;
         lossless.coder = ControlCoder::kLossless;
-        Model m = codeFittedModel(fit, grid, lossless, 0.0, countsGiven, report);
+        Model m = codeFittedModel(std::move(fit), grid, lossless, 0.0, countsGiven, report);
         if (report)
           report->codingNote = "lossless: the fit leaves no room for a zfp tolerance under the "
                                "error bound";
@@ -194,16 +244,10 @@ Model codeFittedModel(const Model& fit, const StructuredGrid& grid, const Coding
       k = static_cast<int>(std::floor(std::log2(kFloatDefaultRelativeTolerance * range)));
       note = "zfp tolerance " + tolerancePhrase(k) + " (the default: 1e-5 of the value range)";
     }
-  } else if (coder == ControlCoder::kLossless) {
-    note = "lossless (byte-shuffled float32, zstd): the fitted model bit for bit";
-  } else {
-    note = "float32, uncoded";
   }
-  const Coded& c = coded.at(k);
-  if (report)
-    report->seconds +=
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  return finish(c, report, note);
+  Coded c = coded.take(k);
+  seconds();
+  return finish(std::move(c), report, note);
 }
 
 Model encodeToBudget(const StructuredGrid& grid, const StructuredFitOptions& fit,
@@ -261,14 +305,19 @@ Model encodeToBudget(const StructuredGrid& grid, const StructuredFitOptions& fit
     else if (budget.kind == BudgetKind::kRmsError)
       targetRms = budget.value;
     const double fitRms = model.provenance().rmsError;
-    Coder coded(model, grid, coder);
-    const auto [lo, hi] = exponentRange(model);
+    // Without zfp the candidate is the fit itself, measured already.
+    std::optional<Coder> zfp;
+    if (coder == ControlCoder::kZfp) zfp.emplace(model, grid);
+    const Measured uncoded{{model.provenance().maxError, model.provenance().rmsError},
+                           coder == ControlCoder::kZfp ? 0 : codedSize(model, coder)};
+    auto measured = [&](int x) -> const Measured& { return zfp ? zfp->at(x) : uncoded; };
+    const auto [lo, hi] = zfp ? exponentRange(model) : std::pair<int, int>{0, 0};
     std::optional<int> k;
     if (budget.kind == BudgetKind::kBitsPerSample) {
-      const int e = smallestPassing(lo, hi, [&](int x) { return coded.at(x).controlBytes <= byteCap; });
+      const int e = smallestPassing(lo, hi, [&](int x) { return measured(x).controlBytes <= byteCap; });
       if (e <= hi) k = e;
     } else if (fitRms <= targetRms) {
-      const int e = largestPassing(lo, hi, [&](int x) { return coded.at(x).errors.rms <= targetRms; });
+      const int e = largestPassing(lo, hi, [&](int x) { return measured(x).errors.rms <= targetRms; });
       if (e >= lo) k = e;
     }
     std::ostringstream line;
@@ -284,7 +333,7 @@ Model encodeToBudget(const StructuredGrid& grid, const StructuredFitOptions& fit
       if (best && budget.kind != BudgetKind::kBitsPerSample) break;
       continue;
     }
-    const Coded& c = coded.at(*k);
+    const Measured& c = measured(*k);
     line << text(8.0 * static_cast<double>(c.controlBytes) / samples, "%.3f") << " bits/sample, "
          << text(psnrOf(range, c.errors.rms), "%.2f") << " dB"
          << (coder == ControlCoder::kZfp ? ", tolerance " + tolerancePhrase(*k) : std::string());
@@ -295,7 +344,14 @@ Model encodeToBudget(const StructuredGrid& grid, const StructuredFitOptions& fit
     // Every candidate is tried: neither the error at a byte budget nor the bytes at an error
     // target is unimodal in the control count (coarser grids are smoother to code).
     if (better) {
-      best = c;
+      best.reset();
+      if (zfp) {
+        best = zfp->take(*k);
+      } else {
+        Model own = model;
+        own.setControlCoding({coder, 0.0});
+        best = Coded{std::move(own), c.errors, c.controlBytes, 0};
+      }
       bestFitRms = fitRms;
     }
   }

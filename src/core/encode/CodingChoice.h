@@ -53,7 +53,7 @@ ControlCoder resolvedCoder(const CodingOptions& options);
 // room the fit left. countsGiven: the user chose the control counts (the default model of an
 // integer scan is then not held to the input's size). Fills the coding fields of `report` and
 // its errors, measured on the decoded model.
-Model codeFittedModel(const Model& fit, const StructuredGrid& grid, const CodingOptions& options,
+Model codeFittedModel(Model fit, const StructuredGrid& grid, const CodingOptions& options,
                       double maxError, bool countsGiven, FitReport* report);
 
 // Fits and codes candidate models (control counts from the samples down, or fit.controlCounts

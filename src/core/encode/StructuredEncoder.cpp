@@ -1,11 +1,13 @@
 #include "core/encode/StructuredEncoder.h"
 
+#include <tbb/info.h>
 #include <tbb/parallel_for.h>
 #include <Eigen/Sparse>
 #include <Eigen/SparseCholesky>
 
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <span>
 #include <sstream>
 
@@ -183,6 +185,53 @@ class AxisEvaluator {
   const AxisSampling& s_;
 };
 
+// The control points of the separable fit, float32, x fastest. x and y are fitted plane by plane
+// (both lie within a z plane) into one float array of n0 x n1 x N2 coefficients; z is then
+// fitted along its rows a block at a time and written back in place (a row's n2 results take the
+// places of its first n2 values), so that besides the samples only that array lives: 4 bytes
+// per sample instead of two double arrays (16). Every solve runs in double; the intermediate
+// coefficients are rounded to float once, as the stored model is.
+std::vector<float> fitControlPoints(const StructuredGrid& grid,
+                                    const std::array<AxisSampling, 3>& sampling, double smoothing,
+                                    const std::function<void(double, const char*)>& progress) {
+  const std::int64_t N0 = grid.dims[0], N1 = grid.dims[1], N2 = grid.dims[2];
+  const std::int64_t n0 = sampling[0].controlCount, n1 = sampling[1].controlCount,
+                     n2 = sampling[2].controlCount, plane = n0 * n1;
+  const AxisFitter fitX(sampling[0], smoothing), fitY(sampling[1], smoothing);
+  std::vector<float> ctrl(static_cast<size_t>(plane * N2));
+  progress(0.0, "fit x, y");
+  tbb::parallel_for(std::int64_t(0), N2, [&](std::int64_t k) {
+    const Eigen::Map<const Eigen::MatrixXd> samples(grid.values.data() + k * N0 * N1, N0, N1);
+    Eigen::MatrixXd alongX(n0, N1);
+    fitX(samples, alongX);
+    const Eigen::MatrixXd yLines = alongX.transpose();  // N1 x n0: one y line per column
+    Eigen::MatrixXd alongY(n1, n0);
+    fitY(Eigen::Map<const Eigen::MatrixXd>(yLines.data(), N1, n0), alongY);
+    float* dst = ctrl.data() + k * plane;
+    for (std::int64_t j = 0; j < n1; ++j)
+      for (std::int64_t i = 0; i < n0; ++i) dst[i + n0 * j] = static_cast<float>(alongY(j, i));
+  });
+  progress(0.5, "fit z");
+  const AxisFitter fitZ(sampling[2], smoothing);
+  constexpr std::int64_t kRows = 64;  // z lines per task: kRows consecutive floats per plane
+  tbb::parallel_for(tbb::blocked_range<std::int64_t>(0, plane, kRows), [&](const auto& r) {
+    const std::int64_t p0 = r.begin(), rows = r.size();
+    Eigen::MatrixXd lines(N2, rows);
+    for (std::int64_t k = 0; k < N2; ++k)
+      for (std::int64_t b = 0; b < rows; ++b) lines(k, b) = ctrl[p0 + b + plane * k];
+    Eigen::MatrixXd alongZ(n2, rows);
+    fitZ(Eigen::Map<const Eigen::MatrixXd>(lines.data(), N2, rows), alongZ);
+    for (std::int64_t k = 0; k < n2; ++k)
+      for (std::int64_t b = 0; b < rows; ++b)
+        ctrl[p0 + b + plane * k] = static_cast<float>(alongZ(k, b));
+  });
+  if (n2 < N2) {
+    ctrl.resize(static_cast<size_t>(plane * n2));
+    ctrl.shrink_to_fit();
+  }
+  return ctrl;
+}
+
 Index3 rotate(const Index3& d, std::int64_t newLast) {
   return {d[1], d[2], newLast};
 }
@@ -329,12 +378,14 @@ void validateSmoothing(double lambda) {
 
 std::int64_t structuredFitPeakBytes(const Index3& N, const Index3& n) {
   const std::int64_t samples = N[0] * N[1] * N[2], ctrl = n[0] * n[1] * n[2];
-  // The y pass holds the x pass's output and its own; the z pass the y pass's and its own.
-  const std::int64_t passes =
-      8 * std::max(n[0] * N[1] * N[2] + n[0] * n[1] * N[2], n[0] * n[1] * N[2] + ctrl);
-  // The float32 copy is made while the coefficients live; the errors then take one slab.
-  const std::int64_t store = 8 * ctrl + 4 * ctrl;
-  return 8 * samples + std::max(passes, store) + 16 * slabPlanes(N) * N[0] * N[1];
+  // fitControlPoints: one float array of n0 x n1 x N2 (and, when n2 < N2, its shrunk copy), and
+  // per thread one plane's double matrices.
+  const std::int64_t threads = tbb::info::default_concurrency();
+  const std::int64_t fit = 4 * n[0] * n[1] * N[2] + (n[2] < N[2] ? 4 * ctrl : 0) +
+                           threads * 8 * (N[0] * N[1] + 3 * n[0] * N[1]);
+  // The errors: the control points and one slab of evaluations.
+  const std::int64_t errors = 4 * ctrl + 16 * slabPlanes(N) * N[0] * N[1];
+  return 8 * samples + std::max(fit, errors);
 }
 
 double effectiveParameters(const std::array<KnotVector, 3>& knots, const Index3& dims,
@@ -418,25 +469,8 @@ Model fitStructuredWithKnots(const StructuredGrid& grid, std::array<KnotVector, 
 
   std::array<AxisSampling, 3> sampling;
   for (int a = 0; a < 3; ++a) sampling[a] = sampleAxis(knots[a], grid.dims[a]);
-  // Fit: x, then y, then z; each pass leaves the next axis fastest. A pass's input is released
-  // as soon as it is consumed, so at most two coefficient arrays live at once.
-  std::vector<double> coeffs;
-  {
-    std::vector<double> in, out;
-    Index3 dims = grid.dims;
-    for (int a = 0; a < 3; ++a) {
-      progress(a / 4.0, a == 0 ? "fit x" : (a == 1 ? "fit y" : "fit z"));
-      passAlongFastest(a == 0 ? grid.values : in, dims, n[a], out,
-                       AxisFitter(sampling[a], options.smoothing));
-      dims = rotate(dims, n[a]);
-      std::vector<double>().swap(in);
-      in.swap(out);
-    }
-    coeffs.swap(in);  // n0 x n1 x n2, x fastest
-  }
-  std::vector<float> ctrl(coeffs.size());
-  for (size_t i = 0; i < coeffs.size(); ++i) ctrl[i] = static_cast<float>(coeffs[i]);
-  std::vector<double>().swap(coeffs);
+  std::vector<float> ctrl = fitControlPoints(
+      grid, sampling, options.smoothing, [&](double f, const char* stage) { progress(0.75 * f, stage); });
 
   // Error of the stored (float32) model at every input sample, z slab by z slab.
   progress(0.75, "error");

@@ -120,14 +120,19 @@ bool stored(const json& rule) {
 }
 
 // The control-point section as the model's coding stores it: the bytes the model was read from or
-// coded to when it holds them, else coded now.
-std::shared_ptr<const std::string> codedControls(const Model& m) {
-  if (const std::string* kept = m.codedControlPoints())
-    return std::shared_ptr<const std::string>(std::shared_ptr<const std::string>{}, kept);
+// coded to when it holds them, the float array itself when uncoded (no copy), else coded now.
+// `owned` keeps bytes coded here alive as long as the view is used.
+std::string_view codedControls(const Model& m, std::shared_ptr<const std::string>& owned) {
+  if (const std::string* kept = m.codedControlPoints()) return *kept;
   const TensorBSpline& s = m.spline();
-  return std::make_shared<const std::string>(
+  if (m.controlCoding().coder == ControlCoder::kFloat32)
+    return {reinterpret_cast<const char*>(s.controlPoints().data()),
+            s.controlPoints().size() * sizeof(float)};
+  owned = std::make_shared<const std::string>(
       encodeControlPoints(s.controlPoints(), s.counts(), m.controlCoding()));
+  return *owned;
 }
+
 
 // compressedMaskBytes: the size of the mask section (ignored without a mask).
 std::string headerText(const Model& m, const std::array<json, 3>& rules,
@@ -163,14 +168,25 @@ Vec3d vec3(const json& j, const char* key) {
 
 }  // namespace
 
-std::string serializeModel(const Model& model) {
-  const std::string mask = model.mask().empty() ? std::string() : compressedMask(model.mask());
-  const auto ctrl = codedControls(model);
+namespace {
+
+// A model file in its pieces: prefix, header and stored knots; the control points; the mask;
+// then comes the CRC-32 of all three.
+struct ModelFilePieces {
+  std::string head;
+  std::shared_ptr<const std::string> ownedControls;
+  std::string_view controls;
+  std::string mask;
+};
+
+ModelFilePieces modelFilePieces(const Model& model) {
+  ModelFilePieces p;
+  p.mask = model.mask().empty() ? std::string() : compressedMask(model.mask());
+  p.controls = codedControls(model, p.ownedControls);
   const auto rules = knotRules(model);
-  const std::string header = headerText(model, rules, static_cast<std::int64_t>(ctrl->size()),
-                                        static_cast<std::int64_t>(mask.size()));
-  std::string out;
-  out.reserve(kPrefixBytes + header.size() + ctrl->size() + mask.size() + 4096);
+  const std::string header = headerText(model, rules, static_cast<std::int64_t>(p.controls.size()),
+                                        static_cast<std::int64_t>(p.mask.size()));
+  std::string& out = p.head;
   out.append(kMagic, sizeof(kMagic));
   appendBytes(out, kModelFormatVersion);
   appendBytes(out, static_cast<std::uint32_t>(header.size()));
@@ -178,10 +194,32 @@ std::string serializeModel(const Model& model) {
   for (int a = 0; a < 3; ++a)
     if (stored(rules[a]))
       for (double k : model.spline().knots(a).knots()) appendBytes(out, k);
-  out += *ctrl;
-  out += mask;
+  return p;
+}
+
+std::uint32_t crcOf(std::uint32_t crc, std::string_view bytes) {
+  return crc32Continue(crc, reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size());
+}
+
+}  // namespace
+
+std::string serializeModel(const Model& model) {
+  const ModelFilePieces p = modelFilePieces(model);
+  std::string out;
+  out.reserve(p.head.size() + p.controls.size() + p.mask.size() + 4);
+  out += p.head;
+  out += p.controls;
+  out += p.mask;
   appendBytes(out, crc(reinterpret_cast<const std::uint8_t*>(out.data()), out.size()));
   return out;
+}
+
+std::int64_t codedControlBytes(const Model& m) {
+  if (const std::string* kept = m.codedControlPoints()) return static_cast<std::int64_t>(kept->size());
+  if (m.controlCoding().coder == ControlCoder::kFloat32)
+    return 4 * static_cast<std::int64_t>(m.spline().controlPoints().size());
+  std::shared_ptr<const std::string> owned;
+  return static_cast<std::int64_t>(codedControls(m, owned).size());
 }
 
 std::int64_t modelFileSize(const Model& model) {
@@ -192,7 +230,7 @@ std::int64_t modelFileSize(const Model& model) {
   for (int a = 0; a < 3; ++a)
     if (stored(rules[a]))
       knots += static_cast<std::int64_t>(model.spline().knots(a).knots().size());
-  const auto ctrl = static_cast<std::int64_t>(codedControls(model)->size());
+  const std::int64_t ctrl = codedControlBytes(model);
   return static_cast<std::int64_t>(kPrefixBytes + headerText(model, rules, ctrl, mask).size()) +
          8 * knots + ctrl + mask + 4;
 }
@@ -405,7 +443,19 @@ Model parseModel(std::span<const std::uint8_t> b, const std::string& name,
 }
 
 void saveModel(const Model& model, const std::filesystem::path& path) {
-  writeFileAtomically(path, serializeModel(model));
+  // Piece by piece, so that the control points go to the file from where they are held: a large
+  // model is not copied into one buffer first.
+  const ModelFilePieces p = modelFilePieces(model);
+  AtomicFileWriter out(path);
+  std::uint32_t sum = 0;
+  for (const std::string_view piece : {std::string_view(p.head), p.controls, std::string_view(p.mask)}) {
+    out.write(piece);
+    sum = crcOf(sum, piece);
+  }
+  std::string tail;
+  appendBytes(tail, sum);
+  out.write(tail);
+  out.commit();
 }
 
 Model loadModel(const std::filesystem::path& path, std::uint32_t* formatVersion) {

@@ -34,5 +34,8 @@ void saveModel(const Model& model, const std::filesystem::path& path);
 Model loadModel(const std::filesystem::path& path, std::uint32_t* formatVersion = nullptr);
 
 std::int64_t modelFileSize(const Model& model);
+// Bytes of the model's control-point section: its kept coding, 4 per point when uncoded, else
+// coded now to count them.
+std::int64_t codedControlBytes(const Model& model);
 
 }  // namespace mfadvr
