@@ -87,7 +87,7 @@ StructuredGrid gridLike(const StructuredGrid& like, const Index3& dims, std::vec
   for (int a = 0; a < 3; ++a)
     g.spacing[a] = like.spacing[a] * static_cast<double>(like.dims[a] - 1) /
                    static_cast<double>(dims[a] - 1);
-  g.values = std::move(values);
+  g.values.assign(values.begin(), values.end());
   return g;
 }
 

@@ -46,13 +46,13 @@ StructuredGrid degraded(const StructuredGrid& clean, const Degradation& d, doubl
   const double range = vmax - vmin;
   if (d.bits > 0) {
     const double levels = std::ldexp(1.0, d.bits) - 1.0;
-    for (double& v : g.values)
-      v = vmin + std::round((v - vmin) / range * levels) * (range / levels);
+    for (float& v : g.values)
+      v = static_cast<float>(vmin + std::round((v - vmin) / range * levels) * (range / levels));
   }
   if (d.noise > 0.0) {
     std::mt19937_64 rng(seed);
     std::normal_distribution<double> n(0.0, d.noise * range);
-    for (double& v : g.values) v += n(rng);
+    for (float& v : g.values) v = static_cast<float>(v + n(rng));
   }
   g.source += " (" + d.name + ")";
   return g;
@@ -356,7 +356,7 @@ ExperimentReport runDenoiseStudy(const EvalContext& ctx) {
     const auto [lo, hi] = std::minmax_element(grid.values.begin(), grid.values.end());
     RenderSettings s =
         sceneSettings(image, image, grid.boxMin(), grid.boxMax(), 30.0, 20.0, "step:0.25", "white",
-                      *lo, std::max(*hi, *lo + 1e-12), grid.spacing, 0.5, ctx.threads());
+                      *lo, std::max<double>(*hi, *lo + 1e-12), grid.spacing, 0.5, ctx.threads());
     s.shade = true;
     SceneData scene;
     scene.grid = &grid;

@@ -53,13 +53,13 @@ T loadLittleEndian(const unsigned char* bytes) {
 }
 
 template <typename T>
-void convertSamples(const unsigned char* bytes, size_t count, double* out) {
+void convertSamples(const unsigned char* bytes, size_t count, float* out) {
   for (size_t n = 0; n < count; ++n)
-    out[n] = static_cast<double>(loadLittleEndian<T>(bytes + n * sizeof(T)));
+    out[n] = static_cast<float>(loadLittleEndian<T>(bytes + n * sizeof(T)));
 }
 
 void convertSamples(const std::string& dtype, const unsigned char* bytes, size_t count,
-                    double* out) {
+                    float* out) {
   if (dtype == "uint8") return convertSamples<std::uint8_t>(bytes, count, out);
   if (dtype == "int8") return convertSamples<std::int8_t>(bytes, count, out);
   if (dtype == "uint16") return convertSamples<std::uint16_t>(bytes, count, out);

@@ -190,7 +190,7 @@ ScatteredData meshDataOf(vtkDataSet* input, const std::string& path, const Field
   vtkNew<vtkDoubleArray> scalar;
   scalar->SetName(out.fieldName.c_str());
   {
-    const std::vector<double> values = selectedValues(selected);
+    const std::vector<double> values = selectedValues<double>(selected);
     scalar->SetNumberOfTuples(static_cast<vtkIdType>(values.size()));
     std::copy(values.begin(), values.end(), scalar->GetPointer(0));
   }

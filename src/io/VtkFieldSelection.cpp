@@ -25,9 +25,9 @@ std::string listArrays(vtkDataSet* data) {
          "; cell data: " + describeVtkArrays(data->GetCellData());
 }
 
-template <typename T>
-void copyValues(const T* in, size_t count, double* out) {
-  for (size_t n = 0; n < count; ++n) out[n] = static_cast<double>(in[n]);
+template <typename T, typename Out>
+void copyValues(const T* in, size_t count, Out* out) {
+  for (size_t n = 0; n < count; ++n) out[n] = static_cast<Out>(in[n]);
 }
 
 bool numeric(vtkDataArray* a) {
@@ -143,11 +143,12 @@ SelectedVtkField selectVtkField(const std::string& path, vtkDataSet* data,
   return out;
 }
 
-std::vector<double> selectedValues(const SelectedVtkField& field) {
+template <typename Out>
+std::vector<Out> selectedValues(const SelectedVtkField& field) {
   vtkDataArray* a = field.array;
   const vtkIdType n = a->GetNumberOfTuples();
   const int components = a->GetNumberOfComponents();
-  std::vector<double> out(static_cast<size_t>(n));
+  std::vector<Out> out(static_cast<size_t>(n));
   if (components == 1 && a->HasStandardMemoryLayout()) {
     // The common case, a plain scalar array: a typed copy rather than a virtual call per value.
     switch (a->GetDataType()) {
@@ -165,13 +166,17 @@ std::vector<double> selectedValues(const SelectedVtkField& field) {
         const double v = a->GetComponent(i, c);
         sum += v * v;
       }
-      out[static_cast<size_t>(i)] = std::sqrt(sum);
+      out[static_cast<size_t>(i)] = static_cast<Out>(std::sqrt(sum));
     }
   } else {
     const int c = field.component == FieldSelection::kWholeArray ? 0 : field.component;
-    for (vtkIdType i = 0; i < n; ++i) out[static_cast<size_t>(i)] = a->GetComponent(i, c);
+    for (vtkIdType i = 0; i < n; ++i)
+      out[static_cast<size_t>(i)] = static_cast<Out>(a->GetComponent(i, c));
   }
   return out;
 }
+
+template std::vector<float> selectedValues<float>(const SelectedVtkField&);
+template std::vector<double> selectedValues<double>(const SelectedVtkField&);
 
 }  // namespace mfadvr

@@ -29,7 +29,8 @@ SelectedVtkField selectVtkField(const std::string& path, vtkDataSet* data,
                                 const FieldSelection& selection);
 
 // One value per tuple of the selected array: the value, the chosen component, or the
-// magnitude of the components.
-std::vector<double> selectedValues(const SelectedVtkField& field);
+// magnitude of the components; float for grids (the samples' precision), double for points.
+template <typename Out>
+std::vector<Out> selectedValues(const SelectedVtkField& field);
 
 }  // namespace mfadvr

@@ -284,7 +284,7 @@ StructuredGrid toGrid(const std::string& path, VtkVolumeFormat format, vtkImageD
       grid.sampleCount() * array->GetDataTypeSize() *
       (selected.component == FieldSelection::kWholeArray ? 1 : array->GetNumberOfComponents());
   // VTK's point and cell order is x fastest, like StructuredGrid's.
-  grid.values = selectedValues(selected);
+  grid.values = selectedValues<float>(selected);
   return grid;
 }
 
@@ -301,7 +301,7 @@ void applyNiftiHeader(vtkNIFTIImageReader& reader, StructuredGrid& grid) {
   // scl_slope 0 means "no calibration" in NIfTI.
   if (slope != 0.0 && std::isfinite(slope) && std::isfinite(intercept) &&
       (slope != 1.0 || intercept != 0.0)) {
-    for (double& v : grid.values) v = v * slope + intercept;
+    for (float& v : grid.values) v = static_cast<float>(v * slope + intercept);
     grid.notes.push_back("values calibrated as stored * " + formatNumber(slope) + " + " +
                          formatNumber(intercept) + " (the header's scl_slope, scl_inter)");
   }

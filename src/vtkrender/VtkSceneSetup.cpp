@@ -31,7 +31,8 @@ namespace mfadvr {
 
 namespace {
 
-vtkSmartPointer<vtkFloatArray> floatScalars(const std::vector<double>& values) {
+template <typename T>
+vtkSmartPointer<vtkFloatArray> floatScalars(const std::vector<T>& values) {
   auto scalars = vtkSmartPointer<vtkFloatArray>::New();
   scalars->SetName("value");
   scalars->SetNumberOfComponents(1);

@@ -64,7 +64,8 @@ TEST(BuiltinFunction, SamplingCoversTheDomain) {
   EXPECT_EQ(g.dims, (Index3{5, 6, 7}));
   EXPECT_EQ(g.boxMin(), Vec3d::Constant(-1));
   EXPECT_NEAR((g.boxMax() - Vec3d::Constant(1)).norm(), 0.0, 1e-15);
-  EXPECT_EQ(g.at(0, 0, 0), makeBuiltin("marschner-lobb")->value(Vec3d::Constant(-1)));
+  EXPECT_EQ(g.at(0, 0, 0),
+            static_cast<float>(makeBuiltin("marschner-lobb")->value(Vec3d::Constant(-1))));
   EXPECT_EQ(g.inputBytes, 5 * 6 * 7 * 8);
   EXPECT_NO_THROW(g.validate());
 }

@@ -36,7 +36,7 @@ std::span<const std::uint8_t> bytesOf(const std::string& s) {
 // Marschner-Lobb quantized to 0..255: an 8-bit scan.
 StructuredGrid byteGrid(int n) {
   StructuredGrid g = sampleBuiltinSpec("builtin:marschner-lobb:" + std::to_string(n));
-  for (double& v : g.values) v = std::round(255.0 * v);
+  for (float& v : g.values) v = std::round(255.0f * v);
   g.sampleType = "uint8";
   g.inputBytes = g.sampleCount();
   return g;

@@ -194,7 +194,7 @@ TEST(GridSmoothing, EffectiveParametersRunFromTheControlCountToThePolynomials) {
 StructuredGrid withNoise(StructuredGrid g, double sigma, unsigned seed) {
   std::mt19937_64 rng(seed);
   std::normal_distribution<double> n(0.0, sigma);
-  for (double& v : g.values) v += n(rng);
+  for (float& v : g.values) v = static_cast<float>(v + n(rng));
   return g;
 }
 
@@ -267,7 +267,7 @@ TEST(SmoothingChoice, QuantizationStepIsAFloorOnTheNoise) {
   const StructuredGrid clean = sampleBuiltin(*f, {40, 40, 40});
   StructuredGrid quantized = clean;
   const double step = 1.0 / 32.0;
-  for (double& v : quantized.values) v = step * std::round(v / step);
+  for (float& v : quantized.values) v = static_cast<float>(step * std::round(v / step));
   StructuredFitOptions fit;
   SmoothingSearch search;
   const SmoothingChoice plain = chooseSmoothing(quantized, fit, search);

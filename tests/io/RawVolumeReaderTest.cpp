@@ -74,7 +74,8 @@ TEST(RawVolumeName, KnowsTheSampleSizes) {
   EXPECT_EQ(rawSampleSize(""), 0);
 }
 
-// 3x2x2 samples; the values exercise the ends of each type's range.
+// 3x2x2 samples; the values exercise the ends of each type's range. Samples are held as float32:
+// integers beyond 2^24 and float64 values come back rounded to the nearest float.
 template <typename T>
 void checkRoundTrip(const std::string& dtype, const std::vector<T>& values) {
   SCOPED_TRACE(dtype);
@@ -89,11 +90,11 @@ void checkRoundTrip(const std::string& dtype, const std::vector<T>& values) {
   EXPECT_EQ(g.source, path);
   EXPECT_TRUE(g.fieldName.empty());
   ASSERT_EQ(g.values.size(), 12u);
-  for (size_t n = 0; n < 12; ++n) EXPECT_EQ(g.values[n], static_cast<double>(values[n])) << n;
+  for (size_t n = 0; n < 12; ++n) EXPECT_EQ(g.values[n], static_cast<float>(values[n])) << n;
   // x fastest: sample (1,0,0) is the second value, (0,1,0) the fourth, (0,0,1) the seventh.
-  EXPECT_EQ(g.at(1, 0, 0), static_cast<double>(values[1]));
-  EXPECT_EQ(g.at(0, 1, 0), static_cast<double>(values[3]));
-  EXPECT_EQ(g.at(0, 0, 1), static_cast<double>(values[6]));
+  EXPECT_EQ(g.at(1, 0, 0), static_cast<float>(values[1]));
+  EXPECT_EQ(g.at(0, 1, 0), static_cast<float>(values[3]));
+  EXPECT_EQ(g.at(0, 0, 1), static_cast<float>(values[6]));
 }
 
 TEST(RawVolumeReader, ReadsEverySampleType) {
@@ -108,7 +109,14 @@ TEST(RawVolumeReader, ReadsEverySampleType) {
                 std::numeric_limits<std::int32_t>::max()});
   checkRoundTrip<float>("float32",
                         {-1.5f, 0.0f, 0.1f, 1e-30f, 3.4e38f, -2.25f, 6, 7, 8, 9, 10, 11});
-  checkRoundTrip<double>("float64", {0.1, -0.3, 1e-300, 1e300, 4, 5, 6, 7, 8, 9, 10, 11});
+  checkRoundTrip<double>("float64", {0.1, -0.3, 1e-300, 3e38, 4, 5, 6, 7, 8, 9, 10, 11});
+}
+
+// A float64 sample beyond the float32 range cannot be held: a clear error naming the sample.
+TEST(RawVolumeReader, Float64BeyondFloat32RangeIsRefused) {
+  const auto path = writeRaw<double>(test::scratchDir(), "vol_2x1x1_float64.raw",
+                                     std::vector<double>{1.0, 1e300});
+  expectError([&] { loadStructuredVolume(path); }, {path, "sample (1, 0, 0)", "float32 range"});
 }
 
 TEST(RawVolumeReader, SizeMismatchStatesBothSizes) {

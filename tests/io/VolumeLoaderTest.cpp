@@ -59,7 +59,7 @@ TEST(VolumeLoader, ExtensionsAreCaseInsensitive) {
   const auto path = (test::scratchDir() / "v_2x1x1_uint8.RAW").string();
   std::ofstream(path, std::ios::binary) << std::string("\x01\x02", 2);
   const StructuredGrid g = loadStructuredVolume(path);
-  EXPECT_EQ(g.values, (std::vector<double>{1.0, 2.0}));
+  EXPECT_EQ(g.values, (std::vector<float>{1.0f, 2.0f}));
 }
 
 TEST(VolumeLoader, SupportedFormatsText) {

@@ -173,7 +173,7 @@ TEST(VtkBaseline, MedianOfFrameTimes) {
 // Every mapper renders a non-empty image of a shaded builtin-like field, and times its frames.
 TEST(VtkBaseline, EveryMethodRendersAndTimes) {
   StructuredGrid g = testGrid();
-  for (double& v : g.values) v = 0.0;
+  for (float& v : g.values) v = 0.0f;
   for (std::int64_t k = 0; k < g.dims[2]; ++k)  // a blob: high in the middle
     for (std::int64_t j = 0; j < g.dims[1]; ++j)
       for (std::int64_t i = 0; i < g.dims[0]; ++i) {

@@ -258,7 +258,7 @@ BuiltinSpec parseBuiltinSpec(const std::string& spec) {
 StructuredGrid sampleBuiltin(const BuiltinFunction& f, const Index3& dims) {
   for (int a = 0; a < 3; ++a)
     if (dims[a] < 2) throw Error("a built-in function is sampled with at least 2 samples per axis");
-  requireMemory(8 * dims[0] * dims[1] * dims[2],
+  requireMemory(std::int64_t(sizeof(float)) * dims[0] * dims[1] * dims[2],
                 "sampling " + f.name() + " on " + std::to_string(dims[0]) + "x" +
                     std::to_string(dims[1]) + "x" + std::to_string(dims[2]) + " samples");
   StructuredGrid g;

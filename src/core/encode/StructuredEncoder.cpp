@@ -201,9 +201,10 @@ std::vector<float> fitControlPoints(const StructuredGrid& grid,
   std::vector<float> ctrl(static_cast<size_t>(plane * N2));
   progress(0.0, "fit x, y");
   tbb::parallel_for(std::int64_t(0), N2, [&](std::int64_t k) {
-    const Eigen::Map<const Eigen::MatrixXd> samples(grid.values.data() + k * N0 * N1, N0, N1);
+    const Eigen::MatrixXd samples =
+        Eigen::Map<const Eigen::MatrixXf>(grid.values.data() + k * N0 * N1, N0, N1).cast<double>();
     Eigen::MatrixXd alongX(n0, N1);
-    fitX(samples, alongX);
+    fitX(Eigen::Map<const Eigen::MatrixXd>(samples.data(), N0, N1), alongX);
     const Eigen::MatrixXd yLines = alongX.transpose();  // N1 x n0: one y line per column
     Eigen::MatrixXd alongY(n1, n0);
     fitY(Eigen::Map<const Eigen::MatrixXd>(yLines.data(), N1, n0), alongY);
@@ -315,7 +316,7 @@ SampleErrors errorsOnGrid(const TensorBSpline& spline, const StructuredGrid& gri
   double sumSq = 0.0;
   forEachSlab(sampling, spline.controlPoints(), spline.counts(),
               [&](std::int64_t z0, std::int64_t, const std::vector<double>& recon) {
-                const double* v = grid.values.data() + z0 * grid.dims[0] * grid.dims[1];
+                const float* v = grid.values.data() + z0 * grid.dims[0] * grid.dims[1];
                 for (size_t i = 0; i < recon.size(); ++i) {
                   const double d = std::abs(recon[i] - v[i]);
                   e.max = std::max(e.max, d);
@@ -330,7 +331,7 @@ SampleErrors errorsOnGrid(const TensorBSpline& spline, const StructuredGrid& gri
 std::array<std::vector<double>, 3> curveSpanErrors(const StructuredGrid& grid,
                                                    const std::array<KnotVector, 3>& knots) {
   std::array<std::vector<double>, 3> result;
-  std::vector<double> data = grid.values, rotated;
+  std::vector<double> data(grid.values.begin(), grid.values.end()), rotated;
   Index3 dims = grid.dims;  // axis a is fastest in `data` at step a
   for (int a = 0; a < 3; ++a) {
     const AxisSampling sampling = sampleAxis(knots[a], dims[0]);
@@ -385,7 +386,7 @@ std::int64_t structuredFitPeakBytes(const Index3& N, const Index3& n) {
                            threads * 8 * (N[0] * N[1] + 3 * n[0] * N[1]);
   // The errors: the control points and one slab of evaluations.
   const std::int64_t errors = 4 * ctrl + 16 * slabPlanes(N) * N[0] * N[1];
-  return 8 * samples + std::max(fit, errors);
+  return std::int64_t(sizeof(float)) * samples + std::max(fit, errors);
 }
 
 double effectiveParameters(const std::array<KnotVector, 3>& knots, const Index3& dims,
@@ -458,7 +459,7 @@ Model fitStructuredWithKnots(const StructuredGrid& grid, std::array<KnotVector, 
     }
   }
   // The samples are held already; the rest is allocated from here on.
-  requireMemory(structuredFitPeakBytes(grid.dims, n) - 8 * grid.sampleCount(),
+  requireMemory(structuredFitPeakBytes(grid.dims, n) - std::int64_t(sizeof(float)) * grid.sampleCount(),
                 "fitting " + std::to_string(n[0]) + "x" + std::to_string(n[1]) + "x" +
                     std::to_string(n[2]) + " control points to " + std::to_string(grid.dims[0]) +
                     "x" + std::to_string(grid.dims[1]) + "x" + std::to_string(grid.dims[2]) +

@@ -74,7 +74,7 @@ PaddedGrid BSplineFilter::prepare(const StructuredGrid& grid) {
   const Index3 n = grid.dims;
   for (int a = 0; a < 3; ++a)
     if (n[a] < 2) return PaddedGrid(grid);  // PaddedGrid reports the error
-  std::vector<double> c = grid.values;
+  std::vector<double> c(grid.values.begin(), grid.values.end());
   const std::int64_t stride[3] = {1, n[0], n[0] * n[1]};
   for (int axis = 0; axis < 3; ++axis) {
     const std::int64_t len = n[axis];

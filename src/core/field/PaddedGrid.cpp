@@ -16,9 +16,6 @@ PaddedGrid::PaddedGrid(const StructuredGrid& grid, const std::vector<double>* va
     if (dims_[a] < 2)
       throw Error("grid filters need at least 2 samples per axis; axis " + std::to_string(a) +
                   " has " + std::to_string(dims_[a]));
-  const std::vector<double>& v = values ? *values : grid.values;
-  if (static_cast<std::int64_t>(v.size()) != grid.sampleCount())
-    throw Error("grid sample count does not match its dimensions");
   const std::int64_t nx = dims_[0], ny = dims_[1], nz = dims_[2];
   sy_ = nx + 2;
   sz_ = sy_ * (ny + 2);
@@ -26,11 +23,19 @@ PaddedGrid::PaddedGrid(const StructuredGrid& grid, const std::vector<double>* va
   auto ref = [&](std::int64_t i, std::int64_t j, std::int64_t k) -> float& {
     return data_[static_cast<size_t>((i + 1) + sy_ * (j + 1) + sz_ * (k + 1))];
   };
-  tbb::parallel_for(std::int64_t(0), nz, [&](std::int64_t k) {
-    for (std::int64_t j = 0; j < ny; ++j)
-      for (std::int64_t i = 0; i < nx; ++i)
-        ref(i, j, k) = static_cast<float>(v[static_cast<size_t>(i + nx * (j + ny * k))]);
-  });
+  auto copyFrom = [&](const auto& v) {
+    if (static_cast<std::int64_t>(v.size()) != grid.sampleCount())
+      throw Error("grid sample count does not match its dimensions");
+    tbb::parallel_for(std::int64_t(0), nz, [&](std::int64_t k) {
+      for (std::int64_t j = 0; j < ny; ++j)
+        for (std::int64_t i = 0; i < nx; ++i)
+          ref(i, j, k) = static_cast<float>(v[static_cast<size_t>(i + nx * (j + ny * k))]);
+    });
+  };
+  if (values)
+    copyFrom(*values);
+  else
+    copyFrom(grid.values);
   // Ghosts axis by axis; later axes extrapolate the earlier ghosts too, which fills edges and
   // corners with the multilinear extrapolation.
   for (std::int64_t k = 0; k < nz; ++k)

@@ -26,7 +26,9 @@ void StructuredGrid::validate() const {
       const std::int64_t i = n % dims[0], j = (n / dims[0]) % dims[1], k = n / (dims[0] * dims[1]);
       std::ostringstream m;
       m << what << ": sample (" << i << ", " << j << ", " << k << ") is "
-        << values[static_cast<size_t>(n)] << "; NaN and Inf values cannot be encoded";
+        << values[static_cast<size_t>(n)]
+        << "; NaN and Inf values (and values beyond the float32 range, about 3.4e38, which the "
+           "samples are held in) cannot be encoded";
       throw Error(m.str());
     }
   }

@@ -12,7 +12,9 @@ struct StructuredGrid {
   Index3 dims{0, 0, 0};           // samples per axis
   Vec3d origin = Vec3d::Zero();   // physical position of sample (0,0,0)
   Vec3d spacing = Vec3d::Ones();  // physical distance between neighbouring samples
-  std::vector<double> values;     // x fastest: values[i + nx * (j + ny * k)]
+  // x fastest: values[i + nx * (j + ny * k)]. Held as float32, the precision of the model:
+  // exact for integer samples up to 2^24 and for float32 data; float64 data is rounded.
+  std::vector<float> values;
 
   std::string source;            // where the samples came from (path or builtin spec)
   std::string fieldName;         // scalar array name, when the format has one
@@ -24,7 +26,7 @@ struct StructuredGrid {
   std::vector<std::string> notes;
 
   std::int64_t sampleCount() const { return dims[0] * dims[1] * dims[2]; }
-  double& at(std::int64_t i, std::int64_t j, std::int64_t k) {
+  float& at(std::int64_t i, std::int64_t j, std::int64_t k) {
     return values[static_cast<size_t>(i + dims[0] * (j + dims[1] * k))];
   }
   double at(std::int64_t i, std::int64_t j, std::int64_t k) const {
