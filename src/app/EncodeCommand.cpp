@@ -208,6 +208,7 @@ Command addEncodeCommand(CLI::App& app) {
                    "faster\n";
     const bool failedStrict = o->strict && !report.reachedTarget;
     if (!o->output.empty() && !failedStrict) saveModel(model, o->output);
+    report.peakMemoryBytes = peakResidentBytes();
     const std::string written = failedStrict ? std::string() : o->output;
     if (o->json) {
       nlohmann::json j = fitReportJson(report, written);

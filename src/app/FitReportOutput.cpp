@@ -1,5 +1,6 @@
 #include "app/FitReportOutput.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
@@ -83,6 +84,14 @@ std::string formatFitReport(const FitReport& r, const std::string& modelPath) {
     << (r.points > 0 ? " : 1  (bytes of the input values / model bytes; coordinates and cells "
                        "not counted)\n"
                      : " : 1  (input bytes / model bytes)\n");
+  if (r.peakMemoryBytes > 0) {
+    const std::int64_t samples = r.samples[0] * r.samples[1] * r.samples[2];
+    const double perSample = static_cast<double>(r.peakMemoryBytes) /
+                             static_cast<double>(std::max<std::int64_t>(samples, 1));
+    o << "peak memory     " << groupDigits(r.peakMemoryBytes) << " bytes"
+      << (r.points == 0 && samples > 0 ? fmt(", %.1f bytes/sample", perSample) : "")
+      << "  (the whole process, reading and writing included)\n";
+  }
   return o.str();
 }
 
@@ -106,6 +115,8 @@ nlohmann::json fitReportJson(const FitReport& r, const std::string& modelPath) {
       {"rms_relative_error", r.rmsRelativeError()},
       {"input_bytes", r.inputBytes},
       {"model_bytes", r.modelBytes},
+      {"peak_memory_bytes",
+       r.peakMemoryBytes > 0 ? nlohmann::json(r.peakMemoryBytes) : nlohmann::json(nullptr)},
       {"compression_ratio", r.compressionRatio()},
       {"bits_per_sample", r.bitsPerSample()},
       {"psnr", std::isfinite(r.psnr()) ? nlohmann::json(r.psnr()) : nlohmann::json(nullptr)},

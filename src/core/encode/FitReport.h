@@ -20,6 +20,9 @@ struct FitReport {
   double rmsError = 0.0;
   std::int64_t inputBytes = 0;
   std::int64_t modelBytes = 0;   // size of the .mfa file
+  // The encoding process's peak resident memory when the report was made (the command sets it
+  // after the model is written; 0: not measured).
+  std::int64_t peakMemoryBytes = 0;
   std::string encoder;           // as recorded in the model's provenance
   std::string field;             // scalar name, when the input has one
   std::string fieldAssociation;  // scattered inputs: "point data", "cell data averaged to points"

@@ -1,5 +1,7 @@
 #include "core/util/MemoryBudget.h"
 
+#include <sys/resource.h>
+
 #include <unistd.h>
 
 #include <cstdio>
@@ -31,6 +33,12 @@ std::string formatBytes(std::int64_t bytes) {
   else
     std::snprintf(b, sizeof b, "%.0f KB", v / 1e3);
   return b;
+}
+
+std::int64_t peakResidentBytes() {
+  rusage usage{};
+  if (getrusage(RUSAGE_SELF, &usage) != 0) return 0;
+  return static_cast<std::int64_t>(usage.ru_maxrss) * 1024;  // Linux reports kilobytes
 }
 
 void requireMemory(std::int64_t bytes, const std::string& what) {

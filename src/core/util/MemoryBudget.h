@@ -11,6 +11,9 @@ namespace mfadvr {
 // physical memory); 0 when unknown.
 std::int64_t availableMemoryBytes();
 
+// The most memory this process has held so far (Linux: the peak resident set); 0 when unknown.
+std::int64_t peakResidentBytes();
+
 // "1.5 GB", "640 MB": for messages.
 std::string formatBytes(std::int64_t bytes);
 
