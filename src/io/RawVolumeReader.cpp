@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "core/util/Error.h"
+#include "core/util/MemoryBudget.h"
 
 namespace mfadvr {
 namespace {
@@ -151,6 +152,8 @@ StructuredGrid readRawVolume(const std::string& path) {
   grid.source = path;
   grid.sampleType = parsed->dtype;
   grid.inputBytes = expectedBytes;
+  requireMemory(std::int64_t(sizeof(float)) * grid.sampleCount(),
+                "reading " + path + " (its samples are held as float32)");
   grid.values.resize(static_cast<size_t>(grid.sampleCount()));
 
   // Chunked so that a large volume does not need a second full-size byte buffer.

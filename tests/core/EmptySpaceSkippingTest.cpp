@@ -98,6 +98,38 @@ TEST(SpanRanges, BoundEveryValueOfTheCell) {
   EXPECT_LT(r.relativeRounding, 1e-3);  // a bound, not a guess: it should stay small
 }
 
+// Each cell's range is exactly the least and greatest of its (p+1)^3 control points, for mixed
+// degrees and uneven counts (brute force against the separable sliding windows).
+TEST(SpanRanges, AreTheControlPointRangeOfEachCell) {
+  const int degree[3] = {1, 2, 3}, count[3] = {7, 6, 9};
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> uni(-5.0f, 5.0f);
+  std::vector<float> ctrl(static_cast<size_t>(count[0] * count[1] * count[2]));
+  for (float& c : ctrl) c = uni(rng);
+  const TensorBSpline spline({KnotVector::clampedUniform(degree[0], count[0]),
+                              KnotVector::clampedUniform(degree[1], count[1]),
+                              KnotVector::clampedUniform(degree[2], count[2])},
+                             ctrl);
+  const SpanRanges& r = *spline.spanRanges();
+  for (int a = 0; a < 3; ++a) ASSERT_EQ(r.cells[a], count[a] - degree[a]);
+  ASSERT_EQ(r.min.size(), static_cast<size_t>(r.cells[0] * r.cells[1] * r.cells[2]));
+  for (int k = 0; k < r.cells[2]; ++k)
+    for (int j = 0; j < r.cells[1]; ++j)
+      for (int i = 0; i < r.cells[0]; ++i) {
+        float lo = INFINITY, hi = -INFINITY;
+        for (int z = k; z <= k + degree[2]; ++z)
+          for (int y = j; y <= j + degree[1]; ++y)
+            for (int x = i; x <= i + degree[0]; ++x) {
+              const float c = ctrl[static_cast<size_t>(x + count[0] * (y + count[1] * z))];
+              lo = std::min(lo, c);
+              hi = std::max(hi, c);
+            }
+        const size_t cell = static_cast<size_t>(i + r.cells[0] * (j + r.cells[1] * k));
+        EXPECT_EQ(r.min[cell], lo) << i << " " << j << " " << k;
+        EXPECT_EQ(r.max[cell], hi) << i << " " << j << " " << k;
+      }
+}
+
 // 2000 value ranges [lo, hi] around the test functions' [0, 1], every third one narrow (as most
 // cells' ranges are).
 std::vector<std::pair<float, float>> randomRanges(unsigned seed) {

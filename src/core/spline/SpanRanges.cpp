@@ -8,34 +8,6 @@
 namespace mfadvr {
 namespace {
 
-// Windows of `window` consecutive entries along one axis of a 3-D array of dims `in`, for every
-// window start 0..out-1: out has dims `in` with that axis replaced by the number of windows.
-void slideAxis(const float* lo, const float* hi, const std::int64_t in[3], int axis, int window,
-               std::vector<float>& loOut, std::vector<float>& hiOut) {
-  std::int64_t out[3] = {in[0], in[1], in[2]};
-  out[axis] = in[axis] - window + 1;
-  loOut.assign(static_cast<size_t>(out[0] * out[1] * out[2]), 0.0f);
-  hiOut.assign(loOut.size(), 0.0f);
-  const std::int64_t strideIn[3] = {1, in[0], in[0] * in[1]};
-  const std::int64_t strideOut[3] = {1, out[0], out[0] * out[1]};
-  const int a1 = (axis + 1) % 3, a2 = (axis + 2) % 3;
-  tbb::parallel_for(std::int64_t(0), out[a2], [&](std::int64_t y) {
-    for (std::int64_t x = 0; x < out[a1]; ++x) {
-      const std::int64_t bi = x * strideIn[a1] + y * strideIn[a2];
-      const std::int64_t bo = x * strideOut[a1] + y * strideOut[a2];
-      for (std::int64_t c = 0; c < out[axis]; ++c) {
-        float l = lo[bi + c * strideIn[axis]], h = hi[bi + c * strideIn[axis]];
-        for (int w = 1; w < window; ++w) {
-          l = std::min(l, lo[bi + (c + w) * strideIn[axis]]);
-          h = std::max(h, hi[bi + (c + w) * strideIn[axis]]);
-        }
-        loOut[bo + c * strideOut[axis]] = l;
-        hiOut[bo + c * strideOut[axis]] = h;
-      }
-    }
-  });
-}
-
 // Largest sum of |coefficients| of one span's basis polynomials: bounds both sum |N_r| and
 // the magnitude of every partial sum in Horner's rule.
 double basisCoefficientSum(const KnotAxisView& a) {
@@ -58,12 +30,56 @@ SpanRanges SpanRanges::compute(const SplineView& v) {
     dims[a] = v.axis[a].count;
     r.cells[a] = v.axis[a].count - v.axis[a].degree;
   }
-  std::vector<float> lo1, hi1, lo2, hi2;
-  slideAxis(v.ctrl, v.ctrl, dims, 0, v.axis[0].degree + 1, lo1, hi1);
-  dims[0] = r.cells[0];
-  slideAxis(lo1.data(), hi1.data(), dims, 1, v.axis[1].degree + 1, lo2, hi2);
-  dims[1] = r.cells[1];
-  slideAxis(lo2.data(), hi2.data(), dims, 2, v.axis[2].degree + 1, r.min, r.max);
+  // Sliding minimum and maximum over p + 1 control points per axis: x and y plane by plane (a
+  // plane's x windows in a per-task buffer) into r.min / r.max, then z in place along those
+  // arrays (a window's result goes where its first entry was, which no later window reads), so
+  // that only the result's 8 bytes per cell are held.
+  const std::int64_t N0 = dims[0], N1 = dims[1], N2 = dims[2];
+  const std::int64_t X = r.cells[0], Y = r.cells[1], Z = r.cells[2], plane = X * Y;
+  const int w0 = v.axis[0].degree + 1, w1 = v.axis[1].degree + 1, w2 = v.axis[2].degree + 1;
+  r.min.resize(static_cast<size_t>(plane * N2));
+  r.max.resize(r.min.size());
+  tbb::parallel_for(std::int64_t(0), N2, [&](std::int64_t k) {
+    const float* c = v.ctrl + k * N0 * N1;
+    std::vector<float> lx(static_cast<size_t>(X * N1)), hx(lx.size());
+    for (std::int64_t j = 0; j < N1; ++j)
+      for (std::int64_t i = 0; i < X; ++i) {
+        const float* p = c + i + N0 * j;
+        float l = p[0], h = p[0];
+        for (int w = 1; w < w0; ++w) {
+          l = std::min(l, p[w]);
+          h = std::max(h, p[w]);
+        }
+        lx[static_cast<size_t>(i + X * j)] = l;
+        hx[static_cast<size_t>(i + X * j)] = h;
+      }
+    float* lo = r.min.data() + k * plane;
+    float* hi = r.max.data() + k * plane;
+    for (std::int64_t j = 0; j < Y; ++j)
+      for (std::int64_t i = 0; i < X; ++i) {
+        float l = lx[static_cast<size_t>(i + X * j)], h = hx[static_cast<size_t>(i + X * j)];
+        for (int w = 1; w < w1; ++w) {
+          l = std::min(l, lx[static_cast<size_t>(i + X * (j + w))]);
+          h = std::max(h, hx[static_cast<size_t>(i + X * (j + w))]);
+        }
+        lo[i + X * j] = l;
+        hi[i + X * j] = h;
+      }
+  });
+  tbb::parallel_for(tbb::blocked_range<std::int64_t>(0, plane, 1024), [&](const auto& range) {
+    for (std::int64_t z = 0; z < Z; ++z)
+      for (std::int64_t q = range.begin(); q < range.end(); ++q) {
+        float l = r.min[static_cast<size_t>(q + plane * z)], h = r.max[static_cast<size_t>(q + plane * z)];
+        for (int w = 1; w < w2; ++w) {
+          l = std::min(l, r.min[static_cast<size_t>(q + plane * (z + w))]);
+          h = std::max(h, r.max[static_cast<size_t>(q + plane * (z + w))]);
+        }
+        r.min[static_cast<size_t>(q + plane * z)] = l;
+        r.max[static_cast<size_t>(q + plane * z)] = h;
+      }
+  });
+  r.min.resize(static_cast<size_t>(plane * Z));
+  r.max.resize(r.min.size());
 
   if (!r.min.empty()) {
     r.lowest = r.min[0];
