@@ -119,12 +119,21 @@ std::vector<float> decodeControlPoints(std::span<const std::uint8_t> bytes, cons
 Model codeControlPoints(const Model& model, const ControlCoding& coding) {
   const TensorBSpline& s = model.spline();
   const Index3 dims = s.counts();
-  auto payload =
-      std::make_shared<const std::string>(encodeControlPoints(s.controlPoints(), dims, coding));
-  std::vector<float> decoded = decodeControlPoints(
-      std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(payload->data()),
-                                    payload->size()),
-      dims, coding);
+  std::shared_ptr<const std::string> payload;
+  std::vector<float> decoded;
+  if (coding.coder == ControlCoder::kZfp) {
+    // One round trip: the stream is decoded from the buffer it was written to.
+    ZfpRoundTrip z = zfpRoundTrip(s.controlPoints(), dims, {ZfpSettings::Mode::kAccuracy, coding.tolerance});
+    payload = std::make_shared<const std::string>(std::move(z.stream));
+    decoded = std::move(z.decoded);
+  } else {
+    payload =
+        std::make_shared<const std::string>(encodeControlPoints(s.controlPoints(), dims, coding));
+    decoded = decodeControlPoints(
+        std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(payload->data()),
+                                      payload->size()),
+        dims, coding);
+  }
   Model coded(TensorBSpline({s.knots(0), s.knots(1), s.knots(2)}, std::move(decoded)),
               model.domain(), model.valueMin(), model.valueMax(), model.provenance());
   coded.setMask(model.mask());

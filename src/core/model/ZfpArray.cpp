@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <memory>
 
 #include "core/util/Error.h"
 
@@ -87,15 +88,55 @@ std::int64_t zfpMaxBytes(const Index3& dims, const ZfpSettings& settings) {
   return static_cast<std::int64_t>(codec.maximumBytes());
 }
 
+namespace {
+
+// A buffer for ZFP's longest stream, left uninitialized: a stream uses only its first bytes, and
+// pages never written are never resident, so a large array does not cost a second copy of its
+// size in memory.
+struct StreamBuffer {
+  explicit StreamBuffer(size_t bytes)
+      : count(wordsFor(bytes) + kMargin),
+        words(std::make_unique_for_overwrite<std::uint64_t[]>(count)) {}
+  // ZFP reads a stream a 64-bit word ahead: after a stream of `used` bytes, the next words are
+  // zeroed so that decoding it back reads nothing unset.
+  void zeroAfter(size_t used) {
+    const size_t from = wordsFor(used);
+    std::memset(words.get() + from, 0, (std::min(count, from + kMargin) - from) * sizeof(std::uint64_t));
+  }
+  static constexpr size_t kMargin = 4;
+  size_t count;
+  std::unique_ptr<std::uint64_t[]> words;
+};
+
+}  // namespace
+
 std::string zfpCompress(std::span<const float> values, const Index3& dims,
                         const ZfpSettings& settings) {
   checkCount(values.size(), dims);
   // ZFP takes a non-const pointer for both directions; compression only reads it.
   ZfpCodec codec(const_cast<float*>(values.data()), dims, settings);
-  std::vector<std::uint64_t> words(wordsFor(codec.maximumBytes()));
-  const size_t size = codec.compress(words.data(), words.size() * sizeof(std::uint64_t));
+  StreamBuffer buffer(codec.maximumBytes());
+  const size_t size = codec.compress(buffer.words.get(), buffer.count * sizeof(std::uint64_t));
   if (size == 0) throw Error("zfp could not compress the array");
-  return std::string(reinterpret_cast<const char*>(words.data()), size);
+  return std::string(reinterpret_cast<const char*>(buffer.words.get()), size);
+}
+
+ZfpRoundTrip zfpRoundTrip(std::span<const float> values, const Index3& dims,
+                          const ZfpSettings& settings) {
+  checkCount(values.size(), dims);
+  ZfpCodec encoder(const_cast<float*>(values.data()), dims, settings);
+  StreamBuffer buffer(encoder.maximumBytes());
+  const size_t size = encoder.compress(buffer.words.get(), buffer.count * sizeof(std::uint64_t));
+  if (size == 0) throw Error("zfp could not compress the array");
+  buffer.zeroAfter(size);
+  ZfpRoundTrip out;
+  out.stream.assign(reinterpret_cast<const char*>(buffer.words.get()), size);
+  // Our own stream, decoded where it was written: no padded copy of the longest stream.
+  out.decoded.resize(values.size());
+  ZfpCodec decoder(out.decoded.data(), dims, settings);
+  if (decoder.decompress(buffer.words.get(), buffer.count * sizeof(std::uint64_t)) == 0)
+    throw Error("zfp could not decode the stream it wrote");
+  return out;
 }
 
 std::vector<float> zfpDecompress(std::span<const std::uint8_t> bytes, const Index3& dims,

@@ -21,6 +21,14 @@ struct ZfpSettings {
 // Throws mfadvr::Error for a parameter that is not finite and positive.
 std::string zfpCompress(std::span<const float> values, const Index3& dims,
                         const ZfpSettings& settings);
+// zfpCompress and the stream decoded again, as zfpDecompress would decode it, without its padded
+// copy of the longest stream (the stream is trusted: it was just written).
+struct ZfpRoundTrip {
+  std::string stream;
+  std::vector<float> decoded;
+};
+ZfpRoundTrip zfpRoundTrip(std::span<const float> values, const Index3& dims,
+                          const ZfpSettings& settings);
 // The longest stream ZFP can write for `dims` values in this mode.
 std::int64_t zfpMaxBytes(const Index3& dims, const ZfpSettings& settings);
 // Decodes a stream of zfpCompress. Any bytes decode without reading outside `bytes` (a damaged
