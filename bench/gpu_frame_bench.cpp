@@ -11,7 +11,8 @@
 // empty-space flags) and the image's read-back, its kernel time is listed apart. The first GPU
 // frame (model upload, kernel load) is reported separately. Without a usable GPU it says why and
 // measures the CPU alone. `--model` adds scenes of saved models (a sparse scan: the TF hides the
-// air), each rendered with empty-space skipping on and off on both devices. Self-contained: scripts/pack-gpu-check.sh bundles it for a GPU machine.
+// air), each rendered with empty-space skipping on and off on both devices. Self-contained:
+// scripts/pack-gpu-check.sh bundles it for a GPU machine.
 #include <tbb/info.h>
 #include <tbb/parallel_for.h>
 #include <CLI/CLI.hpp>
@@ -52,20 +53,27 @@ Model sampledModel(const BuiltinFunction& f, int n, int degree) {
   return Model(TensorBSpline({knots, knots, knots}, std::move(ctrl)), DomainBox{lo, hi}, 0.0, 1.0);
 }
 
-RenderSettings sceneSettings(const Model& m, int width, int height, int n) {
+// A shaded frame of the whole model seen from (azimuth, elevation) degrees.
+RenderSettings shadedFrame(const Model& m, int width, int height, double azimuth,
+                           double elevation) {
   RenderSettings s;
   s.width = width;
   s.height = height;
   s.camera.resetToBounds(m.domain().min, m.domain().max);
-  s.camera.azimuth(30);
-  s.camera.elevation(20);
+  s.camera.azimuth(azimuth);
+  s.camera.elevation(elevation);
+  s.shade = true;
+  return s;
+}
+
+RenderSettings sceneSettings(const Model& m, int width, int height, int n) {
+  RenderSettings s = shadedFrame(m, width, height, 30, 20);
   s.transferFunction.space = TfSpace::Data;
   s.transferFunction.color = {{0.0, Vec3f(0.2f, 0.3f, 1.0f)}, {1.0, Vec3f(1.0f, 0.8f, 0.3f)}};
   s.transferFunction.opacity = {{0.0, 0.0f}, {0.45, 0.0f}, {0.55, 0.8f}, {1.0, 0.8f}};
   const double spacing = (m.domain().max[0] - m.domain().min[0]) / (n - 1);
   s.sampleDistance = 0.5 * spacing;
   s.opacityUnitDistance = spacing;
-  s.shade = true;
   return s;
 }
 
@@ -82,15 +90,9 @@ std::string cpuName() {
   return "unknown CPU";
 }
 
-
 // A saved model, shaded, camera at 20/10 degrees, step half the smallest control spacing.
 RenderSettings modelSettings(const Model& m, int width, int height, const std::string& tf) {
-  RenderSettings s;
-  s.width = width;
-  s.height = height;
-  s.camera.resetToBounds(m.domain().min, m.domain().max);
-  s.camera.azimuth(20);
-  s.camera.elevation(10);
+  RenderSettings s = shadedFrame(m, width, height, 20, 10);
   s.transferFunction = parseTransferFunction(tf, "").resolved(m.valueMin(), m.valueMax());
   double spacing = 1e300;
   for (int a = 0; a < 3; ++a)
@@ -98,7 +100,6 @@ RenderSettings modelSettings(const Model& m, int width, int height, const std::s
                                     std::max(1, m.spline().knots(a).controlCount() - 1));
   s.sampleDistance = 0.5 * spacing;
   s.opacityUnitDistance = spacing;
-  s.shade = true;
   return s;
 }
 
@@ -113,8 +114,8 @@ Timed timeFrames(gpu::CudaRenderer* gpuRenderer, const ModelField& field, const 
                  int frames) {
   Timed t;
   std::vector<double> times, kernel;
-  t.image = gpuRenderer ? gpuRenderer->renderModel(field, s, &t.stats)
-                        : renderVolume(field, s, &t.stats);
+  t.image =
+      gpuRenderer ? gpuRenderer->renderModel(field, s, &t.stats) : renderVolume(field, s, &t.stats);
   t.first = t.stats.seconds;
   for (int i = 0; i < std::max(frames, 1); ++i) {
     t.image = gpuRenderer ? gpuRenderer->renderModel(field, s, &t.stats)
@@ -152,9 +153,10 @@ void runModelScene(const std::string& path, const std::string& tf, int width, in
                   t.stats.skipped / 1e6);
       if (on) {
         const auto a = toImage8(on->image), b = toImage8(t.image);
-        std::printf(" %s", a.data == b.data ? "identical"
-                                                : ("PSNR " + std::to_string(compareImages(a, b).psnr)
-                                                   + " dB").c_str());
+        std::printf(" %s",
+                    a.data == b.data
+                        ? "identical"
+                        : ("PSNR " + std::to_string(compareImages(a, b).psnr) + " dB").c_str());
       }
       std::printf("\n");
       if (skip) on = t;

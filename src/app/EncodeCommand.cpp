@@ -134,9 +134,8 @@ Command addEncodeCommand(CLI::App& app) {
                                  "'auto' is for regular grids; give meshes and point clouds a "
                                  "weight (default 1e-2)");
     if (!scattered && (!o->encode.maskRes.empty() || o->encode.noMask))
-      throw CLI::ValidationError(
-          "--mask-res/--no-mask",
-          "apply to meshes and point clouds; " + o->input + " is a regular grid");
+      throw CLI::ValidationError("--mask-res/--no-mask", "apply to meshes and point clouds; " +
+                                                             o->input + " is a regular grid");
     if (o->ghost >= 0 && o->blocks.empty())
       throw CLI::ValidationError("--ghost", "applies with --blocks");
     if (!o->blocks.empty() && scattered)

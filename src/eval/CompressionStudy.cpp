@@ -81,12 +81,13 @@ double volumePsnr(const StructuredGrid& ref, std::span<const double> values) {
 }
 
 // The grid `like` with other values, or another sample count over the same box.
-StructuredGrid gridLike(const StructuredGrid& like, const Index3& dims, std::vector<double> values) {
+StructuredGrid gridLike(const StructuredGrid& like, const Index3& dims,
+                        std::vector<double> values) {
   StructuredGrid g = like;
   g.dims = dims;
   for (int a = 0; a < 3; ++a)
-    g.spacing[a] = like.spacing[a] * static_cast<double>(like.dims[a] - 1) /
-                   static_cast<double>(dims[a] - 1);
+    g.spacing[a] =
+        like.spacing[a] * static_cast<double>(like.dims[a] - 1) / static_cast<double>(dims[a] - 1);
   g.values.assign(values.begin(), values.end());
   return g;
 }
@@ -118,8 +119,8 @@ std::string label(const std::string& method) {
 ExperimentReport runCompressionStudy(const EvalContext& ctx) {
   const bool quick = ctx.quick();
   const int image = quick ? 96 : 256;
-  const std::vector<double> rates = quick ? std::vector<double>{0.5, 1, 2}
-                                          : std::vector<double>{0.25, 0.5, 1, 2, 4, 8};
+  const std::vector<double> rates =
+      quick ? std::vector<double>{0.5, 1, 2} : std::vector<double>{0.25, 0.5, 1, 2, 4, 8};
   ExperimentReport report;
   std::vector<StudyVolume> volumes;
   const int ml = quick ? 32 : 64;
@@ -129,8 +130,9 @@ ExperimentReport runCompressionStudy(const EvalContext& ctx) {
   volumes.back().grid.inputBytes = volumes.back().grid.sampleCount() * 4;
   if (!quick) volumes.push_back({"wavelet 128^3", waveletGrid(128)});
   std::vector<std::string> files = {"fuel_64x64x64_uint8.raw", "nucleon_41x41x41_uint8.raw"};
-  if (!quick) files = {"fuel_64x64x64_uint8.raw", "neghip_64x64x64_uint8.raw",
-                       "nucleon_41x41x41_uint8.raw", "bonsai.nrrd"};
+  if (!quick)
+    files = {"fuel_64x64x64_uint8.raw", "neghip_64x64x64_uint8.raw", "nucleon_41x41x41_uint8.raw",
+             "bonsai.nrrd"};
   std::vector<std::string> missing;
   for (const auto& f : files) {
     const auto path = ctx.dataFile(f);
@@ -151,11 +153,13 @@ ExperimentReport runCompressionStudy(const EvalContext& ctx) {
   CsvTable table({"volume", "rate", "method", "bits_per_sample", "volume_psnr", "image_psnr",
                   "image_ssim", "memory_bytes"});
   std::string& md = report.markdown;
-  md += "Settings: rates " + [&] {
-    std::string s;
-    for (double r : rates) s += (s.empty() ? "" : ", ") + csvNumber(r, 3);
-    return s;
-  }() + " bits per input sample; images " + std::to_string(image) + "x" + std::to_string(image) +
+  md += "Settings: rates " +
+        [&] {
+          std::string s;
+          for (double r : rates) s += (s.empty() ? "" : ", ") + csvNumber(r, 3);
+          return s;
+        }() +
+        " bits per input sample; images " + std::to_string(image) + "x" + std::to_string(image) +
         ", shaded, ramp opacity over the full data's value range (data units, the same for "
         "every method), compared with the full data's interpolating model rendered the same "
         "way. Volume PSNR: value range over the RMS error at every input sample. Memory: what "
@@ -187,7 +191,8 @@ ExperimentReport runCompressionStudy(const EvalContext& ctx) {
     }();
     report.files.push_back(ctx.writeImage(stem + "_reference.png", reference));
     const std::vector<float> samplesF(g.values.begin(), g.values.end());
-    md += "### " + v.name + "\n\n| rate | method | bits/sample | volume PSNR | image PSNR | image "
+    md += "### " + v.name +
+          "\n\n| rate | method | bits/sample | volume PSNR | image PSNR | image "
           "SSIM | memory |\n|---|---|---|---|---|---|---|\n";
     for (double rate : rates) {
       ctx.log("compression: " + v.name + " at " + csvNumber(rate, 3) + " bits/sample");
@@ -215,23 +220,21 @@ ExperimentReport runCompressionStudy(const EvalContext& ctx) {
               std::llround(static_cast<double>(g.dims[a]) * std::cbrt(share)), 4, g.dims[a]);
         ls.coding.coder = ControlCoder::kFloat32;
         const Model m = encodeStructured(g, ls);
-        results.push_back({"mfa-ls-float32", modelFileSize(m),
-                           volumePsnr(g, splineOnGrid(m.spline(), g.dims)),
-                           static_cast<std::int64_t>(m.spline().controlPoints().size()) * 4,
-                           render(m)});
+        results.push_back(
+            {"mfa-ls-float32", modelFileSize(m), volumePsnr(g, splineOnGrid(m.spline(), g.dims)),
+             static_cast<std::int64_t>(m.spline().controlPoints().size()) * 4, render(m)});
       }
       // ZFP on the samples, decoded and rendered through their interpolating model.
       auto zfpResult = [&](const std::string& method, const std::string& stream,
                            const ZfpSettings& z) {
-        const std::vector<float> back = zfpDecompress(
-            std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(stream.data()),
-                                          stream.size()),
-            g.dims, z);
+        const std::vector<float> back =
+            zfpDecompress(std::span<const std::uint8_t>(
+                              reinterpret_cast<const std::uint8_t*>(stream.data()), stream.size()),
+                          g.dims, z);
         const std::vector<double> values(back.begin(), back.end());
         const Model m = interpolatingModel(gridLike(g, g.dims, values));
-        results.push_back({method, static_cast<std::int64_t>(stream.size()),
-                           volumePsnr(g, values), static_cast<std::int64_t>(samples) * 4,
-                           render(m)});
+        results.push_back({method, static_cast<std::int64_t>(stream.size()), volumePsnr(g, values),
+                           static_cast<std::int64_t>(samples) * 4, render(m)});
       };
       const double fileRate = 8.0 * static_cast<double>(bytes) / samples;
       {
@@ -267,8 +270,7 @@ ExperimentReport runCompressionStudy(const EvalContext& ctx) {
         const std::int64_t count = small[0] * small[1] * small[2];
         const Model m = interpolatingModel(gridLike(g, small, std::move(values)));
         results.push_back({"downsampled-cubic", count * bytesPerSample(g.sampleType),
-                           volumePsnr(g, splineOnGrid(m.spline(), g.dims)), count * 4,
-                           render(m)});
+                           volumePsnr(g, splineOnGrid(m.spline(), g.dims)), count * 4, render(m)});
       }
       double mfa = 0.0;
       std::map<std::string, double> psnrs;
@@ -277,12 +279,12 @@ ExperimentReport runCompressionStudy(const EvalContext& ctx) {
         const double bits = 8.0 * static_cast<double>(r.bytes) / samples;
         psnrs[r.method] = r.volumePsnr;
         if (r.method == "mfa-coded") mfa = r.volumePsnr;
-        table.addRow({v.name, csvNumber(rate, 3), r.method, csvNumber(bits), csvNumber(r.volumePsnr),
-                      csvNumber(c.psnr), csvNumber(c.ssim), std::to_string(r.memoryBytes)});
-        md += "| " + csvNumber(rate, 3) + " | " + label(r.method) + " | " + fixed(bits, 3) +
-              " | " + fixed(r.volumePsnr, 2) + " | " + fixed(c.psnr, 2) + " | " +
-              fixed(c.ssim, 4) + " | " + csvNumber(static_cast<double>(r.memoryBytes) / 1e6, 3) +
-              " MB |\n";
+        table.addRow({v.name, csvNumber(rate, 3), r.method, csvNumber(bits),
+                      csvNumber(r.volumePsnr), csvNumber(c.psnr), csvNumber(c.ssim),
+                      std::to_string(r.memoryBytes)});
+        md += "| " + csvNumber(rate, 3) + " | " + label(r.method) + " | " + fixed(bits, 3) + " | " +
+              fixed(r.volumePsnr, 2) + " | " + fixed(c.psnr, 2) + " | " + fixed(c.ssim, 4) + " | " +
+              csvNumber(static_cast<double>(r.memoryBytes) / 1e6, 3) + " MB |\n";
         if (rate == 1.0)
           report.files.push_back(ctx.writeImage(stem + "_" + r.method + "_1bps.png", r.image));
       }
@@ -295,7 +297,8 @@ ExperimentReport runCompressionStudy(const EvalContext& ctx) {
   }
   table.write(ctx.path("compression_rd.csv").string());
   report.files.push_back("compression_rd.csv");
-  md += "Over " + std::to_string(points) + " volume-rate pairs, the coded MFA's volume PSNR is at "
+  md += "Over " + std::to_string(points) +
+        " volume-rate pairs, the coded MFA's volume PSNR is at "
         "least ZFP fixed-rate's in " +
         std::to_string(mfaAheadOfRate) + ", downsampling's in " + std::to_string(mfaAheadOfDown) +
         " and ZFP fixed-accuracy's in " + std::to_string(mfaAheadOfAccuracy) +

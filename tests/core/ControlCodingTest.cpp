@@ -81,7 +81,8 @@ TEST(ControlCoding, DamagedPayloadsAreErrorsOrValuesNeverCrashes) {
   const Index3 d{9, 8, 7};
   const std::vector<float> v = smoothGrid(d);
   std::mt19937 rng(11);
-  for (ControlCoding c : {ControlCoding{ControlCoder::kLossless, 0}, ControlCoding{ControlCoder::kZfp, 0.01}}) {
+  for (ControlCoding c :
+       {ControlCoding{ControlCoder::kLossless, 0}, ControlCoding{ControlCoder::kZfp, 0.01}}) {
     const std::string coded = encodeControlPoints(v, d, c);
     for (size_t cut = 0; cut < coded.size(); cut += 7) {
       std::string shorter = coded.substr(0, cut);
@@ -92,7 +93,8 @@ TEST(ControlCoding, DamagedPayloadsAreErrorsOrValuesNeverCrashes) {
     }
     for (int trial = 0; trial < 300; ++trial) {
       std::string bad = coded;
-      for (int k = 0; k < 1 + trial % 4; ++k) bad[rng() % bad.size()] ^= static_cast<char>(1 + rng() % 255);
+      for (int k = 0; k < 1 + trial % 4; ++k)
+        bad[rng() % bad.size()] ^= static_cast<char>(1 + rng() % 255);
       try {
         const auto out = decodeControlPoints(bytesOf(bad), d, c);
         EXPECT_EQ(out.size(), v.size());
@@ -150,8 +152,9 @@ Model fittedModel() {
 
 TEST(ControlCoding, CodedModelFilesRoundTripExactly) {
   const Model fit = fittedModel();
-  for (ControlCoding c : {ControlCoding{ControlCoder::kFloat32, 0}, ControlCoding{ControlCoder::kLossless, 0},
-                          ControlCoding{ControlCoder::kZfp, 1e-3}}) {
+  for (ControlCoding c :
+       {ControlCoding{ControlCoder::kFloat32, 0}, ControlCoding{ControlCoder::kLossless, 0},
+        ControlCoding{ControlCoder::kZfp, 1e-3}}) {
     const Model coded = codeControlPoints(fit, c);
     if (c.coder != ControlCoder::kZfp)
       EXPECT_EQ(coded.spline().controlPoints(), fit.spline().controlPoints());
@@ -168,7 +171,8 @@ TEST(ControlCoding, CodedModelFilesRoundTripExactly) {
   EXPECT_LT(lossless.size(), serializeModel(fit).size());
   // The knots come back from their rule bit for bit.
   const Model back = parseModel(bytesOf(lossless));
-  for (int a = 0; a < 3; ++a) EXPECT_EQ(back.spline().knots(a).knots(), fit.spline().knots(a).knots());
+  for (int a = 0; a < 3; ++a)
+    EXPECT_EQ(back.spline().knots(a).knots(), fit.spline().knots(a).knots());
 }
 
 // A version-2 file: float32 control points and no "control_points" entry.
@@ -193,7 +197,8 @@ TEST(ControlCoding, VersionTwoFilesStillLoad) {
   v2.append(reinterpret_cast<const char*>(&n), 4);
   v2 += header;
   v2.append(file, 18 + hlen, std::string::npos);
-  const std::uint32_t crc = crc32Of(reinterpret_cast<const std::uint8_t*>(v2.data()), v2.size() - 4);
+  const std::uint32_t crc =
+      crc32Of(reinterpret_cast<const std::uint8_t*>(v2.data()), v2.size() - 4);
   std::memcpy(v2.data() + v2.size() - 4, &crc, 4);
   std::uint32_t version = 0;
   const Model m = parseModel(bytesOf(v2), "v2.mfa", &version);

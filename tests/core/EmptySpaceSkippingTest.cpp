@@ -309,7 +309,7 @@ TEST(EmptySpaceCache, RebuildsOnlyWhenTheZeroSetChanges) {
           emptyBlocks += flag;
         }
   }
-  EXPECT_GT(emptyBlocks, 0);               // the test sees empty blocks ...
+  EXPECT_GT(emptyBlocks, 0);              // the test sees empty blocks ...
   EXPECT_LT(emptyBlocks, blocksChecked);  // ... and non-empty ones
 }
 

@@ -32,7 +32,8 @@ mfadvr::StructuredGrid scanGrid() {
   grid.fieldName = "scalars";
   grid.source = "scan";
   // Hounsfield units -1000..1000 to the 0..255 of an 8-bit scan.
-  for (float& v : grid.values) v = static_cast<float>(std::clamp((v + 1000.0) * 255.0 / 2000.0, 0.0, 255.0));
+  for (float& v : grid.values)
+    v = static_cast<float>(std::clamp((v + 1000.0) * 255.0 / 2000.0, 0.0, 255.0));
   return grid;
 }
 

@@ -64,8 +64,8 @@ class Coder {
  private:
   void code(int exponent) {
     last_.reset();
-    Coded k{codeControlPoints(fit_, {ControlCoder::kZfp, std::ldexp(1.0, exponent)}), {}, 0,
-            exponent};
+    Coded k{
+        codeControlPoints(fit_, {ControlCoder::kZfp, std::ldexp(1.0, exponent)}), {}, 0, exponent};
     k.errors = errorsOnGrid(k.model.spline(), grid_);
     k.controlBytes = codedControlBytes(k.model);
     last_ = std::move(k);
@@ -89,8 +89,8 @@ std::int64_t codedSize(const Model& m, ControlCoder coder) {
 // range (where coding no longer adds error) to the range itself (where every block is nearly
 // empty).
 std::pair<int, int> exponentRange(const Model& fit) {
-  const double scale = std::max({std::abs(fit.valueMin()), std::abs(fit.valueMax()),
-                                 fit.valueMax() - fit.valueMin(), 1e-30});
+  const double scale = std::max(
+      {std::abs(fit.valueMin()), std::abs(fit.valueMax()), fit.valueMax() - fit.valueMin(), 1e-30});
   const int top = static_cast<int>(std::ceil(std::log2(scale)));
   return {top - 26, top + 1};
 }
@@ -173,8 +173,8 @@ Model codeFittedModel(Model fit, const StructuredGrid& grid, const CodingOptions
     const ControlCoding coding{coder, 0.0};
     std::shared_ptr<const std::string> payload;
     if (lossless)
-      payload = std::make_shared<const std::string>(encodeControlPoints(
-          fit.spline().controlPoints(), fit.spline().counts(), coding));
+      payload = std::make_shared<const std::string>(
+          encodeControlPoints(fit.spline().controlPoints(), fit.spline().counts(), coding));
     const SampleErrors errors{fit.provenance().maxError, fit.provenance().rmsError};
     fit.setControlCoding(coding, std::move(payload));
     const std::int64_t bytes = codedControlBytes(fit);
@@ -208,8 +208,9 @@ Model codeFittedModel(Model fit, const StructuredGrid& grid, const CodingOptions
         lossless.coder = ControlCoder::kLossless;
         Model m = codeFittedModel(std::move(fit), grid, lossless, 0.0, countsGiven, report);
         if (report)
-          report->codingNote = "lossless: the fit leaves no room for a zfp tolerance under the "
-                               "error bound";
+          report->codingNote =
+              "lossless: the fit leaves no room for a zfp tolerance under the "
+              "error bound";
         return m;
       }
       note = "zfp tolerance " + tolerancePhrase(k) + ": the largest that keeps the error bound " +
@@ -219,9 +220,8 @@ Model codeFittedModel(Model fit, const StructuredGrid& grid, const CodingOptions
       // averages the control points' coding errors, so the model moves far less than the
       // tolerance (measured, not assumed).
       const int floorK = static_cast<int>(std::floor(std::log2(kIntegerDefaultTolerance)));
-      k = largestPassing(floorK, floorK + 5, [&](int e) {
-        return coded.at(e).errors.max < kIntegerRoundingBound;
-      });
+      k = largestPassing(floorK, floorK + 5,
+                         [&](int e) { return coded.at(e).errors.max < kIntegerRoundingBound; });
       if (k < floorK) k = floorK;  // the fit itself misses by half a step (a --ctrl model)
       note = "zfp tolerance " + tolerancePhrase(k) +
              ", the default of integer samples: the largest (from " +
@@ -229,9 +229,8 @@ Model codeFittedModel(Model fit, const StructuredGrid& grid, const CodingOptions
              " up) whose decoded model rounds back to every sample it was fitted to";
       const std::int64_t cap = grid.inputBytes;
       if (!countsGiven && cap > 0 && coded.at(k).controlBytes > cap) {
-        const int raised = smallestPassing(k, hi, [&](int e) {
-          return coded.at(e).controlBytes <= cap;
-        });
+        const int raised =
+            smallestPassing(k, hi, [&](int e) { return coded.at(e).controlBytes <= cap; });
         if (raised <= hi) {
           k = raised;
           note = "zfp tolerance " + tolerancePhrase(k) +
@@ -314,19 +313,21 @@ Model encodeToBudget(const StructuredGrid& grid, const StructuredFitOptions& fit
     const auto [lo, hi] = zfp ? exponentRange(model) : std::pair<int, int>{0, 0};
     std::optional<int> k;
     if (budget.kind == BudgetKind::kBitsPerSample) {
-      const int e = smallestPassing(lo, hi, [&](int x) { return measured(x).controlBytes <= byteCap; });
+      const int e =
+          smallestPassing(lo, hi, [&](int x) { return measured(x).controlBytes <= byteCap; });
       if (e <= hi) k = e;
     } else if (fitRms <= targetRms) {
-      const int e = largestPassing(lo, hi, [&](int x) { return measured(x).errors.rms <= targetRms; });
+      const int e =
+          largestPassing(lo, hi, [&](int x) { return measured(x).errors.rms <= targetRms; });
       if (e >= lo) k = e;
     }
     std::ostringstream line;
     line << counts[i][0] << "x" << counts[i][1] << "x" << counts[i][2] << ": ";
     if (!k) {
-      line << (budget.kind == BudgetKind::kBitsPerSample ? "over the budget at any tolerance"
-                                                        : "the fit alone misses the target (" +
-                                                              text(psnrOf(range, fitRms), "%.1f") +
-                                                              " dB)");
+      line << (budget.kind == BudgetKind::kBitsPerSample
+                   ? "over the budget at any tolerance"
+                   : "the fit alone misses the target (" + text(psnrOf(range, fitRms), "%.1f") +
+                         " dB)");
       tried += "  " + line.str() + "\n";
       // Fewer control points fit worse still: once a candidate met the error target, the
       // first that cannot ends the search.
@@ -338,9 +339,9 @@ Model encodeToBudget(const StructuredGrid& grid, const StructuredFitOptions& fit
          << text(psnrOf(range, c.errors.rms), "%.2f") << " dB"
          << (coder == ControlCoder::kZfp ? ", tolerance " + tolerancePhrase(*k) : std::string());
     tried += "  " + line.str() + "\n";
-    const bool better = !best || (budget.kind == BudgetKind::kBitsPerSample
-                                      ? c.errors.rms < best->errors.rms
-                                      : c.controlBytes < best->controlBytes);
+    const bool better =
+        !best || (budget.kind == BudgetKind::kBitsPerSample ? c.errors.rms < best->errors.rms
+                                                            : c.controlBytes < best->controlBytes);
     // Every candidate is tried: neither the error at a byte budget nor the bytes at an error
     // target is unimodal in the control count (coarser grids are smoother to code).
     if (better) {
@@ -373,9 +374,8 @@ Model encodeToBudget(const StructuredGrid& grid, const StructuredFitOptions& fit
     throw Error(m.str());
   }
   std::ostringstream note;
-  note << (budget.kind == BudgetKind::kBitsPerSample
-               ? "the most accurate of the candidates within "
-               : "the smallest of the candidates that meets ")
+  note << (budget.kind == BudgetKind::kBitsPerSample ? "the most accurate of the candidates within "
+                                                     : "the smallest of the candidates that meets ")
        << (budget.kind == BudgetKind::kBitsPerSample ? text(budget.value) + " bits/sample"
            : budget.kind == BudgetKind::kPsnr        ? text(budget.value) + " dB PSNR"
                                                      : "an RMS error of " + text(budget.value))

@@ -19,7 +19,7 @@ struct FitReport {
   double maxError = 0.0;  // absolute, model (float32 control points) vs every input sample
   double rmsError = 0.0;
   std::int64_t inputBytes = 0;
-  std::int64_t modelBytes = 0;   // size of the .mfa file
+  std::int64_t modelBytes = 0;  // size of the .mfa file
   // The encoding process's peak resident memory when the report was made (the command sets it
   // after the model is written; 0: not measured).
   std::int64_t peakMemoryBytes = 0;

@@ -459,19 +459,21 @@ Model fitStructuredWithKnots(const StructuredGrid& grid, std::array<KnotVector, 
     }
   }
   // The samples are held already; the rest is allocated from here on.
-  requireMemory(structuredFitPeakBytes(grid.dims, n) - std::int64_t(sizeof(float)) * grid.sampleCount(),
-                "fitting " + std::to_string(n[0]) + "x" + std::to_string(n[1]) + "x" +
-                    std::to_string(n[2]) + " control points to " + std::to_string(grid.dims[0]) +
-                    "x" + std::to_string(grid.dims[1]) + "x" + std::to_string(grid.dims[2]) +
-                    " samples (fewer control points, --ctrl, or --blocks need less)");
+  requireMemory(
+      structuredFitPeakBytes(grid.dims, n) - std::int64_t(sizeof(float)) * grid.sampleCount(),
+      "fitting " + std::to_string(n[0]) + "x" + std::to_string(n[1]) + "x" + std::to_string(n[2]) +
+          " control points to " + std::to_string(grid.dims[0]) + "x" +
+          std::to_string(grid.dims[1]) + "x" + std::to_string(grid.dims[2]) +
+          " samples (fewer control points, --ctrl, or --blocks need less)");
   auto progress = [&](double f, const char* stage) {
     if (options.progress) options.progress(f, stage);
   };
 
   std::array<AxisSampling, 3> sampling;
   for (int a = 0; a < 3; ++a) sampling[a] = sampleAxis(knots[a], grid.dims[a]);
-  std::vector<float> ctrl = fitControlPoints(
-      grid, sampling, options.smoothing, [&](double f, const char* stage) { progress(0.75 * f, stage); });
+  std::vector<float> ctrl =
+      fitControlPoints(grid, sampling, options.smoothing,
+                       [&](double f, const char* stage) { progress(0.75 * f, stage); });
 
   // Error of the stored (float32) model at every input sample, z slab by z slab.
   progress(0.75, "error");

@@ -65,8 +65,8 @@ SampleErrors errorsOnGrid(const TensorBSpline& spline, const StructuredGrid& gri
 // The most memory a fit of a `dims` grid with `counts` control points holds at once, the input's
 // samples (float, 4 bytes each) included: the float coefficient array the passes share, per
 // thread one plane's work, or the control points and the slab of evaluations that measures the
-// errors (about 8 bytes per sample when the counts equal the sample counts). The fit checks it against the available memory before it
-// starts.
+// errors (about 8 bytes per sample when the counts equal the sample counts). The fit checks it
+// against the available memory before it starts.
 std::int64_t structuredFitPeakBytes(const Index3& dims, const Index3& counts);
 
 // Resolves 0 entries of options.controlCounts and validates everything against the grid.

@@ -56,9 +56,12 @@ std::vector<float> unshuffledZstd(std::span<const std::uint8_t> bytes, std::int6
 
 const char* controlCoderName(ControlCoder c) {
   switch (c) {
-    case ControlCoder::kFloat32: return "float32";
-    case ControlCoder::kLossless: return "lossless";
-    case ControlCoder::kZfp: return "zfp";
+    case ControlCoder::kFloat32:
+      return "float32";
+    case ControlCoder::kLossless:
+      return "lossless";
+    case ControlCoder::kZfp:
+      return "zfp";
   }
   return "float32";
 }
@@ -72,7 +75,8 @@ ControlCoder parseControlCoder(const std::string& name) {
 std::int64_t maxCodedControlBytes(const Index3& dims, const ControlCoding& coding) {
   const std::int64_t count = countOf(dims);
   switch (coding.coder) {
-    case ControlCoder::kFloat32: return 4 * count;
+    case ControlCoder::kFloat32:
+      return 4 * count;
     case ControlCoder::kLossless:
       return static_cast<std::int64_t>(ZSTD_compressBound(static_cast<size_t>(4 * count)));
     case ControlCoder::kZfp:
@@ -88,7 +92,8 @@ std::string encodeControlPoints(std::span<const float> ctrl, const Index3& dims,
   switch (coding.coder) {
     case ControlCoder::kFloat32:
       return std::string(reinterpret_cast<const char*>(ctrl.data()), ctrl.size() * sizeof(float));
-    case ControlCoder::kLossless: return shuffledZstd(ctrl);
+    case ControlCoder::kLossless:
+      return shuffledZstd(ctrl);
     case ControlCoder::kZfp:
       return zfpCompress(ctrl, dims, {ZfpSettings::Mode::kAccuracy, coding.tolerance});
   }
@@ -109,7 +114,8 @@ std::vector<float> decodeControlPoints(std::span<const std::uint8_t> bytes, cons
       std::memcpy(ctrl.data(), bytes.data(), bytes.size());
       return ctrl;
     }
-    case ControlCoder::kLossless: return unshuffledZstd(bytes, count);
+    case ControlCoder::kLossless:
+      return unshuffledZstd(bytes, count);
     case ControlCoder::kZfp:
       return zfpDecompress(bytes, dims, {ZfpSettings::Mode::kAccuracy, coding.tolerance});
   }
@@ -123,7 +129,8 @@ Model codeControlPoints(const Model& model, const ControlCoding& coding) {
   std::vector<float> decoded;
   if (coding.coder == ControlCoder::kZfp) {
     // One round trip: the stream is decoded from the buffer it was written to.
-    ZfpRoundTrip z = zfpRoundTrip(s.controlPoints(), dims, {ZfpSettings::Mode::kAccuracy, coding.tolerance});
+    ZfpRoundTrip z =
+        zfpRoundTrip(s.controlPoints(), dims, {ZfpSettings::Mode::kAccuracy, coding.tolerance});
     payload = std::make_shared<const std::string>(std::move(z.stream));
     decoded = std::move(z.decoded);
   } else {

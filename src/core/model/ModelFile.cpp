@@ -133,10 +133,9 @@ std::string_view codedControls(const Model& m, std::shared_ptr<const std::string
   return *owned;
 }
 
-
 // compressedMaskBytes: the size of the mask section (ignored without a mask).
-std::string headerText(const Model& m, const std::array<json, 3>& rules,
-                       std::int64_t controlBytes, std::int64_t compressedMaskBytes) {
+std::string headerText(const Model& m, const std::array<json, 3>& rules, std::int64_t controlBytes,
+                       std::int64_t compressedMaskBytes) {
   const TensorBSpline& s = m.spline();
   const DomainBox& d = m.domain();
   json h = {{"format", "mfadvr-model"},
@@ -215,7 +214,8 @@ std::string serializeModel(const Model& model) {
 }
 
 std::int64_t codedControlBytes(const Model& m) {
-  if (const std::string* kept = m.codedControlPoints()) return static_cast<std::int64_t>(kept->size());
+  if (const std::string* kept = m.codedControlPoints())
+    return static_cast<std::int64_t>(kept->size());
   if (m.controlCoding().coder == ControlCoder::kFloat32)
     return 4 * static_cast<std::int64_t>(m.spline().controlPoints().size());
   std::shared_ptr<const std::string> owned;
@@ -266,7 +266,7 @@ Model parseModel(std::span<const std::uint8_t> b, const std::string& name,
   std::optional<MaskKind> maskKind;  // version 2 on; a version-1 file has no mask
   Index3 maskDims{0, 0, 0};
   std::int64_t storedMaskBytes = 0;  // compressed size
-  ControlCoding coding;                // version 3 on; before: float32
+  ControlCoding coding;              // version 3 on; before: float32
   std::int64_t storedControlBytes = -1;
   std::array<std::int64_t, 3> knotSamples{-1, -1, -1};  // version 3: -1 stored, 0 uniform, N
   try {
@@ -360,7 +360,8 @@ Model parseModel(std::span<const std::uint8_t> b, const std::string& name,
   std::int64_t knotCount = 0;  // stored ones
   for (int a = 0; a < 3; ++a) {
     if (knotSamples[a] > 0 && knotSamples[a] < n[a])
-      throw bad(std::string("knot rule of axis ") + "xyz"[a] + ": fewer samples than control points");
+      throw bad(std::string("knot rule of axis ") + "xyz"[a] +
+                ": fewer samples than control points");
     if (knotSamples[a] < 0) knotCount += n[a] + p[a] + 1;
   }
   const std::int64_t ctrlCount = n[0] * n[1] * n[2];
@@ -417,9 +418,9 @@ Model parseModel(std::span<const std::uint8_t> b, const std::string& name,
   // Keep the coded bytes of lossy codings, so that writing the model again stores the same
   // bytes (coding decoded values again would move them once more).
   if (coding.coder == ControlCoder::kZfp)
-    model.setControlCoding(coding, std::make_shared<const std::string>(
-                                       reinterpret_cast<const char*>(controlSection.data()),
-                                       controlSection.size()));
+    model.setControlCoding(
+        coding, std::make_shared<const std::string>(
+                    reinterpret_cast<const char*>(controlSection.data()), controlSection.size()));
   else
     model.setControlCoding(coding);
   if (maskKind) {
@@ -448,7 +449,8 @@ void saveModel(const Model& model, const std::filesystem::path& path) {
   const ModelFilePieces p = modelFilePieces(model);
   AtomicFileWriter out(path);
   std::uint32_t sum = 0;
-  for (const std::string_view piece : {std::string_view(p.head), p.controls, std::string_view(p.mask)}) {
+  for (const std::string_view piece :
+       {std::string_view(p.head), p.controls, std::string_view(p.mask)}) {
     out.write(piece);
     sum = crcOf(sum, piece);
   }

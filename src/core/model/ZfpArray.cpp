@@ -101,7 +101,8 @@ struct StreamBuffer {
   // zeroed so that decoding it back reads nothing unset.
   void zeroAfter(size_t used) {
     const size_t from = wordsFor(used);
-    std::memset(words.get() + from, 0, (std::min(count, from + kMargin) - from) * sizeof(std::uint64_t));
+    std::memset(words.get() + from, 0,
+                (std::min(count, from + kMargin) - from) * sizeof(std::uint64_t));
   }
   static constexpr size_t kMargin = 4;
   size_t count;
@@ -144,8 +145,7 @@ std::vector<float> zfpDecompress(std::span<const std::uint8_t> bytes, const Inde
   std::vector<float> values(static_cast<size_t>(dims[0] * dims[1] * dims[2]));
   ZfpCodec codec(values.data(), dims, settings);
   const size_t maximum = codec.maximumBytes();
-  if (bytes.size() > maximum)
-    throw Error("the zfp stream is longer than its mode can produce");
+  if (bytes.size() > maximum) throw Error("the zfp stream is longer than its mode can produce");
   // ZFP's decoder does not know where the stream ends: decode from a zero-padded copy of the
   // largest size, so that damaged bits cannot make it read past the buffer.
   std::vector<std::uint64_t> words(wordsFor(maximum) + 1, 0);

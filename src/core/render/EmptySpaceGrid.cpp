@@ -36,8 +36,8 @@ EmptySpaceFlags buildEmptySpaceFlags(const SpanRanges& r, const TransferFunction
   // its up to eight sub-blocks are), one layer of blocks per task.
   std::int64_t size = 0;
   for (const int* below = r.cells;
-       out.levels < kMaxEmptyLevels && (out.levels == 0 || below[0] > 1 || below[1] > 1 ||
-                                        below[2] > 1);
+       out.levels < kMaxEmptyLevels &&
+       (out.levels == 0 || below[0] > 1 || below[1] > 1 || below[2] > 1);
        below = out.level[out.levels++].count) {
     EmptyLevelView& L = out.level[out.levels];
     for (int a = 0; a < 3; ++a) L.count[a] = (below[a] + 1) / 2;
@@ -47,7 +47,8 @@ EmptySpaceFlags buildEmptySpaceFlags(const SpanRanges& r, const TransferFunction
   out.pyramid.assign(static_cast<size_t>(size), 0);
   for (int l = 0; l < out.levels; ++l) {
     const EmptyLevelView& L = out.level[l];
-    const std::uint8_t* below = l == 0 ? flags.data() : out.pyramid.data() + out.level[l - 1].offset;
+    const std::uint8_t* below =
+        l == 0 ? flags.data() : out.pyramid.data() + out.level[l - 1].offset;
     const int* n = l == 0 ? r.cells : out.level[l - 1].count;
     std::uint8_t* level = out.pyramid.data() + L.offset;
     tbb::parallel_for(0, L.count[2], [&](int k) {

@@ -69,7 +69,8 @@ SpanRanges SpanRanges::compute(const SplineView& v) {
   tbb::parallel_for(tbb::blocked_range<std::int64_t>(0, plane, 1024), [&](const auto& range) {
     for (std::int64_t z = 0; z < Z; ++z)
       for (std::int64_t q = range.begin(); q < range.end(); ++q) {
-        float l = r.min[static_cast<size_t>(q + plane * z)], h = r.max[static_cast<size_t>(q + plane * z)];
+        float l = r.min[static_cast<size_t>(q + plane * z)],
+              h = r.max[static_cast<size_t>(q + plane * z)];
         for (int w = 1; w < w2; ++w) {
           l = std::min(l, r.min[static_cast<size_t>(q + plane * (z + w))]);
           h = std::max(h, r.max[static_cast<size_t>(q + plane * (z + w))]);
