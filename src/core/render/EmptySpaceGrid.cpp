@@ -35,14 +35,14 @@ EmptySpaceFlags buildEmptySpaceFlags(const SpanRanges& r, const TransferFunction
   // The pyramid: its levels' sizes, then each level from the one below (a block is empty when
   // its up to eight sub-blocks are), one layer of blocks per task.
   std::int64_t size = 0;
-  for (const int* below = r.cells;
-       out.levels < kMaxEmptyLevels &&
-       (out.levels == 0 || below[0] > 1 || below[1] > 1 || below[2] > 1);
-       below = out.level[out.levels++].count) {
-    EmptyLevelView& L = out.level[out.levels];
+  const int* below = r.cells;
+  while (out.levels < kMaxEmptyLevels &&
+         (out.levels == 0 || below[0] > 1 || below[1] > 1 || below[2] > 1)) {
+    EmptyLevelView& L = out.level[out.levels++];
     for (int a = 0; a < 3; ++a) L.count[a] = (below[a] + 1) / 2;
     L.offset = size;
     size += std::int64_t(L.count[0]) * L.count[1] * L.count[2];
+    below = L.count;
   }
   out.pyramid.assign(static_cast<size_t>(size), 0);
   for (int l = 0; l < out.levels; ++l) {

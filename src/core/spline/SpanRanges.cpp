@@ -39,44 +39,40 @@ SpanRanges SpanRanges::compute(const SplineView& v) {
   const int w0 = v.axis[0].degree + 1, w1 = v.axis[1].degree + 1, w2 = v.axis[2].degree + 1;
   r.min.resize(static_cast<size_t>(plane * N2));
   r.max.resize(r.min.size());
+  // The least of lo and the greatest of hi over `window` entries `stride` apart, into out.
+  auto slide = [](const float* lo, const float* hi, std::int64_t stride, int window, float* loOut,
+                  float* hiOut) {
+    float l = lo[0], h = hi[0];
+    for (int w = 1; w < window; ++w) {
+      l = std::min(l, lo[w * stride]);
+      h = std::max(h, hi[w * stride]);
+    }
+    *loOut = l;
+    *hiOut = h;
+  };
   tbb::parallel_for(std::int64_t(0), N2, [&](std::int64_t k) {
     const float* c = v.ctrl + k * N0 * N1;
     std::vector<float> lx(static_cast<size_t>(X * N1)), hx(lx.size());
     for (std::int64_t j = 0; j < N1; ++j)
       for (std::int64_t i = 0; i < X; ++i) {
-        const float* p = c + i + N0 * j;
-        float l = p[0], h = p[0];
-        for (int w = 1; w < w0; ++w) {
-          l = std::min(l, p[w]);
-          h = std::max(h, p[w]);
-        }
-        lx[static_cast<size_t>(i + X * j)] = l;
-        hx[static_cast<size_t>(i + X * j)] = h;
+        const std::int64_t at = i + X * j;
+        slide(c + i + N0 * j, c + i + N0 * j, 1, w0, &lx[at], &hx[at]);
       }
     float* lo = r.min.data() + k * plane;
     float* hi = r.max.data() + k * plane;
     for (std::int64_t j = 0; j < Y; ++j)
       for (std::int64_t i = 0; i < X; ++i) {
-        float l = lx[static_cast<size_t>(i + X * j)], h = hx[static_cast<size_t>(i + X * j)];
-        for (int w = 1; w < w1; ++w) {
-          l = std::min(l, lx[static_cast<size_t>(i + X * (j + w))]);
-          h = std::max(h, hx[static_cast<size_t>(i + X * (j + w))]);
-        }
-        lo[i + X * j] = l;
-        hi[i + X * j] = h;
+        const std::int64_t at = i + X * j;
+        slide(&lx[at], &hx[at], X, w1, lo + at, hi + at);
       }
   });
   tbb::parallel_for(tbb::blocked_range<std::int64_t>(0, plane, 1024), [&](const auto& range) {
+    float* lo = r.min.data();
+    float* hi = r.max.data();
     for (std::int64_t z = 0; z < Z; ++z)
       for (std::int64_t q = range.begin(); q < range.end(); ++q) {
-        float l = r.min[static_cast<size_t>(q + plane * z)],
-              h = r.max[static_cast<size_t>(q + plane * z)];
-        for (int w = 1; w < w2; ++w) {
-          l = std::min(l, r.min[static_cast<size_t>(q + plane * (z + w))]);
-          h = std::max(h, r.max[static_cast<size_t>(q + plane * (z + w))]);
-        }
-        r.min[static_cast<size_t>(q + plane * z)] = l;
-        r.max[static_cast<size_t>(q + plane * z)] = h;
+        const std::int64_t at = q + plane * z;
+        slide(lo + at, hi + at, plane, w2, lo + at, hi + at);
       }
   });
   r.min.resize(static_cast<size_t>(plane * Z));
