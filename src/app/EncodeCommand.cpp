@@ -1,6 +1,13 @@
 // mfadvr encode INPUT [-o MODEL.mfa] [--degree ...] [--ctrl ...] [--max-error E ...]
 //               [--blocks BX,BY,BZ [--ghost N]]
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
 #include <iostream>
+#include <memory>
+#include <numeric>
+#include <optional>
 
 #include "app/CodingCliOptions.h"
 #include "app/Commands.h"
@@ -8,11 +15,15 @@
 #include "app/FitReportOutput.h"
 #include "app/OptionParsing.h"
 #include "app/SceneLoader.h"
+#include "core/analytic/BuiltinGridSource.h"
 #include "core/encode/Encoder.h"
 #include "core/encode/PieceEncoder.h"
 #include "core/model/BlockModelFile.h"
 #include "core/model/ModelFile.h"
+#include "core/util/Error.h"
 #include "core/util/MemoryBudget.h"
+#include "io/InputFile.h"
+#include "io/RawVolumeReader.h"
 #include "io/ScatteredLoader.h"
 #include "io/VolumeLoader.h"
 
@@ -23,56 +34,168 @@ namespace {
 // Exit status when --strict is given and the bound was not reached.
 constexpr int kBoundNotReached = 3;
 
-// `encode --blocks`: fits the blocks, writes the multi-block file, reports per block.
-int encodeBlocks(const StructuredGrid& grid, const std::string& blocksText, int ghost,
-                 const EncodeOptions& options, const std::string& output, bool json) {
-  const auto n = parseIntTriple("--blocks", blocksText);
-  const Index3 blocks{n[0], n[1], n[2]};
+// "8G", "512MB", "2e9": bytes, decimal units.
+std::int64_t parseByteCount(const std::string& option, const std::string& text) {
+  size_t used = 0;
+  double value = 0.0;
+  try {
+    value = std::stod(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  std::string unit = text.substr(used);
+  std::transform(unit.begin(), unit.end(), unit.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::toupper(c)); });
+  if (!unit.empty() && unit.back() == 'B') unit.pop_back();
+  const double scale = unit.empty()  ? 1.0
+                       : unit == "K" ? 1e3
+                       : unit == "M" ? 1e6
+                       : unit == "G" ? 1e9
+                       : unit == "T" ? 1e12
+                                     : 0.0;
+  if (used == 0 || scale == 0.0 || !(value > 0.0) || !std::isfinite(value * scale) ||
+      value * scale > 9e18)
+    throw CLI::ValidationError(option,
+                               "expected a positive size such as 8G, 512M or 2e9 (bytes), "
+                               "got '" +
+                                   text + "'");
+  return static_cast<std::int64_t>(value * scale);
+}
+
+// The memory an in-core encoding of `dims` samples needs: the fit's peak, and for zfp coding
+// one decoded candidate and its code beside the fit (measured: 15 B per sample at 512^3, 9 B
+// with float32 coding).
+std::int64_t inCoreEncodeBytes(const Index3& dims, const EncodeOptions& options) {
+  Index3 counts = options.controlCounts;
   for (int a = 0; a < 3; ++a)
-    if (blocks[a] < 1 || blocks[a] > grid.dims[a] - 1 + (grid.dims[a] == 1))
+    if (counts[a] <= 0) counts[a] = dims[a];
+  const std::int64_t ctrl = counts[0] * counts[1] * counts[2];
+  const bool zfp = resolvedCoder(options.coding) == ControlCoder::kZfp;
+  return structuredFitPeakBytes(dims, counts) + (zfp ? 8 * ctrl : 0);
+}
+
+// --blocks auto: at most kDefaultBlockIntervals intervals per block, then halved along the longest
+// block axis until one block's encoding (ghost layers included) fits `limit`, or the blocks
+// are as small as is worth it (ghost layers would then outweigh the block; the fit refuses with
+// its own estimate when the memory really lacks).
+constexpr std::int64_t kMinAutoBlockIntervals = 32;
+Index3 autoBlockCounts(const Index3& dims, int ghost, const EncodeOptions& options,
+                       std::int64_t limit) {
+  Index3 blocks = defaultBlockCounts(dims);
+  auto blockDims = [&](const Index3& b) {
+    Index3 d;
+    for (int a = 0; a < 3; ++a)
+      d[a] = std::min<std::int64_t>(dims[a], (dims[a] - 1 + b[a] - 1) / b[a] + 1 + 2 * ghost);
+    return d;
+  };
+  while (limit > 0 && inCoreEncodeBytes(blockDims(blocks), options) > limit) {
+    const Index3 d = blockDims(blocks);
+    int axis = -1;
+    for (int a = 0; a < 3; ++a)
+      if ((dims[a] - 1) / (2 * blocks[a]) >= kMinAutoBlockIntervals && (axis < 0 || d[a] > d[axis]))
+        axis = a;
+    if (axis < 0) break;
+    blocks[axis] *= 2;
+  }
+  return blocks;
+}
+
+// `encode --blocks`: fits the blocks one at a time, appends each to the multi-block file as it
+// is done, reports per block.
+int encodeBlocks(GridSampleSource& source, const Index3& blocks, int ghost, EncodeOptions options,
+                 const std::string& output, bool json, bool progress) {
+  const StructuredGrid& layout = source.layout();
+  for (int a = 0; a < 3; ++a)
+    if (blocks[a] < 1 || blocks[a] > layout.dims[a] - 1 + (layout.dims[a] == 1))
       throw CLI::ValidationError(
           "--blocks", "each axis needs 1 to (samples - 1) blocks; the grid has " +
-                          std::to_string(grid.dims[0]) + "x" + std::to_string(grid.dims[1]) + "x" +
-                          std::to_string(grid.dims[2]) + " samples");
+                          std::to_string(layout.dims[0]) + "x" + std::to_string(layout.dims[1]) +
+                          "x" + std::to_string(layout.dims[2]) + " samples");
   if (ghost < 0) ghost = defaultGhostLayers(options.degree);
+  const auto start = std::chrono::steady_clock::now();
+  auto elapsed = [&] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  };
+  const double megabytes = double(layout.inputBytes) / 1e6;
+  options.progress = nullptr;
+  if (progress)
+    options.progress = [&](double f, const std::string& stage) {
+      const double t = elapsed();
+      char line[160];
+      if (f > 0.0)
+        std::snprintf(line, sizeof line, "%s, %.1f MB/s, %.0f s left", stage.c_str(),
+                      f * megabytes / t, t * (1.0 - f) / f);
+      else
+        std::snprintf(line, sizeof line, "%s", stage.c_str());
+      printProgress("encoding", f, line);
+    };
+  std::optional<BlockModelFileWriter> file;
+  if (!output.empty()) file.emplace(output, blocks);
   std::vector<FitReport> reports;
-  const std::vector<ModelBlock> models =
-      encodeStructuredBlocks(grid, blocks, ghost, options, &reports);
-  if (!output.empty()) saveBlockModels(models, blocks, output);
-  double worst = 0.0, seconds = 0.0;
+  std::vector<DomainBox> regions;
+  encodeStructuredBlocks(source, blocks, ghost, options,
+                         [&](ModelBlock&& b, const FitReport& report) {
+                           if (file) file->append(b);
+                           reports.push_back(report);
+                           regions.push_back(b.region);
+                         });
+  if (file) file->commit();
+  const double seconds = elapsed();
+  const std::int64_t peak = peakResidentBytes();
+  double worst = 0.0, fitSeconds = 0.0;
   for (const FitReport& r : reports) {
     worst = std::max(worst, r.maxRelativeError());
-    seconds += r.seconds;
+    fitSeconds += r.seconds;
   }
+  const double samples = double(layout.sampleCount());
   if (json) {
     nlohmann::json list = nlohmann::json::array();
     for (size_t i = 0; i < reports.size(); ++i) {
       nlohmann::json j = fitReportJson(reports[i], "");
-      const DomainBox& r = models[i].region;
+      const DomainBox& r = regions[i];
       j["region"] = {r.min[0], r.max[0], r.min[1], r.max[1], r.min[2], r.max[2]};
       list.push_back(j);
     }
-    std::cout << nlohmann::json{{"output", output},       {"blocks", blocks},
-                                {"ghost_layers", ghost},  {"max_relative_error", worst},
-                                {"fit_seconds", seconds}, {"block_reports", list}}
+    std::cout << nlohmann::json{{"output", output},
+                                {"blocks", blocks},
+                                {"ghost_layers", ghost},
+                                {"max_relative_error", worst},
+                                {"fit_seconds", fitSeconds},
+                                {"seconds", seconds},
+                                {"input_megabytes_per_second", megabytes / seconds},
+                                {"peak_memory_bytes", peak},
+                                {"block_reports", list}}
                      .dump(2)
               << "\n";
   } else {
     std::printf("%lld x %lld x %lld blocks of %s (%s samples), %d ghost layers\n",
                 static_cast<long long>(blocks[0]), static_cast<long long>(blocks[1]),
-                static_cast<long long>(blocks[2]), grid.source.c_str(),
-                groupDigits(grid.sampleCount()).c_str(), ghost);
-    for (size_t i = 0; i < reports.size(); ++i) {
+                static_cast<long long>(blocks[2]), layout.source.c_str(),
+                groupDigits(layout.sampleCount()).c_str(), ghost);
+    // Hundreds of blocks (out-of-core volumes) would bury the summary: list the worst few.
+    std::vector<size_t> order(reports.size());
+    std::iota(order.begin(), order.end(), size_t{0});
+    const size_t shown = reports.size() <= 16 ? reports.size() : 4;
+    if (shown < reports.size())
+      std::partial_sort(order.begin(), order.begin() + shown, order.end(), [&](size_t a, size_t b) {
+        return reports[a].maxRelativeError() > reports[b].maxRelativeError();
+      });
+    if (shown < reports.size()) std::printf("  the %zu blocks of largest error:\n", shown);
+    for (size_t n = 0; n < shown; ++n) {
+      const size_t i = order[n];
       const auto& c = reports[i].controlCounts;
       std::printf("  block %zu: %lld x %lld x %lld control points, max error %.3g of the range\n",
                   i, static_cast<long long>(c[0]), static_cast<long long>(c[1]),
                   static_cast<long long>(c[2]), reports[i].maxRelativeError());
     }
-    std::printf("max error over the blocks: %.3g of the value range; fit %.2f s\n", worst, seconds);
-    if (!output.empty())
-      std::printf(
-          "wrote %s (%s bytes)\n", output.c_str(),
-          groupDigits(static_cast<std::int64_t>(std::filesystem::file_size(output))).c_str());
+    std::printf("max error over the blocks: %.3g of the value range\n", worst);
+    std::printf("time: %.2f s (%.1f MB of input per second); peak memory %s (%.1f bytes/sample)\n",
+                seconds, megabytes / seconds, formatBytes(peak).c_str(), double(peak) / samples);
+    if (file) {
+      const auto bytes = static_cast<std::int64_t>(std::filesystem::file_size(output));
+      std::printf("wrote %s (%s bytes, %.3f bits/sample)\n", output.c_str(),
+                  groupDigits(bytes).c_str(), 8.0 * double(bytes) / samples);
+    }
   }
   return 0;
 }
@@ -81,7 +204,7 @@ int encodeBlocks(const StructuredGrid& grid, const std::string& blocksText, int 
 
 Command addEncodeCommand(CLI::App& app) {
   struct Options {
-    std::string input, output, spacing, origin, blocks;
+    std::string input, output, spacing, origin, blocks, memoryLimit;
     FieldOptionTexts field;
     int ghost = -1;
     bool json = false, quiet = false, strict = false;
@@ -111,9 +234,16 @@ Command addEncodeCommand(CLI::App& app) {
       ->group("Input");
   o->field.addTo(sub, "Input");
   sub->add_option("--blocks", o->blocks,
-                  "Grids: split into BX,BY,BZ blocks (or B on every axis), each fitted with "
-                  "ghost layers around it, and write a multi-block model (for parallel "
-                  "rendering: one block per MPI rank in ParaView)")
+                  "Grids: split into BX,BY,BZ blocks (or B on every axis, or 'auto': at most 256 "
+                  "sample intervals per block), each fitted with ghost layers around it, and write "
+                  "a multi-block model (for parallel rendering: one block per MPI rank in "
+                  "ParaView). Raw files and built-in functions are then read one block at a time "
+                  "(out of core), and blocks are written as they are done")
+      ->group("Blocks");
+  sub->add_option("--memory-limit", o->memoryLimit,
+                  "Grids: the memory an in-core encoding may plan for (e.g. 8G, 512M; default "
+                  "half the available memory); without --blocks, an input that would need more "
+                  "is encoded with --blocks auto")
       ->group("Blocks");
   sub->add_option("--ghost", o->ghost,
                   "With --blocks: sample layers of the neighbouring blocks each block is fitted "
@@ -181,7 +311,60 @@ Command addEncodeCommand(CLI::App& app) {
                   << "\n";
       model = encodeScattered(data, options, &report);
     } else {
-      if (isBuiltinSpec(o->input) && o->blocks.empty() && !options.adaptive) {
+      const VolumeLoadOptions load = parseVolumeLoadOptions(o->spacing, o->origin, o->field);
+      // Raw files and built-in functions can be read a box at a time (out of core).
+      std::unique_ptr<GridSampleSource> boxes;
+      if (isBuiltinSpec(o->input)) {
+        if (!load.spacing && !load.origin && !load.field.chosen())
+          boxes = std::make_unique<BuiltinGridSource>(o->input);
+      } else if (lowerExtension(o->input) == ".raw" && !load.field.chosen() &&
+                 !std::filesystem::is_directory(o->input)) {
+        requireReadableFile(o->input, "a volume file or a directory of DICOM slices");
+        auto raw = openRawVolume(o->input);
+        raw->setPlacement(load.origin.value_or(Vec3d::Zero()),
+                          load.spacing.value_or(Vec3d::Ones()));
+        boxes = std::move(raw);
+      }
+      const std::int64_t limit = o->memoryLimit.empty()
+                                     ? availableMemoryBytes() / 2
+                                     : parseByteCount("--memory-limit", o->memoryLimit);
+      // The blocks to encode: given, or chosen when an in-core encoding would not fit.
+      auto chooseBlocks = [&](const StructuredGrid& layout) -> std::optional<Index3> {
+        for (const std::string& note : o->encode.fitDefaultDegreeToGrid(options, layout.dims))
+          std::cerr << "mfadvr: note: " << note << "\n";
+        CodingCliOptions::applyGridDefault(options.coding, layout.sampleType);
+        const int ghost = o->ghost >= 0 ? o->ghost : defaultGhostLayers(options.degree);
+        if (o->blocks == "auto") return autoBlockCounts(layout.dims, ghost, options, limit);
+        if (!o->blocks.empty()) {
+          const auto n = parseIntTriple("--blocks", o->blocks);
+          return Index3{n[0], n[1], n[2]};
+        }
+        const std::int64_t need = inCoreEncodeBytes(layout.dims, options);
+        if (options.adaptive || limit <= 0 || need <= limit) return std::nullopt;
+        const Index3 b = autoBlockCounts(layout.dims, ghost, options, limit);
+        if (b[0] * b[1] * b[2] == 1) return std::nullopt;
+        if (b[0] * b[1] * b[2] > kMaxBlockCount)
+          throw mfadvr::Error(
+              "encoding " + layout.source + " needs about " + formatBytes(need) +
+              " of memory, more than " + formatBytes(limit) + " (" +
+              (o->memoryLimit.empty() ? "half of what is available" : "--memory-limit") +
+              "), and out of core it would take " + std::to_string(b[0] * b[1] * b[2]) +
+              " blocks, more than a multi-block model holds (" + std::to_string(kMaxBlockCount) +
+              ")");
+        std::cerr << "mfadvr: note: encoding " << layout.source << " in memory would need about "
+                  << formatBytes(need) << ", more than " << formatBytes(limit)
+                  << (o->memoryLimit.empty() ? " (half the available memory)" : " (--memory-limit)")
+                  << ": encoding it in " << b[0] << "x" << b[1] << "x" << b[2]
+                  << " blocks (--blocks auto), a multi-block model\n";
+        return b;
+      };
+      // --smooth auto chooses lambda on the whole grid: it is read into memory first.
+      if (boxes && !options.autoSmoothing) {
+        if (const auto blocks = chooseBlocks(boxes->layout()))
+          return encodeBlocks(*boxes, *blocks, o->ghost, options, o->output, o->json, progress);
+        boxes.reset();
+      }
+      if (isBuiltinSpec(o->input) && !options.adaptive) {
         // Known before sampling: refuse a fit that cannot fit in memory at once.
         const Index3 dims = parseBuiltinSpec(o->input).dims;
         Index3 counts = options.controlCounts;
@@ -190,14 +373,12 @@ Command addEncodeCommand(CLI::App& app) {
         requireMemory(structuredFitPeakBytes(dims, counts),
                       "encoding " + o->input + " (fewer control points, --ctrl, need less)");
       }
-      const VolumeLoadOptions load = parseVolumeLoadOptions(o->spacing, o->origin, o->field);
       const StructuredGrid grid = loadStructuredVolume(o->input, load);
       printReaderNotes(grid);
-      for (const std::string& note : o->encode.fitDefaultDegreeToGrid(options, grid.dims))
-        std::cerr << "mfadvr: note: " << note << "\n";
-      CodingCliOptions::applyGridDefault(options.coding, grid.sampleType);
-      if (!o->blocks.empty())
-        return encodeBlocks(grid, o->blocks, o->ghost, options, o->output, o->json);
+      if (const auto blocks = chooseBlocks(grid)) {
+        InMemoryGridSource inMemory(grid);
+        return encodeBlocks(inMemory, *blocks, o->ghost, options, o->output, o->json, progress);
+      }
       model = encodeStructured(grid, options, &report);
     }
     if (report.points > 0 && report.solverResidual > 1e-4)

@@ -1,19 +1,14 @@
 #include "io/RawVolumeReader.h"
 
 #include <algorithm>
-#include <bit>
 #include <cctype>
-#include <cerrno>
 #include <charconv>
-#include <cstdio>
-#include <cstring>
 #include <filesystem>
 #include <memory>
 #include <regex>
 #include <sstream>
 
 #include "core/util/Error.h"
-#include "core/util/MemoryBudget.h"
 
 namespace mfadvr {
 namespace {
@@ -38,43 +33,6 @@ std::string conventionText() {
          "little-endian, TYPE one of " +
          joinedSampleTypes();
 }
-
-// Raw files are little-endian by convention; only a big-endian host has to swap.
-template <typename T>
-T loadLittleEndian(const unsigned char* bytes) {
-  unsigned char buf[sizeof(T)];
-  if constexpr (std::endian::native == std::endian::little) {
-    std::memcpy(buf, bytes, sizeof(T));
-  } else {
-    for (size_t b = 0; b < sizeof(T); ++b) buf[b] = bytes[sizeof(T) - 1 - b];
-  }
-  T value;
-  std::memcpy(&value, buf, sizeof(T));
-  return value;
-}
-
-template <typename T>
-void convertSamples(const unsigned char* bytes, size_t count, float* out) {
-  for (size_t n = 0; n < count; ++n)
-    out[n] = static_cast<float>(loadLittleEndian<T>(bytes + n * sizeof(T)));
-}
-
-void convertSamples(const std::string& dtype, const unsigned char* bytes, size_t count,
-                    float* out) {
-  if (dtype == "uint8") return convertSamples<std::uint8_t>(bytes, count, out);
-  if (dtype == "int8") return convertSamples<std::int8_t>(bytes, count, out);
-  if (dtype == "uint16") return convertSamples<std::uint16_t>(bytes, count, out);
-  if (dtype == "int16") return convertSamples<std::int16_t>(bytes, count, out);
-  if (dtype == "uint32") return convertSamples<std::uint32_t>(bytes, count, out);
-  if (dtype == "int32") return convertSamples<std::int32_t>(bytes, count, out);
-  if (dtype == "float32") return convertSamples<float>(bytes, count, out);
-  if (dtype == "float64") return convertSamples<double>(bytes, count, out);
-  throw Error("internal: no conversion for raw sample type " + dtype);
-}
-
-struct FileCloser {
-  void operator()(std::FILE* f) const { std::fclose(f); }
-};
 
 }  // namespace
 
@@ -114,7 +72,7 @@ std::optional<RawVolumeName> parseRawVolumeName(const std::string& path) {
   return out;
 }
 
-StructuredGrid readRawVolume(const std::string& path) {
+std::unique_ptr<RawVolumeSource> openRawVolume(const std::string& path) {
   const auto parsed = parseRawVolumeName(path);
   if (!parsed) throw Error(path + ": not a recognised raw volume name; " + conventionText());
   const int sampleSize = rawSampleSize(parsed->dtype);
@@ -133,9 +91,6 @@ StructuredGrid readRawVolume(const std::string& path) {
     if (__builtin_mul_overflow(expectedBytes, dims[a], &expectedBytes))
       throw Error(path + ": the grid size in the file name is too large");
   }
-
-  std::unique_ptr<std::FILE, FileCloser> file(std::fopen(path.c_str(), "rb"));
-  if (!file) throw Error("cannot open " + path + ": " + std::strerror(errno));
   std::error_code ec;
   const auto fileBytes = std::filesystem::file_size(path, ec);
   if (ec) throw Error("cannot read the size of " + path + ": " + ec.message());
@@ -146,31 +101,16 @@ StructuredGrid readRawVolume(const std::string& path) {
       << " bytes (raw files have no header, so the sizes must match exactly)";
     throw Error(m.str());
   }
-
   StructuredGrid grid;
   grid.dims = dims;
   grid.source = path;
-  grid.sampleType = parsed->dtype;
-  grid.inputBytes = expectedBytes;
-  requireMemory(std::int64_t(sizeof(float)) * grid.sampleCount(),
-                "reading " + path + " (its samples are held as float32)");
-  grid.values.resize(static_cast<size_t>(grid.sampleCount()));
+  // Raw files are little-endian by convention.
+  return std::make_unique<RawVolumeSource>(RawSampleLayout{path, 0, parsed->dtype, false}, grid);
+}
 
-  // Chunked so that a large volume does not need a second full-size byte buffer.
-  constexpr size_t kChunkSamples = size_t{1} << 20;
-  std::vector<unsigned char> buffer(kChunkSamples * static_cast<size_t>(sampleSize));
-  size_t done = 0;
-  while (done < grid.values.size()) {
-    const size_t count = std::min(kChunkSamples, grid.values.size() - done);
-    const size_t want = count * static_cast<size_t>(sampleSize);
-    if (std::fread(buffer.data(), 1, want, file.get()) != want) {
-      const std::string why = std::ferror(file.get()) ? std::strerror(errno) : "unexpected end";
-      throw Error("cannot read " + path + ": " + why);
-    }
-    convertSamples(parsed->dtype, buffer.data(), count, grid.values.data() + done);
-    done += count;
-  }
-  return grid;
+StructuredGrid readRawVolume(const std::string& path) {
+  auto source = openRawVolume(path);
+  return source->readUnchecked(wholeRange(source->layout().dims));
 }
 
 }  // namespace mfadvr

@@ -3,12 +3,14 @@
 // (e.g. fuel_64x64x64_uint8.raw): x fastest, little-endian. The name is the only metadata,
 // so it is parsed strictly and the file size must match it exactly.
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "core/grid/StructuredGrid.h"
 #include "core/util/Vec.h"
+#include "io/RawVolumeSource.h"
 
 namespace mfadvr {
 
@@ -28,6 +30,10 @@ int rawSampleSize(const std::string& dtype);
 // not have the shape NAME_XxYxZ_DTYPE.raw. The dtype is not checked here, so that the caller
 // can tell "unknown type" apart from "not the convention".
 std::optional<RawVolumeName> parseRawVolumeName(const std::string& path);
+
+// A raw volume read box by box (out-of-core encoding). Throws as readRawVolume does, before
+// any sample is read.
+std::unique_ptr<RawVolumeSource> openRawVolume(const std::string& path);
 
 // Reads a raw volume. Throws mfadvr::Error when the name does not follow the convention, the
 // dtype is unknown, the file cannot be opened, or its size differs from X*Y*Z*sizeof(dtype).

@@ -313,5 +313,45 @@ TEST(EncodeCli, BlocksWriteAMultiBlockModelThatInfoAndRenderRead) {
   EXPECT_NE(viewer.err.find("multi-block"), std::string::npos) << viewer.err;
 }
 
+// Out of core: a raw file or a built-in whose in-core encoding needs more than the memory limit
+// is encoded block by block into a multi-block model, with a note saying so.
+TEST(EncodeCli, InputsLargerThanTheMemoryLimitAreEncodedInBlocks) {
+  const auto dir = test::scratchDir();
+  const std::string raw = (dir / "ramp_80x72x66_uint8.raw").string();
+  {
+    std::ofstream out(raw, std::ios::binary);
+    for (int k = 0; k < 66; ++k)
+      for (int j = 0; j < 72; ++j)
+        for (int i = 0; i < 80; ++i) out.put(static_cast<char>((i * 3 + j * 2 + k * k) % 251));
+  }
+  const std::string model = (dir / "ramp.mfa").string();
+  const auto r =
+      runMfadvr("encode " + raw + " --memory-limit 3M --coding float32 --json -o " + model);
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("--blocks auto"), std::string::npos) << r.err;
+  const auto j = parseJson(r);
+  const auto blocks = j["blocks"].get<std::array<int, 3>>();
+  EXPECT_GT(blocks[0] * blocks[1] * blocks[2], 1);
+  EXPECT_GT(j["peak_memory_bytes"].get<double>(), 0.0);
+  EXPECT_GT(j["input_megabytes_per_second"].get<double>(), 0.0);
+  // Every block interpolates its samples.
+  EXPECT_LT(j["max_relative_error"].get<double>(), 1e-5);
+  const auto info = runMfadvr("info --json " + model);
+  ASSERT_EQ(info.status, 0) << info.err;
+  EXPECT_EQ(parseJson(info)["format"], "mfadvr-blocks");
+
+  // Within the limit: one model, as before. --blocks auto splits at most 256 intervals per block.
+  const auto single = runMfadvr("encode " + raw + " --memory-limit 8G -q -o " + model);
+  ASSERT_EQ(single.status, 0) << single.err;
+  EXPECT_EQ(single.err.find("--blocks auto"), std::string::npos) << single.err;
+  EXPECT_NO_THROW(loadModel(model));
+  const auto automatic = runMfadvr("encode builtin:marschner-lobb:33 --blocks auto --json");
+  ASSERT_EQ(automatic.status, 0) << automatic.err;
+  EXPECT_EQ(parseJson(automatic)["blocks"], nlohmann::json({1, 1, 1}));
+
+  for (const std::string bad : {" --memory-limit 0", " --memory-limit 12Q", " --memory-limit -1G"})
+    EXPECT_EQ(runMfadvr("encode " + raw + bad).status, 2) << bad;
+}
+
 }  // namespace
 }  // namespace mfadvr

@@ -61,6 +61,43 @@ TEST(BlockModelFile, RoundTripsAndReadsBlocksAlone) {
   EXPECT_THROW(readBlockIndex(dir / "missing.mfa"), Error);
 }
 
+// Out-of-core encoding appends each block as it is fitted and writes the index last: the file
+// reads like one written at once, and nothing appears until the last block is in.
+TEST(BlockModelFile, WriterAppendsBlocksThenTheIndex) {
+  const auto blocks = smallBlocks();
+  const auto dir = test::scratchDir();
+  const auto path = dir / "streamed.mfa";
+  {
+    BlockModelFileWriter writer(path, {2, 1, 2});
+    for (const ModelBlock& b : blocks) writer.append(b);
+    EXPECT_FALSE(std::filesystem::exists(path));
+    EXPECT_THROW(writer.append(blocks[0]), Error);  // a fifth block of a 2 x 1 x 2 grid
+    writer.commit();
+  }
+  const BlockIndex index = readBlockIndex(path);
+  EXPECT_EQ(index.blocks, (Index3{2, 1, 2}));
+  EXPECT_EQ(index.valueMax, blocks[0].model.valueMax());
+  for (size_t i = 0; i < blocks.size(); ++i) {
+    EXPECT_EQ(serializeModel(loadBlock(path, index, i)), serializeModel(blocks[i].model));
+    EXPECT_EQ(index.entries[i].region.max, blocks[i].region.max);
+  }
+  EXPECT_EQ(index.box.max, blocks[3].region.max);
+
+  // Abandoned (an error while encoding), it leaves nothing behind; committed short, it refuses.
+  {
+    BlockModelFileWriter writer(dir / "abandoned.mfa", {2, 1, 2});
+    writer.append(blocks[0]);
+  }
+  {
+    BlockModelFileWriter writer(dir / "short.mfa", {2, 1, 2});
+    writer.append(blocks[0]);
+    EXPECT_THROW(writer.commit(), Error);
+  }
+  size_t files = 0;
+  for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir)) ++files;
+  EXPECT_EQ(files, 1u);
+}
+
 TEST(BlockModelFile, EveryTruncationAndCorruptionIsAnError) {
   const auto full = bytesOf(serializeBlockModels(smallBlocks(), {2, 1, 2}));
   EXPECT_EQ(errorOf(full), "");

@@ -6,6 +6,7 @@
 
 #include "MarschnerLobbScene.h"
 #include "core/analytic/BuiltinFunction.h"
+#include "core/analytic/BuiltinGridSource.h"
 #include "core/field/ModelField.h"
 #include "core/image/ImageMetrics.h"
 #include "core/render/PieceCompositor.h"
@@ -99,6 +100,67 @@ TEST(PieceEncoder, ControlCountsKeepTheirDensity) {
   // 20 of 40 sample intervals: (21 - 3) / 40 * 20 + 3 = 12 control points along x.
   EXPECT_EQ(blocks[0].model.spline().counts()[0], 12);
   EXPECT_EQ(blocks[0].model.spline().counts()[1], 21);
+}
+
+// A source that samples boxes on demand gives the samples the whole grid holds.
+TEST(PieceEncoder, BuiltinSourceReadsTheBoxesOfTheWholeGrid) {
+  const StructuredGrid grid = sampleBuiltinSpec("builtin:marschner-lobb:9x8x7");
+  BuiltinGridSource source("builtin:marschner-lobb:9x8x7");
+  EXPECT_EQ(source.layout().dims, grid.dims);
+  EXPECT_TRUE(source.layout().values.empty());
+  for (const SampleRange& r : {SampleRange{{2, 1, 3}, {6, 7, 5}}, wholeRange(grid.dims),
+                               SampleRange{{0, 0, 6}, {8, 7, 6}}}) {
+    const StructuredGrid box = source.read(r);
+    const StructuredGrid expected = subGrid(grid, r);
+    EXPECT_EQ(box.values, expected.values);
+    EXPECT_EQ(box.origin, expected.origin);
+  }
+  const auto [lo, hi] = std::minmax_element(grid.values.begin(), grid.values.end());
+  EXPECT_EQ(source.valueRange(), (std::pair<double, double>(*lo, *hi)));
+  EXPECT_THROW(source.read({{0, 0, 0}, {9, 0, 0}}), Error);  // outside the grid
+}
+
+// Blocks read one at a time from a source are the blocks of the grid in memory, byte for byte,
+// and reach the sink in file order.
+TEST(PieceEncoder, BlocksFromASourceEqualBlocksFromMemory) {
+  const std::string spec = "builtin:marschner-lobb:21x17x19";
+  EncodeOptions options;
+  options.degree = {2, 3, 2};
+  const std::vector<ModelBlock> inMemory =
+      encodeStructuredBlocks(sampleBuiltinSpec(spec), {2, 2, 3}, -1, options);
+  BuiltinGridSource source(spec);
+  std::vector<ModelBlock> streamed;
+  std::vector<double> fractions;
+  options.progress = [&](double f, const std::string&) { fractions.push_back(f); };
+  encodeStructuredBlocks(source, {2, 2, 3}, -1, options, [&](ModelBlock&& b, const FitReport& r) {
+    EXPECT_GT(r.controlCounts[0], 0);
+    streamed.push_back(std::move(b));
+  });
+  ASSERT_EQ(streamed.size(), inMemory.size());
+  for (size_t i = 0; i < streamed.size(); ++i) {
+    // (The files would differ only in the fit times and dates of their provenance.)
+    const TensorBSpline &a = streamed[i].model.spline(), &b = inMemory[i].model.spline();
+    EXPECT_EQ(a.counts(), b.counts()) << "block " << i;
+    EXPECT_EQ(a.controlPoints(), b.controlPoints()) << "block " << i;
+    EXPECT_EQ(streamed[i].region.min, inMemory[i].region.min);
+    EXPECT_EQ(streamed[i].region.max, inMemory[i].region.max);
+    EXPECT_EQ(streamed[i].model.valueMax(), inMemory[i].model.valueMax());
+  }
+  ASSERT_FALSE(fractions.empty());
+  EXPECT_TRUE(std::is_sorted(fractions.begin(), fractions.end()));
+  EXPECT_EQ(fractions.back(), 1.0);
+
+  // lambda by cross-validation needs every sample at once: a source on disk cannot give it.
+  options.autoSmoothing = true;
+  EXPECT_THROW(
+      encodeStructuredBlocks(source, {2, 1, 1}, -1, options, [](ModelBlock&&, const FitReport&) {}),
+      Error);
+}
+
+TEST(PieceEncoder, DefaultBlocksHoldAtMost256Intervals) {
+  EXPECT_EQ(defaultBlockCounts({257, 256, 2}), (Index3{1, 1, 1}));
+  EXPECT_EQ(defaultBlockCounts({258, 1024, 2048}), (Index3{2, 4, 8}));
+  EXPECT_EQ(defaultBlockCounts({1, 1, 1}), (Index3{1, 1, 1}));
 }
 
 }  // namespace

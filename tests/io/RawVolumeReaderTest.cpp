@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include "TestSupport.h"
+#include "core/grid/SampleRange.h"
 #include "core/util/Error.h"
 #include "io/RawVolumeReader.h"
 #include "io/VolumeLoader.h"
@@ -117,6 +118,67 @@ TEST(RawVolumeReader, Float64BeyondFloat32RangeIsRefused) {
   const auto path = writeRaw<double>(test::scratchDir(), "vol_2x1x1_float64.raw",
                                      std::vector<double>{1.0, 1e300});
   expectError([&] { loadStructuredVolume(path); }, {path, "sample (1, 0, 0)", "float32 range"});
+}
+
+// Out-of-core reads: any box of the file is the same box of the whole volume, whether it is
+// whole planes, whole rows or neither.
+TEST(RawVolumeSource, ReadsAnyBoxAsTheWholeVolumeHoldsIt) {
+  std::vector<std::int16_t> values(7 * 5 * 4);
+  for (size_t n = 0; n < values.size(); ++n)
+    values[n] = static_cast<std::int16_t>(n * 37 % 301 - 150);
+  const auto path = writeRaw<std::int16_t>(test::scratchDir(), "box_7x5x4_int16.raw", values);
+  const StructuredGrid whole = readRawVolume(path);
+  auto source = openRawVolume(path);
+  source->setPlacement({1, 2, 3}, {0.5, 1, 2});
+  EXPECT_EQ(source->layout().dims, (Index3{7, 5, 4}));
+  EXPECT_EQ(source->layout().sampleType, "int16");
+  EXPECT_EQ(source->layout().inputBytes, 280);
+  for (const SampleRange& r : {wholeRange(whole.dims), SampleRange{{0, 0, 1}, {6, 4, 2}},
+                               SampleRange{{0, 1, 0}, {6, 3, 3}}, SampleRange{{2, 1, 1}, {5, 4, 3}},
+                               SampleRange{{6, 4, 3}, {6, 4, 3}}}) {
+    const StructuredGrid box = source->read(r);
+    EXPECT_EQ(box.values, subGrid(whole, r).values);
+    EXPECT_EQ(box.origin, Vec3d(1 + 0.5 * r.lo[0], 2 + r.lo[1], 3 + 2.0 * r.lo[2]));
+  }
+  EXPECT_EQ(source->valueRange(), (std::pair<double, double>(-150, 150)));
+  EXPECT_THROW(source->read({{0, 0, 0}, {7, 4, 3}}), Error);  // one past the last x
+}
+
+// The same reader serves payloads after a header, in either byte order.
+TEST(RawVolumeSource, ReadsBigEndianSamplesAfterAnOffset) {
+  const auto dir = test::scratchDir();
+  const std::vector<float> values{1.5f, -2.0f, 3.25f, 1e-3f, 7.0f, -8.5f};
+  {
+    std::ofstream out(dir / "payload.bin", std::ios::binary);
+    out.write("HDR", 3);
+    for (float v : values) {
+      unsigned char b[4];
+      std::memcpy(b, &v, 4);
+      if constexpr (std::endian::native == std::endian::little) std::reverse(b, b + 4);
+      out.write(reinterpret_cast<const char*>(b), 4);
+    }
+  }
+  StructuredGrid layout;
+  layout.dims = {3, 2, 1};
+  RawVolumeSource source({(dir / "payload.bin").string(), 3, "float32", true}, layout);
+  EXPECT_EQ(source.read(wholeRange(layout.dims)).values, values);
+  EXPECT_EQ(source.valueRange(), (std::pair<double, double>(-8.5, 7.0)));
+  // A payload that ends early is refused before any reading.
+  layout.dims = {3, 2, 2};
+  expectError(
+      [&] {
+        RawVolumeSource({(dir / "payload.bin").string(), 3, "float32", true}, layout);
+      },
+      {"payload.bin", "ends before the last of its 12 float32 samples"});
+}
+
+// A NaN found by the value-range pass (the first pass of out-of-core encoding) names its sample.
+TEST(RawVolumeSource, ValueRangeNamesANonFiniteSample) {
+  const auto path = writeRaw<float>(test::scratchDir(), "nan_3x2x2_float32.raw",
+                                    {0, 1, 2, 3, 4, 5, 6, NAN, 8, 9, 10, 11});
+  auto source = openRawVolume(path);
+  expectError([&] { source->valueRange(); }, {path, "sample (1, 0, 1)", "NaN"});
+  expectError([&] { source->read({{0, 0, 1}, {2, 1, 1}}); }, {"sample (1, 0, 0)"});
 }
 
 TEST(RawVolumeReader, SizeMismatchStatesBothSizes) {

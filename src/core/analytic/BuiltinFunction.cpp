@@ -255,27 +255,36 @@ BuiltinSpec parseBuiltinSpec(const std::string& spec) {
   return out;
 }
 
-StructuredGrid sampleBuiltin(const BuiltinFunction& f, const Index3& dims) {
+StructuredGrid builtinGridLayout(const BuiltinFunction& f, const Index3& dims) {
   for (int a = 0; a < 3; ++a)
     if (dims[a] < 2) throw Error("a built-in function is sampled with at least 2 samples per axis");
-  requireMemory(std::int64_t(sizeof(float)) * dims[0] * dims[1] * dims[2],
-                "sampling " + f.name() + " on " + std::to_string(dims[0]) + "x" +
-                    std::to_string(dims[1]) + "x" + std::to_string(dims[2]) + " samples");
   StructuredGrid g;
   g.dims = dims;
   const Vec3d lo = BuiltinFunction::domainMin(), hi = BuiltinFunction::domainMax();
   g.origin = lo;
   for (int a = 0; a < 3; ++a) g.spacing[a] = (hi[a] - lo[a]) / static_cast<double>(dims[a] - 1);
-  g.values.resize(static_cast<size_t>(g.sampleCount()));
-  tbb::parallel_for(std::int64_t(0), dims[2], [&](std::int64_t k) {
-    for (std::int64_t j = 0; j < dims[1]; ++j)
-      for (std::int64_t i = 0; i < dims[0]; ++i) g.at(i, j, k) = f.value(g.position(i, j, k));
-  });
   g.source = "builtin:" + f.name() + ":" + std::to_string(dims[0]) + "x" + std::to_string(dims[1]) +
              "x" + std::to_string(dims[2]);
   g.fieldName = f.name();
   g.sampleType = "float64";
   g.inputBytes = g.sampleCount() * static_cast<std::int64_t>(sizeof(double));
+  return g;
+}
+
+void fillBuiltinSamples(const BuiltinFunction& f, StructuredGrid& g) {
+  requireMemory(std::int64_t(sizeof(float)) * g.sampleCount(),
+                "sampling " + f.name() + " on " + std::to_string(g.dims[0]) + "x" +
+                    std::to_string(g.dims[1]) + "x" + std::to_string(g.dims[2]) + " samples");
+  g.values.resize(static_cast<size_t>(g.sampleCount()));
+  tbb::parallel_for(std::int64_t(0), g.dims[2], [&](std::int64_t k) {
+    for (std::int64_t j = 0; j < g.dims[1]; ++j)
+      for (std::int64_t i = 0; i < g.dims[0]; ++i) g.at(i, j, k) = f.value(g.position(i, j, k));
+  });
+}
+
+StructuredGrid sampleBuiltin(const BuiltinFunction& f, const Index3& dims) {
+  StructuredGrid g = builtinGridLayout(f, dims);
+  fillBuiltinSamples(f, g);
   return g;
 }
 

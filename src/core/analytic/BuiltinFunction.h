@@ -59,6 +59,11 @@ struct BeamBox {
 // Throws mfadvr::Error for k outside 0..3.
 BeamBox gaussianBeamsBox(int k);
 
+// The grid of dims points per axis spanning [-1,1]^3 (endpoints included), without values.
+StructuredGrid builtinGridLayout(const BuiltinFunction& f, const Index3& dims);
+// Evaluates the function at every sample position of `grid` (any box of such a layout).
+void fillBuiltinSamples(const BuiltinFunction& f, StructuredGrid& grid);
+
 // Samples the function on dims points per axis spanning [-1,1]^3 (endpoints included).
 StructuredGrid sampleBuiltin(const BuiltinFunction& f, const Index3& dims);
 

@@ -32,25 +32,6 @@ SampleRange withGhostLayers(const SampleRange& range, int ghost, const Index3& d
   return r;
 }
 
-StructuredGrid subGrid(const StructuredGrid& grid, const SampleRange& range) {
-  StructuredGrid g;
-  g.dims = range.dims();
-  g.origin = grid.position(range.lo[0], range.lo[1], range.lo[2]);
-  g.spacing = grid.spacing;
-  g.source = grid.source;
-  g.fieldName = grid.fieldName;
-  g.sampleType = grid.sampleType;
-  g.values.resize(static_cast<size_t>(g.sampleCount()));
-  size_t out = 0;
-  for (std::int64_t k = range.lo[2]; k <= range.hi[2]; ++k)
-    for (std::int64_t j = range.lo[1]; j <= range.hi[1]; ++j)
-      for (std::int64_t i = range.lo[0]; i <= range.hi[0]; ++i) g.values[out++] = grid.at(i, j, k);
-  const double bytesPerSample =
-      grid.sampleCount() > 0 ? double(grid.inputBytes) / double(grid.sampleCount()) : 0.0;
-  g.inputBytes = static_cast<std::int64_t>(std::llround(bytesPerSample * double(g.sampleCount())));
-  return g;
-}
-
 int defaultGhostLayers(const Degree3& degree) {
   return 2 * (*std::max_element(degree.begin(), degree.end()) + 1);
 }
@@ -81,36 +62,71 @@ Model encodeStructuredPiece(const StructuredGrid& pieceGrid, const Index3& whole
   return m;
 }
 
-std::vector<ModelBlock> encodeStructuredBlocks(const StructuredGrid& grid, const Index3& blocks,
-                                               int ghost, const EncodeOptions& options,
-                                               std::vector<FitReport>* reports) {
-  grid.validate();
+Index3 defaultBlockCounts(const Index3& dims) {
+  Index3 blocks{1, 1, 1};
+  for (int a = 0; a < 3; ++a)
+    blocks[a] = std::max<std::int64_t>(
+        1, (dims[a] - 1 + kDefaultBlockIntervals - 1) / kDefaultBlockIntervals);
+  return blocks;
+}
+
+void encodeStructuredBlocks(GridSampleSource& source, const Index3& blocks, int ghost,
+                            const EncodeOptions& options, const BlockSink& sink) {
+  const StructuredGrid& layout = source.layout();
   if (ghost < 0) ghost = defaultGhostLayers(options.degree);
-  const auto [lo, hi] = std::minmax_element(grid.values.begin(), grid.values.end());
-  const std::int64_t count = blocks[0] * blocks[1] * blocks[2];
-  std::vector<ModelBlock> out;
-  out.reserve(static_cast<size_t>(count));
-  // One lambda for every block, chosen on the whole grid: blocks must agree across their faces.
-  EncodeOptions quiet = withChosenSmoothing(grid, options);
+  pieceRange(layout.dims, blocks, {0, 0, 0});  // checks the block counts before any reading
+  EncodeOptions quiet = options;
   quiet.progress = nullptr;
+  if (options.autoSmoothing) {
+    // One lambda for every block, chosen on the whole grid: blocks must agree across their faces.
+    const StructuredGrid* whole = source.wholeGrid();
+    if (!whole)
+      throw Error(layout.source +
+                  ": --smooth auto chooses lambda on the whole grid, which out-of-core block "
+                  "encoding never holds; give a fixed --smooth LAMBDA");
+    quiet = withChosenSmoothing(*whole, quiet);
+  }
+  if (options.progress) options.progress(0.0, "value range");
+  const auto [lo, hi] = source.valueRange();
+  // Blocks hold nearly equal numbers of samples: their count measures the work done.
+  const std::int64_t count = blocks[0] * blocks[1] * blocks[2];
+  std::int64_t done = 0;
   for (std::int64_t k = 0; k < blocks[2]; ++k)
     for (std::int64_t j = 0; j < blocks[1]; ++j)
       for (std::int64_t i = 0; i < blocks[0]; ++i) {
-        const SampleRange own = pieceRange(grid.dims, blocks, {i, j, k});
-        const StructuredGrid piece = subGrid(grid, withGhostLayers(own, ghost, grid.dims));
+        const SampleRange own = pieceRange(layout.dims, blocks, {i, j, k});
         FitReport report;
-        ModelBlock b{{grid.position(own.lo[0], own.lo[1], own.lo[2]),
-                      grid.position(own.hi[0], own.hi[1], own.hi[2])},
-                     encodeStructuredPiece(piece, grid.dims, quiet, *lo, *hi, &report)};
+        Model model;
+        {
+          const StructuredGrid piece = source.read(withGhostLayers(own, ghost, layout.dims));
+          model = encodeStructuredPiece(piece, layout.dims, quiet, lo, hi, &report);
+        }
+        ModelBlock b{{layout.position(own.lo[0], own.lo[1], own.lo[2]),
+                      layout.position(own.hi[0], own.hi[1], own.hi[2])},
+                     std::move(model)};
         // The region and the model's box are computed from different origins; keep rounding
         // from putting the region a hair outside the box.
         b.region.min = b.region.min.cwiseMax(b.model.domain().min);
         b.region.max = b.region.max.cwiseMin(b.model.domain().max);
-        if (reports) reports->push_back(report);
-        out.push_back(std::move(b));
+        sink(std::move(b), report);
+        ++done;
         if (options.progress)
-          options.progress(double(out.size()) / double(count), "fitting blocks");
+          options.progress(double(done) / double(count),
+                           "block " + std::to_string(done) + " of " + std::to_string(count));
       }
+}
+
+std::vector<ModelBlock> encodeStructuredBlocks(const StructuredGrid& grid, const Index3& blocks,
+                                               int ghost, const EncodeOptions& options,
+                                               std::vector<FitReport>* reports) {
+  InMemoryGridSource source(grid);
+  std::vector<ModelBlock> out;
+  out.reserve(static_cast<size_t>(blocks[0] * blocks[1] * blocks[2]));
+  encodeStructuredBlocks(source, blocks, ghost, options,
+                         [&](ModelBlock&& b, const FitReport& report) {
+                           if (reports) reports->push_back(report);
+                           out.push_back(std::move(b));
+                         });
   return out;
 }
 

@@ -10,20 +10,17 @@
 // two neighbours agree closely across their common face (each sees the same data there); its
 // region is the box of its own samples, and the regions of the pieces tile the whole box without
 // overlapping.
+#include <functional>
 #include <vector>
 
 #include "core/encode/Encoder.h"
+#include "core/grid/GridSampleSource.h"
+#include "core/grid/SampleRange.h"
 #include "core/grid/StructuredGrid.h"
 #include "core/model/BlockModelFile.h"
 #include "core/model/Model.h"
 
 namespace mfadvr {
-
-// Inclusive sample index ranges per axis.
-struct SampleRange {
-  Index3 lo{0, 0, 0}, hi{0, 0, 0};
-  Index3 dims() const { return {hi[0] - lo[0] + 1, hi[1] - lo[1] + 1, hi[2] - lo[2] + 1}; }
-};
 
 // Piece `piece` of a grid of `dims` samples split into `pieces` per axis. Throws mfadvr::Error
 // when an axis has more pieces than sample intervals.
@@ -31,10 +28,6 @@ SampleRange pieceRange(const Index3& dims, const Index3& pieces, const Index3& p
 
 // `range` grown by `ghost` samples on every side, clipped to the grid.
 SampleRange withGhostLayers(const SampleRange& range, int ghost, const Index3& dims);
-
-// The samples of `range` as a grid of their own (same spacing, origin at the range's first
-// sample).
-StructuredGrid subGrid(const StructuredGrid& grid, const SampleRange& range);
 
 // The default ghost layers for a degree: enough samples that both neighbours' fits see the same
 // data over the support of the basis functions near their common face.
@@ -49,9 +42,25 @@ Model encodeStructuredPiece(const StructuredGrid& pieceGrid, const Index3& whole
                             const EncodeOptions& options, double valueMin, double valueMax,
                             FitReport* report = nullptr);
 
-// Splits `grid` into blocks[0] x blocks[1] x blocks[2] pieces (x fastest) and fits each with
-// `ghost` layers (negative: defaultGhostLayers). Progress reports the fraction of blocks done;
-// reports (optional) receive one fit report per block.
+// Blocks per axis for out-of-core encoding: pieces of at most kDefaultBlockIntervals sample
+// intervals along each axis (about 256^3 samples, a fit of a few hundred MB, and a good share
+// for one rendering process).
+inline constexpr std::int64_t kDefaultBlockIntervals = 256;
+Index3 defaultBlockCounts(const Index3& dims);
+
+// Receives each block as soon as it is fitted, in file order (x fastest).
+using BlockSink = std::function<void(ModelBlock&& block, const FitReport& report)>;
+
+// Splits the source's grid into blocks[0] x blocks[1] x blocks[2] pieces (x fastest), reads each
+// with `ghost` layers (negative: defaultGhostLayers), fits it and hands it to `sink`: at any time
+// only one block's samples and fit are held. The value range of every block is the whole grid's
+// (one pass over the source first). options.progress receives the fraction of samples done.
+// --smooth auto needs a source with the whole grid in memory (one lambda for every block).
+void encodeStructuredBlocks(GridSampleSource& source, const Index3& blocks, int ghost,
+                            const EncodeOptions& options, const BlockSink& sink);
+
+// The same for a grid in memory, returning the blocks; reports (optional) receive one fit report
+// per block.
 std::vector<ModelBlock> encodeStructuredBlocks(const StructuredGrid& grid, const Index3& blocks,
                                                int ghost, const EncodeOptions& options,
                                                std::vector<FitReport>* reports = nullptr);

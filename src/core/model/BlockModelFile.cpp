@@ -21,7 +21,6 @@ using nlohmann::json;
 constexpr char kMagic[12] = {'M', 'F', 'A', 'D', 'V', 'R', 'M', 'B', '\r', '\n', '\x1a', '\n'};
 constexpr size_t kPrefixBytes = sizeof(kMagic) + 4 + 4;  // magic, version, index length
 constexpr std::uint32_t kMaxIndexBytes = 64u << 20;
-constexpr std::int64_t kMaxBlocks = 1 << 20;
 
 json boxJson(const DomainBox& b) {
   return {b.min[0], b.max[0], b.min[1], b.max[1], b.min[2], b.max[2]};
@@ -55,6 +54,52 @@ std::vector<std::uint8_t> readRange(const std::filesystem::path& path, std::uint
   return out;
 }
 
+// The JSON index of blocks whose models have `sizes` bytes, the first at byte `first`.
+std::string indexText(const Index3& grid, const DomainBox& whole, double valueMin, double valueMax,
+                      const std::vector<DomainBox>& regions,
+                      const std::vector<std::uint64_t>& sizes, std::uint64_t first) {
+  json entries = json::array();
+  std::uint64_t offset = first;
+  for (size_t i = 0; i < regions.size(); ++i) {
+    entries.push_back({{"region", boxJson(regions[i])}, {"offset", offset}, {"bytes", sizes[i]}});
+    offset += sizes[i];
+  }
+  return json{{"format", "mfadvr-blocks"},
+              {"blocks", grid},
+              {"box", boxJson(whole)},
+              {"value_range", {valueMin, valueMax}},
+              {"entries", entries}}
+      .dump();
+}
+
+// Magic, version, index length, index and checksum: every byte before the first block.
+std::string indexHead(const std::string& index) {
+  std::string out;
+  out.append(kMagic, sizeof(kMagic));
+  appendBytes(out, kBlockFormatVersion);
+  appendBytes(out, static_cast<std::uint32_t>(index.size()));
+  out += index;
+  appendBytes(out, crc32Of(reinterpret_cast<const std::uint8_t*>(out.data()), out.size()));
+  return out;
+}
+
+DomainBox unionOf(const std::vector<DomainBox>& regions) {
+  DomainBox whole = regions.front();
+  for (const DomainBox& r : regions) {
+    whole.min = whole.min.cwiseMin(r.min);
+    whole.max = whole.max.cwiseMax(r.max);
+  }
+  return whole;
+}
+
+void requireBlockCount(const Index3& grid, size_t count) {
+  if (count == 0) throw Error("a multi-block model needs at least one block");
+  if (static_cast<std::int64_t>(count) > kMaxBlockCount)
+    throw Error("a multi-block model holds at most " + std::to_string(kMaxBlockCount) + " blocks");
+  if (grid[0] * grid[1] * grid[2] != static_cast<std::int64_t>(count))
+    throw Error("internal: the block grid does not match the number of blocks");
+}
+
 }  // namespace
 
 bool isBlockModelFile(const std::filesystem::path& path) {
@@ -65,50 +110,72 @@ bool isBlockModelFile(const std::filesystem::path& path) {
 }
 
 std::string serializeBlockModels(const std::vector<ModelBlock>& blocks, const Index3& grid) {
-  if (blocks.empty()) throw Error("a multi-block model needs at least one block");
-  if (grid[0] * grid[1] * grid[2] != static_cast<std::int64_t>(blocks.size()))
-    throw Error("internal: the block grid does not match the number of blocks");
+  requireBlockCount(grid, blocks.size());
   std::vector<std::string> models;
-  models.reserve(blocks.size());
-  for (const ModelBlock& b : blocks) models.push_back(serializeModel(b.model));
-  DomainBox whole = blocks.front().region;
+  std::vector<DomainBox> regions;
+  std::vector<std::uint64_t> sizes;
   for (const ModelBlock& b : blocks) {
-    whole.min = whole.min.cwiseMin(b.region.min);
-    whole.max = whole.max.cwiseMax(b.region.max);
+    models.push_back(serializeModel(b.model));
+    regions.push_back(b.region);
+    sizes.push_back(models.back().size());
   }
+  const DomainBox whole = unionOf(regions);
+  const double vmin = blocks.front().model.valueMin(), vmax = blocks.front().model.valueMax();
   // Offsets depend on the index's length, which depends on the offsets' digits: lay out with a
   // guess and repeat until the length is stable (twice at most in practice).
   std::string index;
   std::uint64_t first = 0;
   for (int pass = 0; pass < 8; ++pass) {
-    json entries = json::array();
-    std::uint64_t offset = first;
-    for (size_t i = 0; i < blocks.size(); ++i) {
-      entries.push_back({{"region", boxJson(blocks[i].region)},
-                         {"offset", offset},
-                         {"bytes", static_cast<std::uint64_t>(models[i].size())}});
-      offset += models[i].size();
-    }
-    const json h = {
-        {"format", "mfadvr-blocks"},
-        {"blocks", grid},
-        {"box", boxJson(whole)},
-        {"value_range", {blocks.front().model.valueMin(), blocks.front().model.valueMax()}},
-        {"entries", entries}};
-    index = h.dump();
+    index = indexText(grid, whole, vmin, vmax, regions, sizes, first);
     const std::uint64_t needed = kPrefixBytes + index.size() + 4;
     if (needed == first) break;
     first = needed;
   }
-  std::string out;
-  out.append(kMagic, sizeof(kMagic));
-  appendBytes(out, kBlockFormatVersion);
-  appendBytes(out, static_cast<std::uint32_t>(index.size()));
-  out += index;
-  appendBytes(out, crc32Of(reinterpret_cast<const std::uint8_t*>(out.data()), out.size()));
+  std::string out = indexHead(index);
   if (out.size() != first) throw Error("internal: the block index did not settle");
   for (const std::string& m : models) out += m;
   return out;
+}
+
+BlockModelFileWriter::BlockModelFileWriter(const std::filesystem::path& path, const Index3& grid)
+    : file_(path), grid_(grid) {
+  requireBlockCount(grid, static_cast<size_t>(grid[0] * grid[1] * grid[2]));
+  // Room for the longest index these blocks can have: every double at its longest (24
+  // characters), and offsets and sizes, laid out here as 0, at 20 digits each. The index written
+  // at the end is padded to this length with spaces, which JSON ignores, so the blocks never move.
+  const double longest = -1.2345678901234567e-300;
+  const std::vector<DomainBox> regions(
+      static_cast<size_t>(grid[0] * grid[1] * grid[2]),
+      DomainBox{Vec3d::Constant(longest), Vec3d::Constant(longest)});
+  const std::vector<std::uint64_t> zeros(regions.size(), 0);
+  indexBytes_ = indexText(grid, regions.front(), longest, longest, regions, zeros, 0).size() +
+                2 * 19 * regions.size();
+  if (indexBytes_ > kMaxIndexBytes) throw Error("too many blocks for one multi-block file");
+  file_.write(std::string(kPrefixBytes + indexBytes_ + 4, '\0'));
+}
+
+void BlockModelFileWriter::append(const ModelBlock& block) {
+  if (regions_.size() == static_cast<size_t>(grid_[0] * grid_[1] * grid_[2]))
+    throw Error("internal: more blocks than the block grid holds");
+  if (regions_.empty()) {
+    valueMin_ = block.model.valueMin();
+    valueMax_ = block.model.valueMax();
+  }
+  const std::string bytes = serializeModel(block.model);
+  file_.write(bytes);
+  regions_.push_back(block.region);
+  sizes_.push_back(bytes.size());
+  bytes_ += bytes.size();
+}
+
+void BlockModelFileWriter::commit() {
+  requireBlockCount(grid_, regions_.size());
+  std::string index = indexText(grid_, unionOf(regions_), valueMin_, valueMax_, regions_, sizes_,
+                                kPrefixBytes + indexBytes_ + 4);
+  if (index.size() > indexBytes_) throw Error("internal: the block index outgrew its room");
+  index.append(indexBytes_ - index.size(), ' ');
+  file_.writeAt(0, indexHead(index));
+  file_.commit();
 }
 
 void saveBlockModels(const std::vector<ModelBlock>& blocks, const Index3& grid,
@@ -148,10 +215,10 @@ BlockIndex parseBlockIndex(std::span<const std::uint8_t> b, std::uint64_t fileBy
     for (int a = 0; a < 3; ++a) {
       if (!grid[a].is_number_integer()) throw bad("blocks must be 3 integers");
       index.blocks[a] = grid[a].get<std::int64_t>();
-      if (index.blocks[a] < 1 || index.blocks[a] > kMaxBlocks)
-        throw bad("block counts must be between 1 and " + std::to_string(kMaxBlocks));
+      if (index.blocks[a] < 1 || index.blocks[a] > kMaxBlockCount)
+        throw bad("block counts must be between 1 and " + std::to_string(kMaxBlockCount));
       count *= index.blocks[a];
-      if (count > kMaxBlocks) throw bad("too many blocks");
+      if (count > kMaxBlockCount) throw bad("too many blocks");
     }
     index.box = boxOf(h.at("box"));
     const auto range = h.at("value_range").get<std::array<double, 2>>();

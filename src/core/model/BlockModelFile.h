@@ -16,10 +16,13 @@
 #include <vector>
 
 #include "core/model/Model.h"
+#include "core/util/AtomicFile.h"
 
 namespace mfadvr {
 
 inline constexpr std::uint32_t kBlockFormatVersion = 1;
+// The most blocks a file may hold (readers refuse more).
+inline constexpr std::int64_t kMaxBlockCount = std::int64_t{1} << 20;
 
 // A model and the region it renders (inside the model's box; the regions of a file's blocks
 // tile its whole box without overlapping).
@@ -49,6 +52,27 @@ bool isBlockModelFile(const std::filesystem::path& path);
 std::string serializeBlockModels(const std::vector<ModelBlock>& blocks, const Index3& grid);
 void saveBlockModels(const std::vector<ModelBlock>& blocks, const Index3& grid,
                      const std::filesystem::path& path);
+
+// Writes a multi-block file block by block, so that only one block is in memory at a time: room
+// for the index first, then each block as it is appended, then the index (padded with spaces to
+// its room) once all are there. The file appears, atomically, only on commit().
+class BlockModelFileWriter {
+ public:
+  BlockModelFileWriter(const std::filesystem::path& path, const Index3& grid);
+  // The next block in file order (x fastest); every block carries the whole value range.
+  void append(const ModelBlock& block);
+  void commit();  // after the last block
+  std::uint64_t blockBytes() const { return bytes_; }
+
+ private:
+  AtomicFileWriter file_;
+  Index3 grid_;
+  size_t indexBytes_ = 0;
+  std::uint64_t bytes_ = 0;
+  double valueMin_ = 0.0, valueMax_ = 0.0;
+  std::vector<DomainBox> regions_;
+  std::vector<std::uint64_t> sizes_;
+};
 
 // Checks the index (magic, version, checksum, block grid, regions, offsets: contiguous blocks
 // that end exactly at fileBytes) of a file of fileBytes bytes whose first bytes are `head`; the

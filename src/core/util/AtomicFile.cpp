@@ -48,6 +48,19 @@ void AtomicFileWriter::write(std::string_view bytes) {
   }
 }
 
+void AtomicFileWriter::writeAt(std::uint64_t offset, std::string_view bytes) {
+  size_t done = 0;
+  while (done < bytes.size()) {
+    const ssize_t w =
+        ::pwrite(fd_, bytes.data() + done, bytes.size() - done, static_cast<off_t>(offset + done));
+    if (w < 0) {
+      if (errno == EINTR) continue;
+      fail("write failed");
+    }
+    done += static_cast<size_t>(w);
+  }
+}
+
 void AtomicFileWriter::commit() {
   // mkstemp creates 0600 files; give the result the usual permissions for a data file.
   ::fchmod(fd_, 0644);

@@ -1,5 +1,6 @@
 #pragma once
 // Writes a whole file so that readers see either the old file or the complete new one.
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <string_view>
@@ -17,6 +18,8 @@ class AtomicFileWriter {
   AtomicFileWriter& operator=(const AtomicFileWriter&) = delete;
 
   void write(std::string_view bytes);
+  // Overwrites bytes already written, from `offset` on (a header completed at the end).
+  void writeAt(std::uint64_t offset, std::string_view bytes);
   // The temporary file, for writers that open a path themselves (VTK's writers): they write it
   // in place of write(), then commit() publishes it.
   const std::filesystem::path& temporaryPath() const { return temporary_; }

@@ -1,0 +1,53 @@
+#pragma once
+// Samples stored uncompressed in a file, x fastest, one numeric type, from a byte offset on:
+// headerless .raw volumes, and the payload of any header format that stores its samples this
+// way. Read a box at a time, so that a volume larger than the memory can be encoded block by
+// block (core/encode/PieceEncoder.h).
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/grid/GridSampleSource.h"
+
+namespace mfadvr {
+
+struct RawSampleLayout {
+  std::string path;         // the file holding the samples
+  std::int64_t offset = 0;  // byte of the first sample
+  std::string dtype;        // uint8, int8, uint16, int16, uint32, int32, float32, float64
+  bool bigEndian = false;
+};
+
+class RawVolumeSource final : public GridSampleSource {
+ public:
+  // `grid`: dims, placement and names (values ignored). Throws mfadvr::Error naming the file when
+  // the type is unknown, the file cannot be opened, or it ends before the last sample.
+  RawVolumeSource(RawSampleLayout file, const StructuredGrid& grid);
+  ~RawVolumeSource() override;
+  RawVolumeSource(const RawVolumeSource&) = delete;
+  RawVolumeSource& operator=(const RawVolumeSource&) = delete;
+
+  const StructuredGrid& layout() const override { return layout_; }
+  // Placement given on the command line replaces the file's.
+  void setPlacement(const Vec3d& origin, const Vec3d& spacing);
+  StructuredGrid read(const SampleRange& range) override;
+  // The samples of `range`, not checked for non-finite values (whole-volume reads, which the
+  // caller validates).
+  StructuredGrid readUnchecked(const SampleRange& range);
+  std::pair<double, double> valueRange() override;
+
+ private:
+  // `count` consecutive samples from sample index `first` of the file, converted to float.
+  void readRun(std::int64_t first, std::int64_t count, float* out);
+
+  RawSampleLayout file_;
+  StructuredGrid layout_;
+  int sampleBytes_ = 0;
+  int fd_ = -1;
+  std::vector<unsigned char> buffer_;
+  bool haveRange_ = false;
+  std::pair<double, double> range_{0.0, 0.0};
+};
+
+}  // namespace mfadvr
