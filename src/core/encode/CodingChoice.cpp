@@ -38,42 +38,64 @@ struct Measured {
   std::int64_t controlBytes = 0;
 };
 
-// Codes a zfp-coded fit at the tolerances a search asks for. Each tolerance is measured once;
-// only the last coded model is held, so that a search holds one candidate at a time (a decoded
-// candidate is as large as the fit).
+// Codes a zfp-coded fit at the tolerances a search asks for. Each tolerance is coded once for
+// its size, and its decoded model is measured at every sample only when a search asks for its
+// errors (the measurement costs more than the coding, and searches on size need none); only the
+// last coded model is held, so that a search holds one candidate at a time (a decoded candidate
+// is as large as the fit).
 class Coder {
  public:
   Coder(const Model& fit, const StructuredGrid& grid) : fit_(fit), grid_(grid) {}
 
-  // Errors and size of the model coded with tolerance 2^exponent.
-  const Measured& at(int exponent) {
-    auto it = measured_.find(exponent);
-    if (it != measured_.end()) return it->second;
-    code(exponent);
-    return measured_.emplace(exponent, Measured{last_->errors, last_->controlBytes}).first->second;
+  // Bytes of the control points coded with tolerance 2^exponent.
+  std::int64_t bytes(int exponent) {
+    auto it = known_.find(exponent);
+    if (it == known_.end()) it = code(exponent);
+    return it->second.controlBytes;
   }
 
-  // The model coded with tolerance 2^exponent (coded again unless it was the last one).
+  // Errors of the model coded with tolerance 2^exponent, measured on the decoded model.
+  const SampleErrors& errors(int exponent) {
+    auto it = known_.find(exponent);
+    if (it == known_.end()) it = code(exponent);
+    if (!it->second.errors) {
+      if (!last_ || last_->exponent != exponent) code(exponent);
+      it->second.errors = errorsOnGrid(last_->model.spline(), grid_);
+    }
+    return *it->second.errors;
+  }
+
+  // The model coded with tolerance 2^exponent, with its errors (coded again unless it was the
+  // last one).
   Coded take(int exponent) {
+    const SampleErrors e = errors(exponent);
     if (!last_ || last_->exponent != exponent) code(exponent);
     Coded out = std::move(*last_);
+    out.errors = e;
     last_.reset();
     return out;
   }
 
  private:
-  void code(int exponent) {
+  struct Known {
+    std::optional<SampleErrors> errors;
+    std::int64_t controlBytes = 0;
+  };
+
+  std::map<int, Known>::iterator code(int exponent) {
     last_.reset();
     Coded k{
         codeControlPoints(fit_, {ControlCoder::kZfp, std::ldexp(1.0, exponent)}), {}, 0, exponent};
-    k.errors = errorsOnGrid(k.model.spline(), grid_);
     k.controlBytes = codedControlBytes(k.model);
+    const auto it = known_.try_emplace(exponent).first;
+    it->second.controlBytes = k.controlBytes;
     last_ = std::move(k);
+    return it;
   }
 
   const Model& fit_;
   const StructuredGrid& grid_;
-  std::map<int, Measured> measured_;
+  std::map<int, Known> known_;
   std::optional<Coded> last_;
 };
 
@@ -201,7 +223,7 @@ Model codeFittedModel(Model fit, const StructuredGrid& grid, const CodingOptions
       const int sure = std::max(
           lo, static_cast<int>(std::floor(std::log2(std::max(room, std::ldexp(1.0, lo))))));
       k = largestPassing(lo, std::min(hi, sure + 5),
-                         [&](int e) { return coded.at(e).errors.max <= maxError; });
+                         [&](int e) { return coded.errors(e).max <= maxError; });
       if (k < lo) {
         // No tolerance keeps the bound: store the fit losslessly instead.
         CodingOptions lossless = options;
@@ -221,16 +243,15 @@ Model codeFittedModel(Model fit, const StructuredGrid& grid, const CodingOptions
       // tolerance (measured, not assumed).
       const int floorK = static_cast<int>(std::floor(std::log2(kIntegerDefaultTolerance)));
       k = largestPassing(floorK, floorK + 5,
-                         [&](int e) { return coded.at(e).errors.max < kIntegerRoundingBound; });
+                         [&](int e) { return coded.errors(e).max < kIntegerRoundingBound; });
       if (k < floorK) k = floorK;  // the fit itself misses by half a step (a --ctrl model)
       note = "zfp tolerance " + tolerancePhrase(k) +
              ", the default of integer samples: the largest (from " +
              text(kIntegerDefaultTolerance) +
              " up) whose decoded model rounds back to every sample it was fitted to";
       const std::int64_t cap = grid.inputBytes;
-      if (!countsGiven && cap > 0 && coded.at(k).controlBytes > cap) {
-        const int raised =
-            smallestPassing(k, hi, [&](int e) { return coded.at(e).controlBytes <= cap; });
+      if (!countsGiven && cap > 0 && coded.bytes(k) > cap) {
+        const int raised = smallestPassing(k, hi, [&](int e) { return coded.bytes(e) <= cap; });
         if (raised <= hi) {
           k = raised;
           note = "zfp tolerance " + tolerancePhrase(k) +
@@ -309,16 +330,17 @@ Model encodeToBudget(const StructuredGrid& grid, const StructuredFitOptions& fit
     if (coder == ControlCoder::kZfp) zfp.emplace(model, grid);
     const Measured uncoded{{model.provenance().maxError, model.provenance().rmsError},
                            coder == ControlCoder::kZfp ? 0 : codedSize(model, coder)};
-    auto measured = [&](int x) -> const Measured& { return zfp ? zfp->at(x) : uncoded; };
+    auto bytesAt = [&](int x) { return zfp ? zfp->bytes(x) : uncoded.controlBytes; };
+    auto errorsAt = [&](int x) -> const SampleErrors& {
+      return zfp ? zfp->errors(x) : uncoded.errors;
+    };
     const auto [lo, hi] = zfp ? exponentRange(model) : std::pair<int, int>{0, 0};
     std::optional<int> k;
     if (budget.kind == BudgetKind::kBitsPerSample) {
-      const int e =
-          smallestPassing(lo, hi, [&](int x) { return measured(x).controlBytes <= byteCap; });
+      const int e = smallestPassing(lo, hi, [&](int x) { return bytesAt(x) <= byteCap; });
       if (e <= hi) k = e;
     } else if (fitRms <= targetRms) {
-      const int e =
-          largestPassing(lo, hi, [&](int x) { return measured(x).errors.rms <= targetRms; });
+      const int e = largestPassing(lo, hi, [&](int x) { return errorsAt(x).rms <= targetRms; });
       if (e >= lo) k = e;
     }
     std::ostringstream line;
@@ -334,7 +356,7 @@ Model encodeToBudget(const StructuredGrid& grid, const StructuredFitOptions& fit
       if (best && budget.kind != BudgetKind::kBitsPerSample) break;
       continue;
     }
-    const Measured& c = measured(*k);
+    const Measured c{errorsAt(*k), bytesAt(*k)};
     line << text(8.0 * static_cast<double>(c.controlBytes) / samples, "%.3f") << " bits/sample, "
          << text(psnrOf(range, c.errors.rms), "%.2f") << " dB"
          << (coder == ControlCoder::kZfp ? ", tolerance " + tolerancePhrase(*k) : std::string());
