@@ -8,7 +8,6 @@
 #include <cerrno>
 #include <cmath>
 #include <cstring>
-#include <sstream>
 
 #include "core/util/Error.h"
 #include "core/util/MemoryBudget.h"
@@ -50,15 +49,6 @@ void convertSamples(const std::string& dtype, const unsigned char* bytes, size_t
   if (dtype == "float32") return convert<float>(bytes, count, swap, out);
   if (dtype == "float64") return convert<double>(bytes, count, swap, out);
   throw Error("internal: no conversion for sample type " + dtype);
-}
-
-std::string nonFiniteMessage(const StructuredGrid& g, std::int64_t n, float value) {
-  std::ostringstream m;
-  m << g.source << ": sample (" << n % g.dims[0] << ", " << (n / g.dims[0]) % g.dims[1] << ", "
-    << n / (g.dims[0] * g.dims[1]) << ") is " << value
-    << "; NaN and Inf values (and values beyond the float32 range, about 3.4e38, which the "
-       "samples are held in) cannot be encoded";
-  return m.str();
 }
 
 }  // namespace
@@ -167,7 +157,7 @@ std::pair<double, double> RawVolumeSource::valueRange() {
     readRun(first, n, chunk.data());
     for (std::int64_t s = 0; s < n; ++s) {
       const float v = chunk[static_cast<size_t>(s)];
-      if (!std::isfinite(v)) throw Error(nonFiniteMessage(layout_, first + s, v));
+      if (!std::isfinite(v)) throw Error(nonFiniteSampleMessage(layout_, first + s, v));
       lo = std::min(lo, v);
       hi = std::max(hi, v);
     }

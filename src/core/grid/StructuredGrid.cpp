@@ -7,6 +7,16 @@
 
 namespace mfadvr {
 
+std::string nonFiniteSampleMessage(const StructuredGrid& grid, std::int64_t n, float value) {
+  const Index3& d = grid.dims;
+  std::ostringstream m;
+  m << (grid.source.empty() ? std::string("volume") : grid.source) << ": sample (" << n % d[0]
+    << ", " << (n / d[0]) % d[1] << ", " << n / (d[0] * d[1]) << ") is " << value
+    << "; NaN and Inf values (and values beyond the float32 range, about 3.4e38, which the "
+       "samples are held in) cannot be encoded";
+  return m.str();
+}
+
 void StructuredGrid::validate() const {
   const std::string what = source.empty() ? std::string("volume") : source;
   for (int a = 0; a < 3; ++a) {
@@ -21,17 +31,9 @@ void StructuredGrid::validate() const {
       << dims[2] << " grid";
     throw Error(m.str());
   }
-  for (std::int64_t n = 0; n < sampleCount(); ++n) {
-    if (!std::isfinite(values[static_cast<size_t>(n)])) {
-      const std::int64_t i = n % dims[0], j = (n / dims[0]) % dims[1], k = n / (dims[0] * dims[1]);
-      std::ostringstream m;
-      m << what << ": sample (" << i << ", " << j << ", " << k << ") is "
-        << values[static_cast<size_t>(n)]
-        << "; NaN and Inf values (and values beyond the float32 range, about 3.4e38, which the "
-           "samples are held in) cannot be encoded";
-      throw Error(m.str());
-    }
-  }
+  for (std::int64_t n = 0; n < sampleCount(); ++n)
+    if (!std::isfinite(values[static_cast<size_t>(n)]))
+      throw Error(nonFiniteSampleMessage(*this, n, values[static_cast<size_t>(n)]));
 }
 
 }  // namespace mfadvr

@@ -47,4 +47,8 @@ struct StructuredGrid {
   void validate() const;
 };
 
+// The error for sample n (x fastest) of `grid` being `value`, NaN or Inf: names the sample by
+// its indices and says why such values cannot be encoded.
+std::string nonFiniteSampleMessage(const StructuredGrid& grid, std::int64_t n, float value);
+
 }  // namespace mfadvr

@@ -165,7 +165,6 @@ void BlockModelFileWriter::append(const ModelBlock& block) {
   file_.write(bytes);
   regions_.push_back(block.region);
   sizes_.push_back(bytes.size());
-  bytes_ += bytes.size();
 }
 
 void BlockModelFileWriter::commit() {

@@ -62,13 +62,11 @@ class BlockModelFileWriter {
   // The next block in file order (x fastest); every block carries the whole value range.
   void append(const ModelBlock& block);
   void commit();  // after the last block
-  std::uint64_t blockBytes() const { return bytes_; }
 
  private:
   AtomicFileWriter file_;
   Index3 grid_;
   size_t indexBytes_ = 0;
-  std::uint64_t bytes_ = 0;
   double valueMin_ = 0.0, valueMax_ = 0.0;
   std::vector<DomainBox> regions_;
   std::vector<std::uint64_t> sizes_;
