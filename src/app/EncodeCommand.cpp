@@ -23,8 +23,8 @@
 #include "core/util/Error.h"
 #include "core/util/MemoryBudget.h"
 #include "io/InputFile.h"
-#include "io/RawVolumeReader.h"
 #include "io/ScatteredLoader.h"
+#include "io/StreamedVolumeReader.h"
 #include "io/VolumeLoader.h"
 
 namespace mfadvr::app {
@@ -312,18 +312,14 @@ Command addEncodeCommand(CLI::App& app) {
       model = encodeScattered(data, options, &report);
     } else {
       const VolumeLoadOptions load = parseVolumeLoadOptions(o->spacing, o->origin, o->field);
-      // Raw files and built-in functions can be read a box at a time (out of core).
+      // Built-in functions and files that store their samples plainly (raw, and NRRD,
+      // MetaImage, NIfTI, legacy VTK payloads) can be read a box at a time (out of core).
       std::unique_ptr<GridSampleSource> boxes;
       if (isBuiltinSpec(o->input)) {
         if (!load.spacing && !load.origin && !load.field.chosen())
           boxes = std::make_unique<BuiltinGridSource>(o->input);
-      } else if (lowerExtension(o->input) == ".raw" && !load.field.chosen() &&
-                 !std::filesystem::is_directory(o->input)) {
-        requireReadableFile(o->input, "a volume file or a directory of DICOM slices");
-        auto raw = openRawVolume(o->input);
-        raw->setPlacement(load.origin.value_or(Vec3d::Zero()),
-                          load.spacing.value_or(Vec3d::Ones()));
-        boxes = std::move(raw);
+      } else {
+        boxes = openStreamedVolume(o->input, load);
       }
       const std::int64_t limit = o->memoryLimit.empty()
                                      ? availableMemoryBytes() / 2
@@ -360,8 +356,10 @@ Command addEncodeCommand(CLI::App& app) {
       };
       // --smooth auto chooses lambda on the whole grid: it is read into memory first.
       if (boxes && !options.autoSmoothing) {
-        if (const auto blocks = chooseBlocks(boxes->layout()))
+        if (const auto blocks = chooseBlocks(boxes->layout())) {
+          printReaderNotes(boxes->layout());
           return encodeBlocks(*boxes, *blocks, o->ghost, options, o->output, o->json, progress);
+        }
         boxes.reset();
       }
       if (isBuiltinSpec(o->input) && !options.adaptive) {

@@ -20,6 +20,20 @@
 
 namespace mfadvr {
 
+// Samples that a header declares stored uncompressed in one file from a known byte on: what a
+// RawVolumeSource needs to read them a box at a time instead of through VTK's reader. `file` is
+// empty when they are stored otherwise (compressed or text data, skips that leave the start
+// open, lists of files, a sample type RawVolumeSource does not read).
+struct DeclaredPayload {
+  std::string file;         // from the file-level checks: a path usable as is
+  std::int64_t offset = 0;  // of the first sample in `file`
+  std::string dtype;        // uint8, int8, uint16, int16, uint32, int32, float32, float64
+  bool bigEndian = false;
+  std::vector<std::int64_t> sizes;  // the declared axis sizes, fastest first
+  int components = 1;               // interleaved values per sample
+  std::string arrayName;            // where the header names the samples (legacy SCALARS)
+};
+
 // NRRD, attached (.nrrd) or detached (.nhdr + data file): sizes, type, encoding. For ASCII
 // data, returns the file that holds it and the data's byte offset there: VTK 9.1's reader
 // parses attached ASCII data from the file's first byte (the header included) and stops at a
@@ -29,7 +43,7 @@ struct NrrdAsciiData {
   std::string file;
   std::int64_t offset = 0;
 };
-NrrdAsciiData checkNrrdDeclaredSize(const std::string& path);
+NrrdAsciiData checkNrrdDeclaredSize(const std::string& path, DeclaredPayload* payload = nullptr);
 
 // The first `count` numbers of the whitespace- or comma-separated ASCII text at byte `offset` of
 // `path`; an Error (naming `path`) when one is not a number or fewer are there.
@@ -38,18 +52,19 @@ std::vector<double> readAsciiValues(const std::string& path, std::int64_t offset
 
 // MetaImage (.mha, or .mhd + data file): DimSize, ElementType, channels, compression; also
 // that a detached data file exists.
-void checkMetaImageDeclaredSize(const std::string& path);
+DeclaredPayload checkMetaImageDeclaredSize(const std::string& path);
 
 // Legacy VTK: DIMENSIONS / POINT_DATA and the first SCALARS block of structured points, or the
 // POINTS block of other datasets.
-void checkLegacyVtkDeclaredSize(const std::string& path);
+// The payload is that SCALARS block's, for binary structured points.
+DeclaredPayload checkLegacyVtkDeclaredSize(const std::string& path);
 
 // VTK XML (.vti, .vtu, .vts, .vtp, .vtr): that the file ends with </VTKFile> (a cut file does
 // not), and that WholeExtent / NumberOfPoints / NumberOfCells are possible for its size.
 void checkXmlVtkDeclaredSize(const std::string& path);
 
 // NIfTI-1 / NIfTI-2 (.nii, .nii.gz, .hdr + .img): dim, bitpix, vox_offset.
-void checkNiftiDeclaredSize(const std::string& path);
+DeclaredPayload checkNiftiDeclaredSize(const std::string& path);
 
 // DICOM Part-10 files ('DICM' after the 128-byte preamble): walks the elements up to the pixel
 // data and checks that every element fits in the file and that the pixel data holds rows x
@@ -71,18 +86,20 @@ struct NrrdDataLocation {
   std::int64_t bytes = 0;   // of the values in binary
   bool gzip = false;        // else ASCII
   std::string declared;     // "40 x 40 x 40 uint8 samples"
+  DeclaredPayload raw;      // raw encoding: file as the header names it (the header's own: path)
 };
 NrrdDataLocation checkNrrdHeaderText(const std::string& header, const std::string& path,
                                      std::int64_t fileBytes, const DataFileSize& dataFileBytes);
-void checkMetaImageHeaderText(const std::string& header, const std::string& path,
-                              std::int64_t fileBytes, const DataFileSize& dataFileBytes);
-void checkLegacyVtkHeaderText(const std::string& header, const std::string& path,
-                              std::int64_t fileBytes);
+DeclaredPayload checkMetaImageHeaderText(const std::string& header, const std::string& path,
+                                         std::int64_t fileBytes, const DataFileSize& dataFileBytes);
+DeclaredPayload checkLegacyVtkHeaderText(const std::string& header, const std::string& path,
+                                         std::int64_t fileBytes);
 void checkXmlVtkText(const std::string& head, const std::string& tail, const std::string& path,
                      std::int64_t fileBytes);
 // Returns the bytes the declared image needs from the start of the file (-1: not a header it
 // understands).
 std::int64_t checkNiftiHeaderBytes(const std::string& header, const std::string& path,
-                                   std::int64_t fileBytes, bool compressed);
+                                   std::int64_t fileBytes, bool compressed,
+                                   DeclaredPayload* payload = nullptr);
 
 }  // namespace mfadvr

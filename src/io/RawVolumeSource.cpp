@@ -107,6 +107,9 @@ void RawVolumeSource::readRun(std::int64_t first, std::int64_t count, float* out
       got += static_cast<size_t>(r);
     }
     convertSamples(file_.dtype, buffer_.data(), static_cast<size_t>(n), swap, out);
+    if (file_.scale != 1.0 || file_.shift != 0.0)
+      for (std::int64_t s = 0; s < n; ++s)
+        out[s] = static_cast<float>(out[s] * file_.scale + file_.shift);
     first += n;
     count -= n;
     out += n;

@@ -17,6 +17,10 @@ struct RawSampleLayout {
   std::int64_t offset = 0;  // byte of the first sample
   std::string dtype;        // uint8, int8, uint16, int16, uint32, int32, float32, float64
   bool bigEndian = false;
+  // value = stored * scale + shift (NIfTI's scl_slope, scl_inter), computed as VTK-read
+  // samples are calibrated: the stored value as float32, then in double.
+  double scale = 1.0;
+  double shift = 0.0;
 };
 
 class RawVolumeSource final : public GridSampleSource {

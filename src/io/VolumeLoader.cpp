@@ -8,6 +8,7 @@
 #include "core/util/Error.h"
 #include "io/InputFile.h"
 #include "io/RawVolumeReader.h"
+#include "io/StreamedVolumeReader.h"
 #include "io/VtkVolumeReader.h"
 
 namespace mfadvr {
@@ -69,7 +70,12 @@ StructuredGrid loadStructuredVolume(const std::string& input, const VolumeLoadOp
 
   std::error_code ec;
   StructuredGrid grid;
-  if (std::filesystem::is_directory(input, ec)) {
+  if (auto streamed = openStreamedVolume(input, options)) {
+    // Samples stored plainly in one file: read directly into float32, without VTK's copy in the
+    // file's type.
+    grid = streamed->readUnchecked(wholeRange(streamed->layout().dims));
+    grid.notes = streamed->layout().notes;
+  } else if (std::filesystem::is_directory(input, ec)) {
     grid = readVtkVolume(input, VtkVolumeFormat::kDicomSeries, options.field);
   } else {
     requireReadableFile(input, "a volume file or a directory of DICOM slices");

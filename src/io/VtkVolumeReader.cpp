@@ -30,6 +30,7 @@
 #include "core/util/Error.h"
 #include "io/DeclaredSizeCheck.h"
 #include "io/InputFile.h"
+#include "io/NiftiPlacement.h"
 #include "io/VtkDataConversion.h"
 #include "io/VtkFieldSelection.h"
 #include "io/VtkSupport.h"
@@ -286,54 +287,6 @@ StructuredGrid toGrid(const std::string& path, VtkVolumeFormat format, vtkImageD
   // VTK's point and cell order is x fastest, like StructuredGrid's.
   grid.values = selectedValues<float>(selected);
   return grid;
-}
-
-std::string formatNumber(double v) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.6g", v);
-  return text;
-}
-
-// Calibration (scl_slope, scl_inter) and placement (sform, else qform) of a NIfTI image.
-void applyNiftiHeader(vtkNIFTIImageReader& reader, StructuredGrid& grid) {
-  const double slope = reader.GetRescaleSlope();
-  const double intercept = reader.GetRescaleIntercept();
-  // scl_slope 0 means "no calibration" in NIfTI.
-  if (slope != 0.0 && std::isfinite(slope) && std::isfinite(intercept) &&
-      (slope != 1.0 || intercept != 0.0)) {
-    for (float& v : grid.values) v = static_cast<float>(v * slope + intercept);
-    grid.notes.push_back("values calibrated as stored * " + formatNumber(slope) + " + " +
-                         formatNumber(intercept) + " (the header's scl_slope, scl_inter)");
-  }
-  if (vtkNIFTIImageHeader* header = reader.GetNIFTIHeader();
-      header && header->GetDim(0) > 3 && header->GetDim(4) > 1) {
-    grid.notes.push_back("the file holds " + std::to_string(header->GetDim(4)) +
-                         " time points (4th dimension); only the first is read");
-  }
-  vtkMatrix4x4* matrix = reader.GetSFormMatrix();
-  const char* which = "sform";
-  if (!matrix) {
-    matrix = reader.GetQFormMatrix();
-    which = "qform";
-  }
-  if (!matrix) {
-    grid.notes.push_back(
-        "no qform or sform orientation in the header: the volume is placed in its voxel axes "
-        "with the header's spacing and its first voxel at the origin");
-    return;
-  }
-  GridToWorld toWorld;
-  for (int r = 0; r < 3; ++r) {
-    for (int c = 0; c < 3; ++c) toWorld.linear[r][c] = matrix->GetElement(r, c);
-    toWorld.offset[r] = matrix->GetElement(r, 3);
-  }
-  const OrientationResult placed = orientToWorld(grid, toWorld);
-  if (placed.applied) {
-    grid.notes.push_back(std::string("placed in world (RAS) coordinates by the header's ") + which +
-                         " matrix; voxel axes run along " + placed.axes);
-  } else {
-    grid.notes.push_back(std::string("the header's ") + which + ": " + placed.note);
-  }
 }
 
 // VTK's DICOM reader gives no placement in patient coordinates: say what the grid is. It also

@@ -24,8 +24,8 @@ enum class VtkVolumeFormat {
 // axis, half a cell in from the image's bounds. Throws mfadvr::Error with the reader's own
 // messages when VTK fails, when the field is missing (listing the arrays there are) or has
 // more than one component and none was chosen, when the samples span fewer than 2 along an
-// axis (2-D data), and when a legacy file holds another dataset type. The grid is not validated (the caller overrides and
-// validates).
+// axis (2-D data), and when a legacy file holds another dataset type. The grid is not validated
+// (the caller overrides and validates).
 //
 // NIfTI: the scl_slope / scl_inter calibration is applied; the sform (else the qform) matrix
 // places the grid in world (RAS) coordinates when its axes are parallel to the world axes

@@ -1,0 +1,161 @@
+#include "io/StreamedVolumeReader.h"
+
+#include <vtkDataObject.h>
+#include <vtkDataSetAttributes.h>
+#include <vtkInformation.h>
+#include <vtkMetaImageReader.h>
+#include <vtkNIFTIImageReader.h>
+#include <vtkNrrdReader.h>
+#include <vtkSmartPointer.h>
+#include <vtkStreamingDemandDrivenPipeline.h>
+#include <vtkStructuredPointsReader.h>
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+
+#include "core/analytic/BuiltinFunction.h"
+#include "io/DeclaredSizeCheck.h"
+#include "io/InputFile.h"
+#include "io/NiftiPlacement.h"
+#include "io/RawVolumeReader.h"
+#include "io/VtkSupport.h"
+
+namespace mfadvr {
+namespace {
+
+bool endsWith(std::string text, const std::string& tail) {
+  std::transform(text.begin(), text.end(), text.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return text.size() >= tail.size() &&
+         text.compare(text.size() - tail.size(), tail.size(), tail) == 0;
+}
+
+// The grid VTK's reader would produce, from its header-only pass (RequestInformation): dims,
+// spacing and origin of the first sample; nullopt when the image is not one a RawVolumeSource
+// can stand for (rotated axes, several components, dims that differ from the payload's).
+std::optional<StructuredGrid> layoutFromHeader(vtkAlgorithm& reader, const DeclaredPayload& payload,
+                                               size_t axes) {
+  VtkMessageCapture capture;
+  reader.UpdateInformation();
+  if (capture.hasErrors()) return std::nullopt;
+  vtkInformation* info = reader.GetOutputInformation(0);
+  if (!info || !info->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT())) return std::nullopt;
+  int extent[6];
+  info->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent);
+  double spacing[3] = {1, 1, 1}, origin[3] = {0, 0, 0};
+  if (info->Has(vtkDataObject::SPACING())) info->Get(vtkDataObject::SPACING(), spacing);
+  if (info->Has(vtkDataObject::ORIGIN())) info->Get(vtkDataObject::ORIGIN(), origin);
+  if (info->Has(vtkDataObject::DIRECTION())) {
+    double d[9];
+    info->Get(vtkDataObject::DIRECTION(), d);
+    for (int i = 0; i < 9; ++i)
+      if (d[i] != (i % 4 == 0 ? 1.0 : 0.0)) return std::nullopt;
+  }
+  if (vtkInformation* scalars = vtkDataObject::GetActiveFieldInformation(
+          info, vtkDataObject::FIELD_ASSOCIATION_POINTS, vtkDataSetAttributes::SCALARS);
+      scalars && scalars->Has(vtkDataObject::FIELD_NUMBER_OF_COMPONENTS()) &&
+      scalars->Get(vtkDataObject::FIELD_NUMBER_OF_COMPONENTS()) != 1)
+    return std::nullopt;
+  if (payload.sizes.size() < 3 || payload.sizes.size() > axes) return std::nullopt;
+  StructuredGrid grid;
+  for (int a = 0; a < 3; ++a) {
+    grid.dims[a] = extent[2 * a + 1] - extent[2 * a] + 1;
+    if (grid.dims[a] < 2 || grid.dims[a] != payload.sizes[static_cast<size_t>(a)])
+      return std::nullopt;
+    grid.spacing[a] = spacing[a];
+    // VTK's origin is the position of index 0, which need not be the first sample.
+    grid.origin[a] = origin[a] + extent[2 * a] * spacing[a];
+  }
+  grid.fieldAssociation = "point data";
+  return grid;
+}
+
+// A NIfTI placement that keeps the stored sample order: the header's matrix applied to a 2^3
+// grid of distinct values leaves them in place. Origin, spacing and notes carry over to the
+// whole grid (they do not depend on its size when nothing is flipped).
+bool placeUnreordered(vtkNIFTIImageReader& reader, StructuredGrid& layout) {
+  StructuredGrid probe;
+  probe.dims = {2, 2, 2};
+  probe.origin = layout.origin;
+  probe.spacing = layout.spacing;
+  probe.values = {0, 1, 2, 3, 4, 5, 6, 7};
+  const std::vector<float> stored = probe.values;
+  placeNiftiGrid(reader, probe);
+  if (probe.dims != Index3{2, 2, 2} || probe.values != stored) return false;
+  layout.origin = probe.origin;
+  layout.spacing = probe.spacing;
+  layout.notes.insert(layout.notes.end(), probe.notes.begin(), probe.notes.end());
+  return true;
+}
+
+}  // namespace
+
+std::unique_ptr<RawVolumeSource> openStreamedVolume(const std::string& path,
+                                                    const VolumeLoadOptions& options) {
+  if (options.field.chosen() || isBuiltinSpec(path)) return nullptr;
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) return nullptr;
+  requireReadableFile(path, "a volume file or a directory of DICOM slices");
+  const std::string ext = lowerExtension(path);
+  std::unique_ptr<RawVolumeSource> source;
+  if (ext == ".raw") {
+    source = openRawVolume(path);
+  } else {
+    requireNonEmptyFile(path, "a volume file or a directory of DICOM slices");
+    DeclaredPayload payload;
+    vtkSmartPointer<vtkAlgorithm> reader;
+    size_t axes = 3;        // the payload's axes VTK reads as one volume
+    std::string arrayName;  // the name VTK's reader gives the samples (tested)
+    if (ext == ".nrrd" || ext == ".nhdr") {
+      checkNrrdDeclaredSize(path, &payload);
+      arrayName = "ImageFile";
+      auto r = vtkSmartPointer<vtkNrrdReader>::New();
+      r->SetFileName(path.c_str());
+      reader = r;
+    } else if (ext == ".mha" || ext == ".mhd") {
+      payload = checkMetaImageDeclaredSize(path);
+      arrayName = "MetaImage";
+      auto r = vtkSmartPointer<vtkMetaImageReader>::New();
+      r->SetFileName(path.c_str());
+      reader = r;
+    } else if ((ext == ".nii" || ext == ".hdr" || ext == ".img") && !endsWith(path, ".nii.gz")) {
+      payload = checkNiftiDeclaredSize(path);
+      arrayName = "NIFTI";
+      auto r = vtkSmartPointer<vtkNIFTIImageReader>::New();
+      r->SetFileName(path.c_str());
+      reader = r;
+      axes = 7;  // time points and more: the first volume comes first
+    } else if (ext == ".vtk") {
+      payload = checkLegacyVtkDeclaredSize(path);
+      auto r = vtkSmartPointer<vtkStructuredPointsReader>::New();
+      r->SetFileName(path.c_str());
+      reader = r;
+    }
+    if (!reader || payload.file.empty() || payload.components != 1) return nullptr;
+    std::optional<StructuredGrid> layout = layoutFromHeader(*reader, payload, axes);
+    if (!layout) return nullptr;
+    // VTK decodes %xx escapes in legacy names; such names are left to the in-memory read.
+    if (payload.arrayName.find('%') != std::string::npos) return nullptr;
+    layout->fieldName = payload.arrayName.empty() ? arrayName : payload.arrayName;
+    RawSampleLayout file{payload.file, payload.offset, payload.dtype, payload.bigEndian};
+    if (auto* nifti = vtkNIFTIImageReader::SafeDownCast(reader)) {
+      // VTK's reader flips the slice order of a left-handed qform (qfac -1) while reading.
+      if (nifti->GetQFac() < 0) return nullptr;
+      if (const auto calibration = niftiCalibration(*nifti)) {
+        file.scale = calibration->slope;
+        file.shift = calibration->intercept;
+        layout->notes.push_back(calibration->note);
+      }
+      if (!placeUnreordered(*nifti, *layout)) return nullptr;
+    }
+    layout->source = path;
+    source = std::make_unique<RawVolumeSource>(file, *layout);
+  }
+  const StructuredGrid& layout = source->layout();
+  source->setPlacement(options.origin.value_or(layout.origin),
+                       options.spacing.value_or(layout.spacing));
+  return source;
+}
+
+}  // namespace mfadvr

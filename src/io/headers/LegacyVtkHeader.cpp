@@ -1,0 +1,237 @@
+// legacy VTK: the declared-size check (io/DeclaredSizeCheck.h).
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <limits>
+#include <sstream>
+#include <vector>
+
+#include "core/util/Error.h"
+#include "io/DeclaredSizeCheck.h"
+#include "io/headers/HeaderText.h"
+
+namespace mfadvr {
+
+namespace fs = std::filesystem;
+using namespace headers;
+
+namespace {
+
+std::int64_t legacyTypeBytes(const std::string& type) {
+  static const std::pair<const char*, int> kTypes[] = {
+      {"bit", 0},       {"char", 1},           {"signed_char", 1},  {"unsigned_char", 1},
+      {"short", 2},     {"unsigned_short", 2}, {"int", 4},          {"unsigned_int", 4},
+      {"long", 8},      {"unsigned_long", 8},  {"vtktypeint64", 8}, {"vtktypeuint64", 8},
+      {"vtkidtype", 8}, {"float", 4},          {"double", 8}};
+  const std::string t = lower(type);
+  for (const auto& [name, bytes] : kTypes)
+    if (t == name) return bytes;
+  return 0;
+}
+
+// The raw sample type of a legacy type name; "" for bits and 64-bit integers. "char" is
+// VTK_CHAR, signed on the platforms VTK's reader runs on here.
+std::string legacyRawType(const std::string& type) {
+  static const std::pair<const char*, const char*> kTypes[] = {
+      {"char", "int8"},           {"signed_char", "int8"},      {"unsigned_char", "uint8"},
+      {"short", "int16"},         {"unsigned_short", "uint16"}, {"int", "int32"},
+      {"unsigned_int", "uint32"}, {"float", "float32"},         {"double", "float64"}};
+  const std::string t = lower(type);
+  for (const auto& [name, raw] : kTypes)
+    if (t == name) return raw;
+  return "";
+}
+
+// What VTK's legacy reader reads before the dataset: the version line ('# vtk DataFile
+// Version x.y', any version), one title line (any text, also empty), then the first word after
+// it, ASCII or BINARY in any case: VTK skips blank lines (and spaces, CR line ends) before it.
+// Leaves `in` at the start of the line after that word.
+struct LegacyPreamble {
+  bool valid = false;  // a legacy header with a known file type
+  bool binary = false;
+  std::string version;  // "3.0", "5.1", ...
+};
+
+LegacyPreamble readLegacyPreamble(std::istream& in) {
+  LegacyPreamble p;
+  std::string line;
+  if (!std::getline(in, line) || line.rfind("# vtk DataFile", 0) != 0) return p;
+  const auto at = line.find("Version");
+  if (at != std::string::npos) p.version = trim(line.substr(at + 7));
+  if (!std::getline(in, line)) return p;  // the title
+  std::string type;
+  if (!(in >> type)) return p;
+  type = lower(type);
+  if (type != "ascii" && type != "binary") return p;
+  std::getline(in, line);  // the rest of the file type's line
+  p.binary = type == "binary";
+  p.valid = static_cast<bool>(in);
+  return p;
+}
+
+}  // namespace
+
+DeclaredPayload checkLegacyVtkHeaderText(const std::string& header, const std::string& path,
+                                         std::int64_t fileBytes) {
+  std::istringstream in(header);
+  const LegacyPreamble preamble = readLegacyPreamble(in);
+  if (!preamble.valid) return {};
+  const Encoding enc = preamble.binary ? Encoding::Binary : Encoding::Ascii;
+  // Bytes of the header consumed so far (the stream ends at the header's last byte).
+  const auto consumed = [&]() -> std::int64_t {
+    const auto at = in.tellg();
+    return at < 0 ? static_cast<std::int64_t>(header.size()) : static_cast<std::int64_t>(at);
+  };
+  std::string line;
+  std::vector<std::int64_t> dims;
+  std::int64_t pointData = -1;
+  bool cellData = false;
+  std::string dataset;
+  while (std::getline(in, line)) {
+    const auto w = words(line);
+    if (w.empty()) continue;
+    const std::string key = lower(w[0]);
+    if (key == "dataset" && w.size() >= 2) {
+      dataset = lower(w[1]);
+    } else if (key == "dimensions" && w.size() >= 4 && dataset == "structured_points") {
+      dims = {parseCount(w[1]), parseCount(w[2]), parseCount(w[3])};
+      if (std::any_of(dims.begin(), dims.end(), [](std::int64_t d) { return d < 0; })) return {};
+      // A field of structured points has a value per point or per cell: at least one byte per
+      // cell (an axis of one point has one cell). Other grids list their points or
+      // coordinates, which the POINTS check and VTK's reader check.
+      std::vector<std::int64_t> cells;
+      for (std::int64_t d : dims) cells.push_back(std::max<std::int64_t>(d - 1, 1));
+      requireData(
+          path, "legacy VTK", dimsText(dims) + " points (" + grouped(product(cells)) + " cells)",
+          product(cells), 1, Encoding::Binary, fileBytes - consumed(), "the file after its header");
+    } else if (key == "cell_data") {
+      cellData = true;
+    } else if (key == "point_data" && w.size() >= 2) {
+      pointData = parseCount(w[1]);
+    } else if (key == "points" && w.size() >= 3) {
+      // The first data block: three coordinates per point, right after this line.
+      const std::int64_t n = parseCount(w[1]), bytes = legacyTypeBytes(w[2]);
+      if (n < 0 || bytes == 0) return {};
+      requireData(path, "legacy VTK", grouped(n) + " points of type " + w[2], times(n, 3), bytes,
+                  enc, fileBytes - consumed(), "the file after the POINTS line");
+      return {};  // binary data follows: lines no longer mean anything
+    } else if (key == "scalars" && w.size() >= 3 && pointData >= 0) {
+      // Structured points: POINT_DATA n, SCALARS name type [components], LOOKUP_TABLE name;
+      // VTK reads the values from the line after LOOKUP_TABLE's.
+      const std::int64_t bytes = legacyTypeBytes(w[2]);
+      const std::int64_t components = w.size() >= 4 ? parseCount(w[3]) : 1;
+      if (bytes == 0 || components <= 0) return {};
+      std::string next;
+      while (std::getline(in, next) && words(next).empty()) {
+      }
+      if (!in || lower(words(next)[0]) != "lookup_table") return {};
+      requireData(path, "legacy VTK",
+                  grouped(pointData) + " point values of type " + w[2] +
+                      (components > 1 ? " x " + std::to_string(components) : ""),
+                  times(pointData, components), bytes, enc, fileBytes - consumed(),
+                  "the file after the SCALARS block's header");
+      // The samples of the first point-data array of structured points, if it holds them.
+      const std::string dtype = legacyRawType(w[2]);
+      if (!preamble.binary || cellData || in.eof() || dataset != "structured_points" ||
+          dims.size() != 3 || dtype.empty() || product(dims) != pointData)
+        return {};
+      DeclaredPayload payload;
+      payload.file = path;
+      payload.offset = consumed();
+      payload.dtype = dtype;
+      payload.bigEndian = true;  // legacy binary data is big-endian
+      payload.sizes = dims;
+      payload.components = static_cast<int>(components);
+      payload.arrayName = w[1];
+      return payload;
+    }
+  }
+  return {};
+}
+
+namespace {
+
+// Walks the geometry blocks of a legacy file (POINTS, CELLS / OFFSETS / CONNECTIVITY,
+// CELL_TYPES), skipping their data, and checks the counts VTK's reader trusts: it dereferences
+// null for a CELLS block whose size cannot hold its cells. Stops at the first other keyword.
+void checkLegacyCells(std::istream& in, const std::string& path) {
+  const auto fail = [&](const std::string& why) {
+    throw Error("cannot read " + path + " as legacy VTK: " + why +
+                "; the file is damaged or its header is wrong");
+  };
+  const LegacyPreamble preamble = readLegacyPreamble(in);
+  if (!preamble.valid) return;
+  const bool binary = preamble.binary;
+  const bool newCells = preamble.version.rfind("5.", 0) == 0;  // 5.x: offsets + connectivity
+  std::string line;
+  const auto skip = [&](std::int64_t values, std::int64_t bytes) {
+    if (values < 0 || bytes <= 0) return false;
+    if (binary) {
+      in.ignore(static_cast<std::streamsize>(std::min<std::int64_t>(
+          times(values, bytes), std::numeric_limits<std::streamsize>::max())));
+    } else {
+      std::string token;
+      for (std::int64_t v = 0; v < values && in >> token; ++v) {
+      }
+    }
+    return static_cast<bool>(in);
+  };
+  std::int64_t cells = -1;
+  for (int guard = 0; guard < 16 && std::getline(in, line); ++guard) {
+    const auto w = words(line);
+    if (w.empty()) continue;
+    const std::string key = lower(w[0]);  // VTK reads keywords in any case
+    if (key == "dataset") continue;
+    // VTK reads a keyword's counts across line ends: a short line takes its numbers from the
+    // data that follows.
+    if ((key == "points" || key == "cells") && w.size() != 3)
+      fail("the " + w[0] + " line has " + std::to_string(w.size() - 1) + " fields, not 2");
+    if (key == "cell_types" && w.size() != 2)
+      fail("the CELL_TYPES line has " + std::to_string(w.size() - 1) + " fields, not 1");
+    if (key == "points" && w.size() >= 3) {
+      if (parseCount(w[1]) < 0 || legacyTypeBytes(w[2]) == 0)
+        fail("POINTS '" + w[1] + " " + w[2] + "' is not a count and a VTK data type");
+      if (!skip(times(parseCount(w[1]), 3), legacyTypeBytes(w[2]))) return;
+    } else if (key == "cells" && w.size() >= 3) {
+      const std::int64_t a = parseCount(w[1]), b = parseCount(w[2]);
+      if (a < 0 || b < 0) fail("CELLS '" + w[1] + " " + w[2] + "' are not counts");
+      if (newCells) {
+        // CELLS offsets connectivity: cells + 1 offsets, at least one point per cell.
+        if (a > 0 && b < a - 1)
+          fail("CELLS declares " + grouped(a) + " offsets but only " + grouped(b) +
+               " connectivity entries");
+        cells = a > 0 ? a - 1 : 0;
+      } else {
+        // CELLS n size: each cell is its point count and at least one point.
+        if (b < times(a, 2))
+          fail("CELLS declares " + grouped(a) + " cells in " + grouped(b) +
+               " integers, fewer than 2 per cell");
+        cells = a;
+        if (!skip(b, 4)) return;
+      }
+    } else if ((key == "offsets" || key == "connectivity") && w.size() >= 2) {
+      return;  // their lengths are CELLS' counts; VTK checks the rest
+    } else if (key == "cell_types" && w.size() >= 2) {
+      const std::int64_t n = parseCount(w[1]);
+      if (cells >= 0 && n != cells)
+        fail("CELL_TYPES declares " + w[1] + " types for " + grouped(cells) + " cells");
+      return;
+    } else {
+      return;
+    }
+  }
+}
+
+}  // namespace
+
+DeclaredPayload checkLegacyVtkDeclaredSize(const std::string& path) {
+  DeclaredPayload payload = checkLegacyVtkHeaderText(readHead(path, 4096), path, fileSize(path));
+  std::ifstream in(path, std::ios::binary);
+  checkLegacyCells(in, path);
+  return payload;
+}
+
+}  // namespace mfadvr

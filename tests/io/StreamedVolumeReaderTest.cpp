@@ -1,0 +1,178 @@
+// Header formats whose samples are read a box at a time (io/StreamedVolumeReader.h): the
+// streamed grid must be the one VTK's reader gives, placement, names, notes and every sample,
+// and the formats it cannot stand for must be left to the in-memory read.
+#include <algorithm>
+#include <bit>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "MedicalTestFiles.h"
+#include "TestSupport.h"
+#include "core/grid/SampleRange.h"
+#include "io/StreamedVolumeReader.h"
+#include "io/VtkVolumeReader.h"
+
+namespace mfadvr {
+namespace {
+
+namespace fs = std::filesystem;
+
+// 12 x 5 x 4 samples (a fastest axis of more than 9: VTK's NRRD reader takes shorter ones for
+// components), each value distinct and exact in float32.
+constexpr int kNx = 12, kNy = 5, kNz = 4, kCount = kNx * kNy * kNz;
+
+template <typename T>
+std::string samples(std::endian order) {
+  std::string out;
+  for (int n = 0; n < kCount; ++n) {
+    const T v = static_cast<T>(n % 2 ? n : -n / 2);
+    unsigned char bytes[sizeof(T)];
+    std::memcpy(bytes, &v, sizeof(T));
+    if (order != std::endian::native) std::reverse(bytes, bytes + sizeof(T));
+    out.append(reinterpret_cast<const char*>(bytes), sizeof(T));
+  }
+  return out;
+}
+
+std::string write(const fs::path& path, const std::string& content) {
+  std::ofstream(path, std::ios::binary) << content;
+  return path.string();
+}
+
+// The streamed grid against VTK's: everything a model records, and every sample; then a box
+// read against the same box of the whole grid.
+void expectSameAsVtk(const std::string& path, VtkVolumeFormat format) {
+  SCOPED_TRACE(path);
+  const auto source = openStreamedVolume(path);
+  ASSERT_NE(source, nullptr);
+  const StructuredGrid streamed = source->read(wholeRange(source->layout().dims));
+  const StructuredGrid vtk = readVtkVolume(path, format, {});
+  EXPECT_EQ(streamed.dims, vtk.dims);
+  EXPECT_EQ(streamed.origin, vtk.origin);
+  EXPECT_EQ(streamed.spacing, vtk.spacing);
+  EXPECT_EQ(streamed.fieldName, vtk.fieldName);
+  EXPECT_EQ(streamed.fieldAssociation, vtk.fieldAssociation);
+  EXPECT_EQ(streamed.sampleType, vtk.sampleType);
+  EXPECT_EQ(streamed.inputBytes, vtk.inputBytes);
+  EXPECT_EQ(source->layout().notes, vtk.notes);
+  EXPECT_EQ(streamed.values, vtk.values);
+  const Index3& d = vtk.dims;
+  const SampleRange box{{1, 1, 1}, {d[0] - 2, d[1] - 1, d[2] - 1}};
+  EXPECT_EQ(source->read(box).values, subGrid(vtk, box).values);
+}
+
+TEST(StreamedVolumeReader, NrrdRawAttachedAndDetached) {
+  const fs::path dir = test::scratchDir();
+  const std::string head =
+      "NRRD0004\ntype: float\ndimension: 3\nsizes: 12 5 4\nspace: 3D-right-handed\n"
+      "space directions: (0.5,0,0) (0,0.25,0) (0,0,2)\nspace origin: (1.5,-2,3)\n"
+      "encoding: raw\n";
+  expectSameAsVtk(
+      write(dir / "a.nrrd", head + "endian: little\n\n" + samples<float>(std::endian::little)),
+      VtkVolumeFormat::kNrrd);
+  // Big-endian 16-bit samples in a data file of their own.
+  write(dir / "b.raw", samples<std::int16_t>(std::endian::big));
+  expectSameAsVtk(write(dir / "b.nhdr",
+                        "NRRD0004\ntype: short\ndimension: 3\nsizes: 12 5 4\nspacings: 1 2 3\n"
+                        "encoding: raw\nendian: big\ndata file: b.raw\n"),
+                  VtkVolumeFormat::kNrrd);
+}
+
+TEST(StreamedVolumeReader, MetaImageLocalAndDetached) {
+  const fs::path dir = test::scratchDir();
+  const std::string head =
+      "ObjectType = Image\nNDims = 3\nBinaryData = True\nDimSize = 12 5 4\n"
+      "ElementSpacing = 0.5 0.25 2\nOffset = 1.5 -2 3\n";
+  expectSameAsVtk(
+      write(dir / "a.mha", head + "ElementType = MET_USHORT\nElementDataFile = LOCAL\n" +
+                               samples<std::uint16_t>(std::endian::little)),
+      VtkVolumeFormat::kMetaImage);
+  write(dir / "b.data", samples<double>(std::endian::big));
+  expectSameAsVtk(
+      write(dir / "b.mhd", head + "BinaryDataByteOrderMSB = True\n"
+                                  "ElementType = MET_DOUBLE\nElementDataFile = b.data\n"),
+      VtkVolumeFormat::kMetaImage);
+}
+
+TEST(StreamedVolumeReader, LegacyBinaryStructuredPoints) {
+  const std::string text =
+      "# vtk DataFile Version 3.0\nstreamed\nBINARY\nDATASET STRUCTURED_POINTS\n"
+      "DIMENSIONS 12 5 4\nORIGIN 1.5 -2 3\nSPACING 0.5 0.25 2\nPOINT_DATA 240\n"
+      "SCALARS density int 1\nLOOKUP_TABLE default\n" +
+      samples<std::int32_t>(std::endian::big) + "\nSCALARS label short 1\nLOOKUP_TABLE default\n" +
+      samples<std::int16_t>(std::endian::big) + "\n";
+  expectSameAsVtk(write(test::scratchDir() / "v.vtk", text),
+                  VtkVolumeFormat::kLegacyStructuredPoints);
+}
+
+TEST(StreamedVolumeReader, NiftiCalibratedAndPlacedInItsStoredOrder) {
+  test::NiftiHeader h;
+  h.slope = 2.0f;
+  h.intercept = -1024.0f;
+  h.sformCode = 1;
+  h.srow[0][0] = 0.5f;
+  h.srow[0][3] = 10.0f;
+  h.srow[1][1] = 0.25f;
+  h.srow[2][2] = 2.0f;
+  h.srow[2][3] = -30.0f;
+  const fs::path dir = test::scratchDir();
+  expectSameAsVtk(write(dir / "v.nii", test::niftiBytes(h)), VtkVolumeFormat::kNifti);
+  h.timePoints = 2;  // the first volume is read
+  expectSameAsVtk(write(dir / "t.nii", test::niftiBytes(h)), VtkVolumeFormat::kNifti);
+}
+
+TEST(StreamedVolumeReader, OtherStoragesAreLeftToTheInMemoryRead) {
+  const fs::path dir = test::scratchDir();
+  const std::string nrrd = "NRRD0004\ntype: short\ndimension: 3\nsizes: 12 5 4\nencoding: ";
+  EXPECT_EQ(openStreamedVolume(write(
+                dir / "g.nrrd",
+                nrrd + "gzip\n\n" + test::gzipBytes(samples<std::int16_t>(std::endian::little)))),
+            nullptr);
+  std::string text;
+  for (int n = 0; n < kCount; ++n) text += std::to_string(n) + "\n";
+  EXPECT_EQ(openStreamedVolume(write(dir / "t.nrrd", nrrd + "ascii\n\n" + text)), nullptr);
+  // Two channels per sample.
+  EXPECT_EQ(openStreamedVolume(write(
+                dir / "c.mha",
+                "ObjectType = Image\nNDims = 3\nDimSize = 6 5 4\nElementNumberOfChannels = 2\n"
+                "ElementType = MET_SHORT\nElementDataFile = LOCAL\n" +
+                    samples<std::int16_t>(std::endian::little))),
+            nullptr);
+  // A sform that flips x: the samples are reordered into world axes.
+  test::NiftiHeader flipped;
+  flipped.sformCode = 1;
+  flipped.srow[0][0] = -0.5f;
+  flipped.srow[1][1] = 0.25f;
+  flipped.srow[2][2] = 2.0f;
+  EXPECT_EQ(openStreamedVolume(write(dir / "f.nii", test::niftiBytes(flipped))), nullptr);
+  // A raw NRRD, but a field chosen by name: the in-memory read says what there is.
+  VolumeLoadOptions named;
+  named.field.name = "density";
+  EXPECT_EQ(openStreamedVolume(write(dir / "a.nrrd",
+                                     nrrd + "raw\n\n" + samples<std::int16_t>(std::endian::little)),
+                               named),
+            nullptr);
+}
+
+TEST(StreamedVolumeReader, OptionsReplaceThePlacementAndHeaderErrorsStayErrors) {
+  const fs::path dir = test::scratchDir();
+  const std::string nrrd =
+      "NRRD0004\ntype: uchar\ndimension: 3\nsizes: 12 5 4\nspacings: 1 2 3\nencoding: raw\n\n";
+  VolumeLoadOptions options;
+  options.spacing = Vec3d(4, 5, 6);
+  const auto source =
+      openStreamedVolume(write(dir / "a.nrrd", nrrd + std::string(kCount, '\1')), options);
+  ASSERT_NE(source, nullptr);
+  EXPECT_EQ(source->layout().spacing, Vec3d(4, 5, 6));
+  test::expectError(
+      [&] { openStreamedVolume(write(dir / "cut.nrrd", nrrd + std::string(kCount - 1, '\1'))); },
+      {"cut.nrrd", "truncated"});
+}
+
+}  // namespace
+}  // namespace mfadvr
