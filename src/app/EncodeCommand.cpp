@@ -319,7 +319,7 @@ Command addEncodeCommand(CLI::App& app) {
         if (!load.spacing && !load.origin && !load.field.chosen())
           boxes = std::make_unique<BuiltinGridSource>(o->input);
       } else {
-        boxes = openStreamedVolume(o->input, load);
+        boxes = openStreamedVolume(o->input, load, GzipPayloads::kInflateToTemporaryFile);
       }
       const std::int64_t limit = o->memoryLimit.empty()
                                      ? availableMemoryBytes() / 2
@@ -360,8 +360,8 @@ Command addEncodeCommand(CLI::App& app) {
           printReaderNotes(boxes->layout());
           return encodeBlocks(*boxes, *blocks, o->ghost, options, o->output, o->json, progress);
         }
-        boxes.reset();
       }
+      if (isBuiltinSpec(o->input)) boxes.reset();  // sampled whole below, after a memory check
       if (isBuiltinSpec(o->input) && !options.adaptive) {
         // Known before sampling: refuse a fit that cannot fit in memory at once.
         const Index3 dims = parseBuiltinSpec(o->input).dims;
@@ -371,7 +371,14 @@ Command addEncodeCommand(CLI::App& app) {
         requireMemory(structuredFitPeakBytes(dims, counts),
                       "encoding " + o->input + " (fewer control points, --ctrl, need less)");
       }
-      const StructuredGrid grid = loadStructuredVolume(o->input, load);
+      // A file source already open is read whole from it (gzip data is not inflated twice).
+      StructuredGrid grid;
+      if (boxes) {
+        grid = boxes->read(wholeRange(boxes->layout().dims));
+        grid.notes = boxes->layout().notes;
+      } else {
+        grid = loadStructuredVolume(o->input, load);
+      }
       printReaderNotes(grid);
       if (const auto blocks = chooseBlocks(grid)) {
         InMemoryGridSource inMemory(grid);

@@ -20,14 +20,16 @@
 
 namespace mfadvr {
 
-// Samples that a header declares stored uncompressed in one file from a known byte on: what a
-// RawVolumeSource needs to read them a box at a time instead of through VTK's reader. `file` is
-// empty when they are stored otherwise (compressed or text data, skips that leave the start
-// open, lists of files, a sample type RawVolumeSource does not read).
+// Samples that a header declares stored in one file from a known byte on, uncompressed or as
+// one gzip stream: what a RawVolumeSource needs to read them a box at a time instead of through
+// VTK's reader (gzip data once inflated to a temporary file). `file` is empty when they are
+// stored otherwise (text data, skips that leave the start open, lists of files, a sample type
+// RawVolumeSource does not read).
 struct DeclaredPayload {
-  std::string file;         // from the file-level checks: a path usable as is
-  std::int64_t offset = 0;  // of the first sample in `file`
-  std::string dtype;        // uint8, int8, uint16, int16, uint32, int32, float32, float64
+  std::string file;          // from the file-level checks: a path usable as is
+  std::int64_t gzipAt = -1;  // >= 0: `file` holds a gzip stream from this byte on
+  std::int64_t offset = 0;   // of the first sample in `file` (gzip: in the inflated stream)
+  std::string dtype;         // uint8, int8, uint16, int16, uint32, int32, float32, float64
   bool bigEndian = false;
   std::vector<std::int64_t> sizes;  // the declared axis sizes, fastest first
   int components = 1;               // interleaved values per sample

@@ -16,6 +16,7 @@
 
 #include "core/analytic/BuiltinFunction.h"
 #include "io/DeclaredSizeCheck.h"
+#include "io/InflatedPayload.h"
 #include "io/InputFile.h"
 #include "io/NiftiPlacement.h"
 #include "io/RawVolumeReader.h"
@@ -92,7 +93,8 @@ bool placeUnreordered(vtkNIFTIImageReader& reader, StructuredGrid& layout) {
 }  // namespace
 
 std::unique_ptr<RawVolumeSource> openStreamedVolume(const std::string& path,
-                                                    const VolumeLoadOptions& options) {
+                                                    const VolumeLoadOptions& options,
+                                                    GzipPayloads gzip) {
   if (options.field.chosen() || isBuiltinSpec(path)) return nullptr;
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) return nullptr;
@@ -109,7 +111,7 @@ std::unique_ptr<RawVolumeSource> openStreamedVolume(const std::string& path,
     std::string arrayName;  // the name VTK's reader gives the samples (tested)
     if (ext == ".nrrd" || ext == ".nhdr") {
       checkNrrdDeclaredSize(path, &payload);
-      arrayName = "ImageFile";
+      arrayName = payload.gzipAt >= 0 ? "ImageScalars" : "ImageFile";
       auto r = vtkSmartPointer<vtkNrrdReader>::New();
       r->SetFileName(path.c_str());
       reader = r;
@@ -119,7 +121,7 @@ std::unique_ptr<RawVolumeSource> openStreamedVolume(const std::string& path,
       auto r = vtkSmartPointer<vtkMetaImageReader>::New();
       r->SetFileName(path.c_str());
       reader = r;
-    } else if ((ext == ".nii" || ext == ".hdr" || ext == ".img") && !endsWith(path, ".nii.gz")) {
+    } else if (ext == ".nii" || ext == ".hdr" || ext == ".img" || endsWith(path, ".nii.gz")) {
       payload = checkNiftiDeclaredSize(path);
       arrayName = "NIFTI";
       auto r = vtkSmartPointer<vtkNIFTIImageReader>::New();
@@ -133,6 +135,7 @@ std::unique_ptr<RawVolumeSource> openStreamedVolume(const std::string& path,
       reader = r;
     }
     if (!reader || payload.file.empty() || payload.components != 1) return nullptr;
+    if (payload.gzipAt >= 0 && gzip == GzipPayloads::kLeaveToVtk) return nullptr;
     std::optional<StructuredGrid> layout = layoutFromHeader(*reader, payload, axes);
     if (!layout) return nullptr;
     // VTK decodes %xx escapes in legacy names; such names are left to the in-memory read.
@@ -150,7 +153,18 @@ std::unique_ptr<RawVolumeSource> openStreamedVolume(const std::string& path,
       if (!placeUnreordered(*nifti, *layout)) return nullptr;
     }
     layout->source = path;
-    source = std::make_unique<RawVolumeSource>(file, *layout);
+    if (payload.gzipAt >= 0) {
+      // The samples of the first volume only (a NIfTI file may hold time points after it).
+      const TemporaryFile inflated =
+          inflateToTemporaryFile(payload.file, payload.gzipAt, payload.offset,
+                                 layout->sampleCount() * rawSampleSize(payload.dtype), path);
+      file.path = inflated.path();
+      file.offset = 0;
+      // Opened here: the file stays readable once its name is removed at the end of this scope.
+      source = std::make_unique<RawVolumeSource>(file, *layout);
+    } else {
+      source = std::make_unique<RawVolumeSource>(file, *layout);
+    }
   }
   const StructuredGrid& layout = source->layout();
   source->setPlacement(options.origin.value_or(layout.origin),

@@ -70,9 +70,10 @@ StructuredGrid loadStructuredVolume(const std::string& input, const VolumeLoadOp
 
   std::error_code ec;
   StructuredGrid grid;
-  if (auto streamed = openStreamedVolume(input, options)) {
-    // Samples stored plainly in one file: read directly into float32, without VTK's copy in the
-    // file's type.
+  // Samples stored plainly in one file are read directly into float32, without VTK's copy in
+  // the file's type; gzip data too, inflated once (VTK 9.1's NRRD reader leaves big-endian gzip
+  // samples unswapped).
+  if (auto streamed = openStreamedVolume(input, options, GzipPayloads::kInflateToTemporaryFile)) {
     grid = streamed->readUnchecked(wholeRange(streamed->layout().dims));
     grid.notes = streamed->layout().notes;
   } else if (std::filesystem::is_directory(input, ec)) {

@@ -103,13 +103,14 @@ std::int64_t checkNiftiHeaderBytes(const std::string& header, const std::string&
               fileBytes - (compressed ? 0 : voxOffset),
               compressed ? "the compressed file" : "the file after vox_offset");
   const std::int64_t data = times(product(dims), bitpix / 8);
-  if (payload && !compressed) {
+  if (payload) {
     static const std::pair<int, const char*> kRawTypes[] = {
         {2, "uint8"},    {4, "int16"},  {8, "int32"},    {16, "float32"},
         {64, "float64"}, {256, "int8"}, {512, "uint16"}, {768, "uint32"}};
     for (const auto& [code, raw] : kRawTypes) {
       if (code != datatype) continue;
       payload->file = path;
+      payload->gzipAt = compressed ? 0 : -1;
       payload->offset = voxOffset;
       payload->dtype = raw;
       // The header is stored in the file's byte order.

@@ -195,24 +195,29 @@ NrrdDataLocation checkNrrdHeaderText(const std::string& header, const std::strin
   }
   requireData(path, "NRRD", dimsText(sizes) + " " + type + " samples in " + encoding + " encoding",
               product(sizes), typeBytes, enc, std::max<std::int64_t>(0, available), where);
-  if (enc == Encoding::ExactBinary) {
+  // The samples, when they lie in one file (byte skip counts in the inflated data of gzip).
+  DeclaredPayload raw;
+  if (lineSkip == 0 && !nrrdRawType(type).empty() && enc != Encoding::Ascii) {
+    raw.file = dataFile.empty() ? path : dataFile;
+    const std::int64_t start = dataFile.empty() ? headerBytes : 0;
+    raw.gzipAt = enc == Encoding::Deflate ? start : -1;
+    raw.offset = enc == Encoding::Deflate ? byteSkip : start + byteSkip;
+    raw.dtype = nrrdRawType(type);
+    raw.bigEndian = endian == "big";
+    raw.sizes = sizes;
+  }
+  if (enc != Encoding::Ascii && enc != Encoding::Deflate) {
     NrrdDataLocation location;
-    location.raw.dtype = nrrdRawType(type);
-    if (lineSkip > 0 || location.raw.dtype.empty()) return {};
-    location.raw.file = dataFile.empty() ? path : dataFile;
-    location.raw.offset = dataFile.empty() ? headerBytes + byteSkip : byteSkip;
-    location.raw.bigEndian = endian == "big";
-    location.raw.sizes = sizes;
+    location.raw = raw;
     return location;
   }
-  if (enc != Encoding::Ascii && enc != Encoding::Deflate) return {};
   return {dataFile,
           dataFile.empty() ? headerBytes : 0,
           product(sizes),
           times(product(sizes), typeBytes),
           enc == Encoding::Deflate,
           dimsText(sizes) + " " + type + " samples",
-          {}};
+          raw};
 }
 
 namespace {
