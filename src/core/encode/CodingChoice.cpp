@@ -65,6 +65,23 @@ class Coder {
     return *it->second.errors;
   }
 
+  // Whether the model coded with tolerance 2^exponent stays within `limit` at every sample;
+  // a failing one is measured only up to the slab where it fails.
+  bool within(int exponent, double limit) {
+    auto it = known_.find(exponent);
+    if (it == known_.end()) it = code(exponent);
+    if (it->second.errors) return it->second.errors->max <= limit;
+    if (it->second.exceeds && *it->second.exceeds <= limit) return false;
+    if (!last_ || last_->exponent != exponent) code(exponent);
+    const auto e = errorsOnGridWithin(last_->model.spline(), grid_, limit);
+    if (!e) {
+      it->second.exceeds = limit;
+      return false;
+    }
+    it->second.errors = *e;
+    return e->max <= limit;
+  }
+
   // The model coded with tolerance 2^exponent, with its errors (coded again unless it was the
   // last one).
   Coded take(int exponent) {
@@ -79,6 +96,7 @@ class Coder {
  private:
   struct Known {
     std::optional<SampleErrors> errors;
+    std::optional<double> exceeds;  // a limit some sample's error is known to exceed
     std::int64_t controlBytes = 0;
   };
 
@@ -130,6 +148,21 @@ int largestPassing(int lo, int hi, Pass pass) {
       hi = mid - 1;
   }
   return lo;
+}
+
+// The same, searched outward from `start` (a likely answer): a candidate next to the answer
+// fails there, and failures are cheap to find (Coder::within), so this measures fewer
+// candidates in full than halving the interval.
+template <class Pass>
+int largestPassingFrom(int lo, int hi, int start, Pass pass) {
+  int k = std::clamp(start, lo, hi);
+  if (pass(k)) {
+    while (k < hi && pass(k + 1)) ++k;
+    return k;
+  }
+  while (--k >= lo && !pass(k)) {
+  }
+  return k;
 }
 
 // Smallest k in [lo, hi] with pass(k), for pass false up to some k* and true after; hi + 1 when
@@ -223,7 +256,7 @@ Model codeFittedModel(Model fit, const StructuredGrid& grid, const CodingOptions
       const int sure = std::max(
           lo, static_cast<int>(std::floor(std::log2(std::max(room, std::ldexp(1.0, lo))))));
       k = largestPassing(lo, std::min(hi, sure + 5),
-                         [&](int e) { return coded.errors(e).max <= maxError; });
+                         [&](int e) { return coded.within(e, maxError); });
       if (k < lo) {
         // No tolerance keeps the bound: store the fit losslessly instead.
         CodingOptions lossless = options;
@@ -242,8 +275,10 @@ Model codeFittedModel(Model fit, const StructuredGrid& grid, const CodingOptions
       // averages the control points' coding errors, so the model moves far less than the
       // tolerance (measured, not assumed).
       const int floorK = static_cast<int>(std::floor(std::log2(kIntegerDefaultTolerance)));
-      k = largestPassing(floorK, floorK + 5,
-                         [&](int e) { return coded.errors(e).max < kIntegerRoundingBound; });
+      // Usually the answer is the top or close below it (tolerance 4 for 8-bit scans).
+      const double below = std::nextafter(kIntegerRoundingBound, 0.0);
+      k = largestPassingFrom(floorK, floorK + 5, floorK + 4,
+                             [&](int e) { return coded.within(e, below); });
       if (k < floorK) k = floorK;  // the fit itself misses by half a step (a --ctrl model)
       note = "zfp tolerance " + tolerancePhrase(k) +
              ", the default of integer samples: the largest (from " +

@@ -8,8 +8,11 @@
 #include <chrono>
 #include <cmath>
 #include <functional>
+#include <limits>
+#include <optional>
 #include <span>
 #include <sstream>
+#include <type_traits>
 
 #include "core/encode/KnotPlacement.h"
 #include "core/model/ModelFile.h"
@@ -282,7 +285,8 @@ std::int64_t slabPlanes(const Index3& dims) {
                                   std::max<std::int64_t>(1, dims[2]));
 }
 
-// Calls visit(zBegin, zEnd, values) for consecutive z slabs covering the samples of `sampling`.
+// Calls visit(zBegin, zEnd, values) for consecutive z slabs covering the samples of `sampling`;
+// a visit that returns false ends the walk (a visit returning nothing never does).
 template <class Visit>
 void forEachSlab(const std::array<AxisSampling, 3>& sampling, std::span<const float> ctrl,
                  const Index3& n, const Visit& visit) {
@@ -290,7 +294,11 @@ void forEachSlab(const std::array<AxisSampling, 3>& sampling, std::span<const fl
   const std::int64_t planes = slabPlanes(dims);
   for (std::int64_t z0 = 0; z0 < dims[2]; z0 += planes) {
     const std::int64_t z1 = std::min(dims[2], z0 + planes);
-    visit(z0, z1, evaluateSlab(sampling, ctrl, n, z0, z1));
+    if constexpr (std::is_same_v<decltype(visit(z0, z1, std::vector<double>())), bool>) {
+      if (!visit(z0, z1, evaluateSlab(sampling, ctrl, n, z0, z1))) return;
+    } else {
+      visit(z0, z1, evaluateSlab(sampling, ctrl, n, z0, z1));
+    }
   }
 }
 
@@ -309,7 +317,8 @@ std::vector<double> splineOnGrid(const TensorBSpline& spline, const Index3& dims
   return evaluateSlab(std::move(sampling), spline.controlPoints(), spline.counts(), zBegin, zEnd);
 }
 
-SampleErrors errorsOnGrid(const TensorBSpline& spline, const StructuredGrid& grid) {
+std::optional<SampleErrors> errorsOnGridWithin(const TensorBSpline& spline,
+                                               const StructuredGrid& grid, double limit) {
   std::array<AxisSampling, 3> sampling;
   for (int a = 0; a < 3; ++a) sampling[a] = sampleAxis(spline.knots(a), grid.dims[a]);
   SampleErrors e;
@@ -322,10 +331,16 @@ SampleErrors errorsOnGrid(const TensorBSpline& spline, const StructuredGrid& gri
                   e.max = std::max(e.max, d);
                   sumSq += d * d;
                 }
+                return e.max <= limit;
               });
+  if (!(e.max <= limit)) return std::nullopt;
   const auto count = static_cast<double>(grid.sampleCount());
   e.rms = count > 0 ? std::sqrt(sumSq / count) : 0.0;
   return e;
+}
+
+SampleErrors errorsOnGrid(const TensorBSpline& spline, const StructuredGrid& grid) {
+  return *errorsOnGridWithin(spline, grid, std::numeric_limits<double>::infinity());
 }
 
 std::array<std::vector<double>, 3> curveSpanErrors(const StructuredGrid& grid,

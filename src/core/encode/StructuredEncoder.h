@@ -11,6 +11,7 @@
 // still one banded factorization per axis: the tensor product of 1-D smoothers.
 #include <array>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -61,6 +62,10 @@ struct SampleErrors {
 };
 // The spline against every sample of `grid`.
 SampleErrors errorsOnGrid(const TensorBSpline& spline, const StructuredGrid& grid);
+// The same, or nullopt as soon as one z slab holds an error above `limit` (NaN included): a
+// candidate that fails a bound is rejected after a part of the work.
+std::optional<SampleErrors> errorsOnGridWithin(const TensorBSpline& spline,
+                                               const StructuredGrid& grid, double limit);
 
 // The most memory a fit of a `dims` grid with `counts` control points holds at once, the input's
 // samples (float, 4 bytes each) included: the float coefficient array the passes share, per
