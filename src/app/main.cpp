@@ -1,11 +1,31 @@
 // mfadvr: encode volumes into MFA models, inspect, query and render them.
+#include <malloc.h>
+
 #include <CLI/CLI.hpp>
+#include <cstdlib>
 #include <iostream>
 
 #include "app/Commands.h"
 #include "core/util/Error.h"
 
+namespace {
+
+// The fit, the coder and the renderer allocate and free buffers of tens of MB over and over
+// (slabs, planes, decoded candidates). glibc serves blocks that large with fresh mmap'd pages
+// and returns them on free, so every reuse pays page faults and zeroing: measured on a 2-core
+// VM, half the time of a 256^3 encode (7.3 -> 3.4 s with this; render 2.2 -> 1.3 s) for 11%
+// more peak memory. Blocks up to 1 GiB are kept in the heap instead, unless the user tunes
+// malloc through its environment variables.
+void keepLargeBuffersInTheHeap() {
+  constexpr int kKeep = 1 << 30;
+  if (!std::getenv("MALLOC_MMAP_THRESHOLD_")) mallopt(M_MMAP_THRESHOLD, kKeep);
+  if (!std::getenv("MALLOC_TRIM_THRESHOLD_")) mallopt(M_TRIM_THRESHOLD, kKeep);
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
+  keepLargeBuffersInTheHeap();
   CLI::App app{
       "mfadvr: direct volume rendering of MFA models (tensor-product B-spline models of "
       "volumetric data)",
