@@ -77,8 +77,12 @@ class SampleConverter {
     for (double v : values) {
       if (std::isnan(v)) ++outside_;
       switch (t_.bytes * (t_.integer ? 1 : -1)) {
-        case -4: put(dst, static_cast<float>(v)); break;
-        case -8: put(dst, v); break;
+        case -4:
+          put(dst, static_cast<float>(v));
+          break;
+        case -8:
+          put(dst, v);
+          break;
         default: {
           double r = std::isnan(v) ? 0.0 : std::nearbyint(v);
           if (r < t_.lowest || r > t_.highest) {
@@ -179,12 +183,12 @@ Command addDecodeCommand(CLI::App& app) {
     const Model model = loadModel(o->model);
     const std::string ext = lower(std::filesystem::path(o->output).extension().string());
     if (ext != ".nrrd" && ext != ".nhdr" && ext != ".raw" && ext != ".vti")
-      throw CLI::ValidationError("--output", "must end in .nrrd, .nhdr, .raw or .vti, got '" +
-                                                 o->output + "'");
+      throw CLI::ValidationError("--output",
+                                 "must end in .nrrd, .nhdr, .raw or .vti, got '" + o->output + "'");
     std::string typeName = o->type;
     if (typeName.empty())
-      typeName = findType(model.provenance().sampleType) ? model.provenance().sampleType
-                                                         : "float32";
+      typeName =
+          findType(model.provenance().sampleType) ? model.provenance().sampleType : "float32";
     const SampleType* type = findType(typeName);
     if (!type)
       throw CLI::ValidationError("--type", "unknown type '" + typeName +
@@ -252,15 +256,16 @@ Command addDecodeCommand(CLI::App& app) {
       if (header) header->commit();
     }
     if (progress) std::cerr << "\n";
-    std::printf("wrote %s: %lld x %lld x %lld %s samples (x fastest, little-endian), origin "
-                "(%g, %g, %g), spacing (%g, %g, %g)\n",
-                o->output.c_str(), static_cast<long long>(grid.dims[0]),
-                static_cast<long long>(grid.dims[1]), static_cast<long long>(grid.dims[2]),
-                type->name, grid.origin[0], grid.origin[1], grid.origin[2], grid.spacing[0],
-                grid.spacing[1], grid.spacing[2]);
+    std::printf(
+        "wrote %s: %lld x %lld x %lld %s samples (x fastest, little-endian), origin "
+        "(%g, %g, %g), spacing (%g, %g, %g)\n",
+        o->output.c_str(), static_cast<long long>(grid.dims[0]),
+        static_cast<long long>(grid.dims[1]), static_cast<long long>(grid.dims[2]), type->name,
+        grid.origin[0], grid.origin[1], grid.origin[2], grid.spacing[0], grid.spacing[1],
+        grid.spacing[2]);
     if (convert.clamped() > 0)
-      std::cerr << "mfadvr: note: " << groupDigits(convert.clamped()) << " samples were clamped to the "
-                << type->name << " range\n";
+      std::cerr << "mfadvr: note: " << groupDigits(convert.clamped())
+                << " samples were clamped to the " << type->name << " range\n";
     if (convert.outside() > 0)
       std::cerr << "mfadvr: note: " << groupDigits(convert.outside())
                 << " samples lie outside the model's domain mask: written as "

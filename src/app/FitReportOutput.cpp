@@ -89,7 +89,7 @@ std::string formatFitReport(const FitReport& r, const std::string& modelPath) {
     const double perSample = static_cast<double>(r.peakMemoryBytes) /
                              static_cast<double>(std::max<std::int64_t>(samples, 1));
     o << "peak memory     " << groupDigits(r.peakMemoryBytes) << " bytes"
-      << (r.points == 0 && samples > 0 ? fmt(", %.1f bytes/sample", perSample) : "")
+      << (r.points == 0 && samples > 0 ? fmt(", %.2g bytes/sample", perSample) : "")
       << "  (the whole process, reading and writing included)\n";
   }
   return o.str();

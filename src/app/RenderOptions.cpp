@@ -224,8 +224,9 @@ RenderSettings RenderOptions::settingsFor(const LoadedScene& scene) const {
                           : tfSpec.unitDistance > 0 ? tfSpec.unitDistance
                                                     : smallestSpacing;
   if (step && (!(*step > 0.0) || !std::isfinite(*step)))
-    throw CLI::ValidationError("--step", "must be a positive distance (omit it for the default, "
-                                         "half the smallest data spacing)");
+    throw CLI::ValidationError("--step",
+                               "must be a positive distance (omit it for the default, "
+                               "half the smallest data spacing)");
   s.sampleDistance = step ? *step : 0.5 * smallestSpacing;
   const double diagonal = (scene.boxMax - scene.boxMin).norm();
   if (diagonal / s.sampleDistance > kMaxSamplesPerRay) {

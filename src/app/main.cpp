@@ -7,6 +7,7 @@
 
 #include "app/Commands.h"
 #include "core/util/Error.h"
+#include "core/util/InterruptCleanup.h"
 
 namespace {
 
@@ -26,6 +27,7 @@ void keepLargeBuffersInTheHeap() {
 
 int main(int argc, char** argv) {
   keepLargeBuffersInTheHeap();
+  mfadvr::removeFilesOnInterrupt();
   CLI::App app{
       "mfadvr: direct volume rendering of MFA models (tensor-product B-spline models of "
       "volumetric data)",

@@ -3,7 +3,10 @@
 // temporary file, so that they can be read a box at a time like uncompressed samples: memory
 // stays bounded by zlib's buffers, the disk holds the samples once.
 #include <cstdint>
+#include <memory>
 #include <string>
+
+#include "core/util/InterruptCleanup.h"
 
 namespace mfadvr {
 
@@ -11,9 +14,11 @@ namespace mfadvr {
 // file already opened stays readable after its removal.
 class TemporaryFile {
  public:
-  explicit TemporaryFile(std::string path) : path_(std::move(path)) {}
+  explicit TemporaryFile(std::string path)
+      : path_(std::move(path)), cleanup_(std::make_unique<InterruptCleanup>(path_)) {}
   ~TemporaryFile();
-  TemporaryFile(TemporaryFile&& other) noexcept : path_(std::move(other.path_)) {
+  TemporaryFile(TemporaryFile&& other) noexcept
+      : path_(std::move(other.path_)), cleanup_(std::move(other.cleanup_)) {
     other.path_.clear();
   }
   TemporaryFile(const TemporaryFile&) = delete;
@@ -23,6 +28,7 @@ class TemporaryFile {
 
  private:
   std::string path_;
+  std::unique_ptr<InterruptCleanup> cleanup_;  // removes the file on Ctrl-C
 };
 
 // Inflates the gzip stream of `file` that starts at byte `gzipAt` (concatenated members are

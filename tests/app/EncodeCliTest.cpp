@@ -9,7 +9,9 @@
 
 #include "TestSupport.h"
 #include "app/CliRunner.h"
+#include "core/model/BlockModelFile.h"
 #include "core/model/ModelFile.h"
+#include "io/MedicalTestFiles.h"  // gzipBytes
 
 namespace mfadvr {
 namespace {
@@ -351,6 +353,33 @@ TEST(EncodeCli, InputsLargerThanTheMemoryLimitAreEncodedInBlocks) {
 
   for (const std::string bad : {" --memory-limit 0", " --memory-limit 12Q", " --memory-limit -1G"})
     EXPECT_EQ(runMfadvr("encode " + raw + bad).status, 2) << bad;
+}
+
+// A header format whose samples are streamed (here NRRD with gzip data) is encoded block by
+// block from the file as a raw file of the same samples is: the same control points per block.
+TEST(EncodeCli, StreamedHeaderFormatsAreEncodedInBlocksLikeRawFiles) {
+  const auto dir = test::scratchDir();
+  std::string samples;
+  for (int k = 0; k < 40; ++k)
+    for (int j = 0; j < 36; ++j)
+      for (int i = 0; i < 44; ++i) samples += static_cast<char>((i * 5 + j * j + 3 * k) % 253);
+  const std::string raw = (dir / "ramp_44x36x40_uint8.raw").string();
+  std::ofstream(raw, std::ios::binary) << samples;
+  const std::string nrrd = (dir / "ramp.nrrd").string();
+  std::ofstream(nrrd, std::ios::binary)
+      << "NRRD0004\ntype: uint8\ndimension: 3\nsizes: 44 36 40\nencoding: gzip\n\n"
+      << test::gzipBytes(samples);
+  const std::string a = (dir / "raw.mfa").string(), b = (dir / "nrrd.mfa").string();
+  for (const auto& [input, model] : {std::pair{raw, a}, std::pair{nrrd, b}}) {
+    const auto r = runMfadvr("encode " + input + " --blocks 2 --coding float32 -q -o " + model);
+    ASSERT_EQ(r.status, 0) << r.err;
+  }
+  const auto fromRaw = loadBlockModels(a), fromNrrd = loadBlockModels(b);
+  ASSERT_EQ(fromRaw.size(), 8u);
+  ASSERT_EQ(fromNrrd.size(), fromRaw.size());
+  for (size_t i = 0; i < fromRaw.size(); ++i)
+    EXPECT_EQ(fromNrrd[i].model.spline().controlPoints(), fromRaw[i].model.spline().controlPoints())
+        << "block " << i;
 }
 
 }  // namespace

@@ -19,6 +19,7 @@ AtomicFileWriter::AtomicFileWriter(std::filesystem::path target) : target_(std::
   fd_ = mkstemp(tmpl.data());
   if (fd_ < 0) throw Error("cannot write " + target_.string() + ": " + std::strerror(errno));
   temporary_ = tmpl;
+  cleanup_.emplace(temporary_.string());
 }
 
 AtomicFileWriter::~AtomicFileWriter() {
@@ -70,6 +71,7 @@ void AtomicFileWriter::commit() {
   if (::close(fd) != 0) fail("close failed");
   if (::rename(temporary_.c_str(), target_.c_str()) != 0) fail("rename failed");
   committed_ = true;
+  cleanup_.reset();
 }
 
 void writeFileAtomically(const std::filesystem::path& path, std::string_view bytes) {

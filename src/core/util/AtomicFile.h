@@ -2,8 +2,11 @@
 // Writes a whole file so that readers see either the old file or the complete new one.
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <string_view>
+
+#include "core/util/InterruptCleanup.h"
 
 namespace mfadvr {
 
@@ -31,6 +34,7 @@ class AtomicFileWriter {
   std::filesystem::path target_, temporary_;
   int fd_ = -1;
   bool committed_ = false;
+  std::optional<InterruptCleanup> cleanup_;  // removes the temporary file on Ctrl-C
 };
 
 // Throws mfadvr::Error (naming the path and the system's reason) on failure and leaves no
