@@ -591,6 +591,17 @@ TEST(NrrdReader, TruncatedGzipIsAnError) {
   expectError([&] { loadStructuredVolume(path); }, {"cannot read " + path});
 }
 
+// Found by fuzzing: VTK's reader takes every "dimension:" line in turn, and a huge one ends the
+// program; NRRD allows each field once.
+TEST(NrrdReader, FieldGivenTwiceIsAnError) {
+  const auto path =
+      writeFile(test::scratchDir() / "v.nrrd", "NRRD0005\ndimension: 32222222222222222\n" +
+                                                   nrrdHeader("float", "raw").substr(9) + "\n" +
+                                                   densityBytes(std::endian::little));
+  expectError([&] { loadStructuredVolume(path); },
+              {"cannot read " + path, "'dimension' appears twice"});
+}
+
 TEST(NrrdReader, NotANrrdIsAnError) {
   const auto path = writeFile(test::scratchDir() / "v.nrrd", "P6\n5 4\n255\n");
   expectError([&] { loadStructuredVolume(path); }, {"cannot read " + path, "NRRD"});

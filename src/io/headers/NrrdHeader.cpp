@@ -6,6 +6,7 @@
 #include <fstream>
 #include <iterator>
 #include <limits>
+#include <set>
 #include <sstream>
 #include <vector>
 
@@ -100,6 +101,7 @@ NrrdDataLocation checkNrrdHeaderText(const std::string& header, const std::strin
   std::vector<std::int64_t> sizes;
   std::vector<std::string> spacings;
   bool sizesGiven = false;
+  std::set<std::string> fields;
   std::int64_t byteSkip = 0, lineSkip = 0;
   bool skipped = false;
   while (std::getline(in, line)) {
@@ -116,6 +118,11 @@ NrrdDataLocation checkNrrdHeaderText(const std::string& header, const std::strin
     if (colon == std::string::npos) continue;  // key:=value pairs
     // Field names are case-sensitive (VTK's reader, too, knows only these spellings).
     const std::string key = trim(line.substr(0, colon));
+    // NRRD allows each field once; VTK's reader acts on every occurrence in turn (a second
+    // "dimension:" with a huge value ends the program, found by fuzzing), while this check
+    // reads the last.
+    if (!fields.insert(key).second)
+      fail("the field '" + key + "' appears twice (NRRD allows each field once)");
     const std::string value = trim(line.substr(colon + 2));
     if (key == "type") {
       type = value;
