@@ -473,6 +473,16 @@ TEST(ScatteredLoader, LegacyReadErrorsComeFromVtk) {
   expectError([&] { loadScatteredData(path); }, {"cannot read " + path, "legacy VTK"});
 }
 
+// Found by fuzzing: VTK's legacy reader matches keywords by prefix, so "CELLSxyz0" is a CELLS
+// line whose counts it reads from the lines after (and then dereferenced null).
+TEST(ScatteredLoader, LegacyKeywordsAreMatchedByPrefixAsVtkDoes) {
+  const auto dir = test::scratchDir();
+  std::string text = legacyUnstructured();
+  text = text.substr(0, text.find("CELLS")) + "CELLSxyz0\n4 0 1 2 3\n4 1 2 3 4\n";
+  const auto path = writeFile(dir / "prefix.vtk", text);
+  expectError([&] { loadScatteredData(path); }, {"cannot read " + path, "CELLS line has"});
+}
+
 template <typename T>
 void appendBigEndian(std::string& out, T value) {
   unsigned char bytes[sizeof(T)];

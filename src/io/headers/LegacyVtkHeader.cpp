@@ -45,6 +45,17 @@ std::string legacyRawType(const std::string& type) {
   return "";
 }
 
+// The keyword VTK's legacy reader takes a word for: it compares keywords in any case and by
+// prefix only ("CELLSxyz" is CELLS, its counts then read from what follows: found by fuzzing).
+// Words that start with no keyword of the geometry blocks are returned in lower case.
+std::string legacyKeyword(const std::string& word) {
+  const std::string w = lower(word);
+  for (const char* keyword :
+       {"dataset", "points", "cells", "cell_types", "offsets", "connectivity"})
+    if (w.rfind(keyword, 0) == 0) return keyword;
+  return w;
+}
+
 // What VTK's legacy reader reads before the dataset: the version line ('# vtk DataFile
 // Version x.y', any version), one title line (any text, also empty), then the first word after
 // it, ASCII or BINARY in any case: VTK skips blank lines (and spaces, CR line ends) before it.
@@ -183,12 +194,13 @@ void checkLegacyCells(std::istream& in, const std::string& path) {
   for (int guard = 0; guard < 16 && std::getline(in, line); ++guard) {
     const auto w = words(line);
     if (w.empty()) continue;
-    const std::string key = lower(w[0]);  // VTK reads keywords in any case
+    const std::string key = legacyKeyword(w[0]);
     if (key == "dataset") continue;
     // VTK reads a keyword's counts across line ends: a short line takes its numbers from the
     // data that follows.
     if ((key == "points" || key == "cells") && w.size() != 3)
-      fail("the " + w[0] + " line has " + std::to_string(w.size() - 1) + " fields, not 2");
+      fail("the " + w[0].substr(0, key.size()) + " line has " + std::to_string(w.size() - 1) +
+           " fields, not 2");
     if (key == "cell_types" && w.size() != 2)
       fail("the CELL_TYPES line has " + std::to_string(w.size() - 1) + " fields, not 1");
     if (key == "points" && w.size() >= 3) {
