@@ -196,6 +196,13 @@ void checkLegacyCells(std::istream& in, const std::string& path) {
     if (w.empty()) continue;
     const std::string key = legacyKeyword(w[0]);
     if (key == "dataset") continue;
+    // A keyword line is text; VTK's stream reads stop early at some other bytes (0xff) and
+    // leave counts unset (found by fuzzing: an allocation of 0xf5f5... bytes).
+    const bool geometry = key == "points" || key == "cells" || key == "cell_types";
+    if (geometry && (hasControlCharacters(line) ||
+                     std::any_of(line.begin(), line.end(),
+                                 [](char c) { return static_cast<unsigned char>(c) >= 0x80; })))
+      fail("the " + w[0].substr(0, key.size()) + " line holds bytes that are not text");
     // VTK reads a keyword's counts across line ends: a short line takes its numbers from the
     // data that follows.
     if ((key == "points" || key == "cells") && w.size() != 3)
