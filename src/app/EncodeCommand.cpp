@@ -189,8 +189,9 @@ int encodeBlocks(GridSampleSource& source, const Index3& blocks, int ghost, Enco
                   static_cast<long long>(c[2]), reports[i].maxRelativeError());
     }
     std::printf("max error over the blocks: %.3g of the value range\n", worst);
-    std::printf("time: %.2f s (%.1f MB of input per second); peak memory %s (%.2g bytes/sample)\n",
-                seconds, megabytes / seconds, formatBytes(peak).c_str(), double(peak) / samples);
+    std::printf("time: %.2f s (%.1f MB of input per second); peak memory %s (%s bytes/sample)\n",
+                seconds, megabytes / seconds, formatBytes(peak).c_str(),
+                bytesPerSampleText(double(peak) / samples).c_str());
     if (file) {
       const auto bytes = static_cast<std::int64_t>(std::filesystem::file_size(output));
       std::printf("wrote %s (%s bytes, %.3f bits/sample)\n", output.c_str(),

@@ -89,7 +89,8 @@ std::string formatFitReport(const FitReport& r, const std::string& modelPath) {
     const double perSample = static_cast<double>(r.peakMemoryBytes) /
                              static_cast<double>(std::max<std::int64_t>(samples, 1));
     o << "peak memory     " << groupDigits(r.peakMemoryBytes) << " bytes"
-      << (r.points == 0 && samples > 0 ? fmt(", %.2g bytes/sample", perSample) : "")
+      << (r.points == 0 && samples > 0 ? ", " + bytesPerSampleText(perSample) + " bytes/sample"
+                                       : "")
       << "  (the whole process, reading and writing included)\n";
   }
   return o.str();
@@ -145,6 +146,10 @@ nlohmann::json fitReportJson(const FitReport& r, const std::string& modelPath) {
                                                   {"dims", r.maskDims},
                                                   {"inside_fraction", r.maskInsideFraction}};
   return j;
+}
+
+std::string bytesPerSampleText(double v) {
+  return fmt(v >= 10.0 ? "%.0f" : v >= 1.0 ? "%.1f" : "%.2g", v);
 }
 
 }  // namespace mfadvr::app

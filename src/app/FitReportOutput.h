@@ -12,5 +12,7 @@ nlohmann::json fitReportJson(const FitReport& r, const std::string& modelPath);
 
 // "1,234,567"
 std::string groupDigits(std::int64_t v);
+// Bytes per sample, with the digits that matter: "45", "3.2", "0.046".
+std::string bytesPerSampleText(double v);
 
 }  // namespace mfadvr::app
