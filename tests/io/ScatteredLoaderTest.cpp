@@ -483,6 +483,15 @@ TEST(ScatteredLoader, LegacyKeywordsAreMatchedByPrefixAsVtkDoes) {
   expectError([&] { loadScatteredData(path); }, {"cannot read " + path, "CELLS line has"});
 }
 
+// Found by fuzzing: a keyword inside a block of numbers, which VTK's reader then acts on.
+TEST(ScatteredLoader, LegacyWordsInsideNumberBlocksAreErrors) {
+  const auto dir = test::scratchDir();
+  const auto path = writeFile(dir / "word.vtk",
+                              "# vtk DataFile Version 3.0\nw\nASCII\nDATASET UNSTRUCTURED_GRID\n"
+                              "POINTS 4 float\n0 0 CELLS 2 0\n4 0 1 2 3\n");
+  expectError([&] { loadScatteredData(path); }, {"cannot read " + path, "'CELLS' where value 3"});
+}
+
 template <typename T>
 void appendBigEndian(std::string& out, T value) {
   unsigned char bytes[sizeof(T)];

@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cctype>
 #include <charconv>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -184,8 +185,15 @@ void checkLegacyCells(std::istream& in, const std::string& path) {
       in.ignore(static_cast<std::streamsize>(std::min<std::int64_t>(
           times(values, bytes), std::numeric_limits<std::streamsize>::max())));
     } else {
+      // Every value is a number: VTK's reader goes on after a word it cannot read as one, and
+      // takes a keyword inside the data ("0 0 CELLS 2 0") for the next block (found by fuzzing).
       std::string token;
       for (std::int64_t v = 0; v < values && in >> token; ++v) {
+        char* end = nullptr;
+        std::strtod(token.c_str(), &end);
+        if (end == token.c_str() || *end != '\0')
+          fail("the data holds '" + token.substr(0, 20) + "' where value " + std::to_string(v + 1) +
+               " of a block of " + std::to_string(values) + " numbers belongs");
       }
     }
     return static_cast<bool>(in);
