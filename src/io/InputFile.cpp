@@ -65,4 +65,10 @@ std::string readTextFile(const std::string& path) {
   return text.str();
 }
 
+bool isNiftiPath(const std::string& path) {
+  const std::string ext = lowerExtension(path);
+  if (ext == ".nii" || ext == ".hdr" || ext == ".img") return true;
+  return ext == ".gz" && lowerExtension(path.substr(0, path.size() - 3)) == ".nii";
+}
+
 }  // namespace mfadvr

@@ -9,6 +9,10 @@ namespace mfadvr {
 // The extension in lower case with its dot (".vtk"), or "" when there is none.
 std::string lowerExtension(const std::string& path);
 
+// Whether the name is a NIfTI image's: .nii, .nii.gz, or either file of an .hdr / .img pair
+// (any case).
+bool isNiftiPath(const std::string& path);
+
 // Throws mfadvr::Error "cannot open PATH: REASON" when the file cannot be opened for reading,
 // and when it is a directory ("expected `expected`", e.g. "a volume file").
 void requireReadableFile(const std::string& path, const std::string& expected);

@@ -10,9 +10,8 @@
 #include <vtkStreamingDemandDrivenPipeline.h>
 #include <vtkStructuredPointsReader.h>
 
-#include <algorithm>
-#include <cctype>
 #include <filesystem>
+#include <optional>
 
 #include "core/analytic/BuiltinFunction.h"
 #include "io/DeclaredSizeCheck.h"
@@ -24,13 +23,6 @@
 
 namespace mfadvr {
 namespace {
-
-bool endsWith(std::string text, const std::string& tail) {
-  std::transform(text.begin(), text.end(), text.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return text.size() >= tail.size() &&
-         text.compare(text.size() - tail.size(), tail.size(), tail) == 0;
-}
 
 // The grid VTK's reader would produce, from its header-only pass (RequestInformation): dims,
 // spacing and origin of the first sample; nullopt when the image is not one a RawVolumeSource
@@ -121,7 +113,7 @@ std::unique_ptr<RawVolumeSource> openStreamedVolume(const std::string& path,
       auto r = vtkSmartPointer<vtkMetaImageReader>::New();
       r->SetFileName(path.c_str());
       reader = r;
-    } else if (ext == ".nii" || ext == ".hdr" || ext == ".img" || endsWith(path, ".nii.gz")) {
+    } else if (isNiftiPath(path)) {
       payload = checkNiftiDeclaredSize(path);
       arrayName = "NIFTI";
       auto r = vtkSmartPointer<vtkNIFTIImageReader>::New();
@@ -153,18 +145,18 @@ std::unique_ptr<RawVolumeSource> openStreamedVolume(const std::string& path,
       if (!placeUnreordered(*nifti, *layout)) return nullptr;
     }
     layout->source = path;
+    std::optional<TemporaryFile> inflated;
     if (payload.gzipAt >= 0) {
       // The samples of the first volume only (a NIfTI file may hold time points after it).
-      const TemporaryFile inflated =
-          inflateToTemporaryFile(payload.file, payload.gzipAt, payload.offset,
-                                 layout->sampleCount() * rawSampleSize(payload.dtype), path);
-      file.path = inflated.path();
+      inflated.emplace(inflateToTemporaryFile(payload.file, payload.gzipAt, payload.offset,
+                                              layout->sampleCount() * rawSampleSize(payload.dtype),
+                                              path));
+      file.path = inflated->path();
       file.offset = 0;
-      // Opened here: the file stays readable once its name is removed at the end of this scope.
-      source = std::make_unique<RawVolumeSource>(file, *layout);
-    } else {
-      source = std::make_unique<RawVolumeSource>(file, *layout);
     }
+    // Opened here: an inflated file stays readable once its name is removed at the end of this
+    // scope.
+    source = std::make_unique<RawVolumeSource>(file, *layout);
   }
   const StructuredGrid& layout = source->layout();
   source->setPlacement(options.origin.value_or(layout.origin),

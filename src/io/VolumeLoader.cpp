@@ -1,7 +1,5 @@
 #include "io/VolumeLoader.h"
 
-#include <algorithm>
-#include <cctype>
 #include <filesystem>
 
 #include "core/analytic/BuiltinFunction.h"
@@ -14,19 +12,10 @@
 namespace mfadvr {
 namespace {
 
-bool endsWith(const std::string& text, const std::string& tail) {
-  return text.size() >= tail.size() &&
-         text.compare(text.size() - tail.size(), tail.size(), tail) == 0;
-}
-
 StructuredGrid readFile(const std::string& path, const FieldSelection& field) {
   const std::string ext = lowerExtension(path);
   if (ext != ".raw") requireNonEmptyFile(path, "a volume file or a directory of DICOM slices");
-  std::string lower = path;
-  std::transform(lower.begin(), lower.end(), lower.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  if (ext == ".nii" || endsWith(lower, ".nii.gz") || ext == ".hdr" || ext == ".img")
-    return readVtkVolume(path, VtkVolumeFormat::kNifti, field);
+  if (isNiftiPath(path)) return readVtkVolume(path, VtkVolumeFormat::kNifti, field);
   if (ext == ".dcm") {
     throw Error(path +
                 ": a DICOM file holds one slice; pass the directory that holds the series' "
