@@ -160,13 +160,18 @@ std::array<int, 256> cellDimensions(vtkDataSet* data) {
   return dims;
 }
 
-void appendTets(vtkDataSet* data, std::vector<Tetrahedron>& tets) {
+// VTK's readers take a cell's type and its point list from separate arrays without checking
+// that they agree, so a "tetrahedron" may come with any number of points.
+void appendTets(vtkDataSet* data, const std::string& path, std::vector<Tetrahedron>& tets) {
   vtkNew<vtkIdList> ids;
   const vtkIdType cells = data->GetNumberOfCells();
   tets.reserve(tets.size() + static_cast<size_t>(cells));
   for (vtkIdType c = 0; c < cells; ++c) {
     if (data->GetCellType(c) != VTK_TETRA) continue;
     data->GetCellPoints(c, ids);
+    if (ids->GetNumberOfIds() != 4)
+      throw Error(path + ": cell " + std::to_string(c) + " is a tetrahedron with " +
+                  std::to_string(ids->GetNumberOfIds()) + " points (a tetrahedron has 4)");
     tets.push_back({ids->GetId(0), ids->GetId(1), ids->GetId(2), ids->GetId(3)});
   }
 }
@@ -238,7 +243,7 @@ ScatteredData meshDataOf(vtkDataSet* input, const std::string& path, const Field
   } else if (allTets && !vtkStructuredGrid::SafeDownCast(data) &&
              !vtkRectilinearGrid::SafeDownCast(data)) {
     out.kind = "tetrahedral mesh";
-    appendTets(data, out.tets);
+    appendTets(data, path, out.tets);
   } else {
     out.kind = vtkStructuredGrid::SafeDownCast(data)    ? "curvilinear grid"
                : vtkRectilinearGrid::SafeDownCast(data) ? "rectilinear grid"
@@ -250,7 +255,7 @@ ScatteredData meshDataOf(vtkDataSet* input, const std::string& path, const Field
     split->TetrahedraOnlyOn();
     split->Update();
     data = split->GetOutput();
-    appendTets(data, out.tets);
+    appendTets(data, path, out.tets);
   }
   if (capture.hasErrors())
     throw Error("cannot prepare the cells of " + path + ": " + capture.errorText());

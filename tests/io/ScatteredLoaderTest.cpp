@@ -492,6 +492,24 @@ TEST(ScatteredLoader, LegacyWordsInsideNumberBlocksAreErrors) {
   expectError([&] { loadScatteredData(path); }, {"cannot read " + path, "'CELLS' where value 3"});
 }
 
+TEST(ScatteredLoader, TetrahedronWithoutFourPointsIsAnError) {
+  // Found by fuzzing: VTK's XML reader accepts a cell of type 10 (tetrahedron) with 2 points.
+  const auto dir = test::scratchDir();
+  const auto path = writeFile(
+      dir / "two.vtu",
+      "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" "
+      "byte_order=\"LittleEndian\">\n<UnstructuredGrid>\n<Piece NumberOfPoints=\"5\" "
+      "NumberOfCells=\"2\">\n<PointData Scalars=\"f\">\n<DataArray type=\"Float32\" "
+      "Name=\"f\" format=\"ascii\">1 2 3 4 5</DataArray>\n</PointData>\n<Points>\n"
+      "<DataArray type=\"Float32\" NumberOfComponents=\"3\" format=\"ascii\">0 0 0 1 0 0 0 "
+      "1 0 0 0 1 1 1 1</DataArray>\n</Points>\n<Cells>\n<DataArray type=\"Int64\" "
+      "Name=\"connectivity\" format=\"ascii\">0 1 2 3 1 2 3 4</DataArray>\n<DataArray "
+      "type=\"Int64\" Name=\"offsets\" format=\"ascii\">2 8</DataArray>\n<DataArray "
+      "type=\"UInt8\" Name=\"types\" format=\"ascii\">10 10</DataArray>\n</Cells>\n"
+      "</Piece>\n</UnstructuredGrid>\n</VTKFile>\n");
+  expectError([&] { loadScatteredData(path); }, {path, "cell 0 is a tetrahedron with 2 points"});
+}
+
 template <typename T>
 void appendBigEndian(std::string& out, T value) {
   unsigned char bytes[sizeof(T)];
