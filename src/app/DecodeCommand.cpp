@@ -35,6 +35,7 @@
 #include "core/model/ModelFile.h"
 #include "core/util/AtomicFile.h"
 #include "core/util/Error.h"
+#include "core/util/MemoryBudget.h"
 
 namespace mfadvr::app {
 namespace {
@@ -180,6 +181,15 @@ Command addDecodeCommand(CLI::App& app) {
       throw Error(o->model +
                   ": is a multi-block model; decode reads single models (decoding blocks onto "
                   "one grid is not supported yet)");
+    // The file is read whole before it is decoded; slabs of up to 2^24 doubles go to the output.
+    std::error_code ec;
+    const std::uintmax_t fileBytes = std::filesystem::file_size(o->model, ec);
+    if (!ec) {
+      const ModelFileSummary summary = summarizeModelFile(o->model, 0, fileBytes);
+      requireMemory(loadedModelBytes(summary) + static_cast<std::int64_t>(fileBytes) +
+                        (std::int64_t(8) << 24),
+                    "decoding " + o->model);
+    }
     const Model model = loadModel(o->model);
     const std::string ext = lower(std::filesystem::path(o->output).extension().string());
     if (ext != ".nrrd" && ext != ".nhdr" && ext != ".raw" && ext != ".vti")
@@ -212,6 +222,8 @@ Command addDecodeCommand(CLI::App& app) {
         printProgress("decoding", static_cast<double>(z1) / static_cast<double>(grid.dims[2]));
     };
     if (ext == ".vti") {
+      // VTK's writer takes the whole image: the samples and the array made of them.
+      requireMemory(2 * count * type->bytes, "decoding " + o->model + " into one .vti image");
       std::string bytes;
       bytes.reserve(static_cast<size_t>(count * type->bytes));
       decodeBySlabs(model, grid, slab, [&](std::int64_t, std::int64_t z1, auto values) {

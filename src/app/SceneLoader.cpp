@@ -2,11 +2,16 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
+#include <filesystem>
 #include <iostream>
 
 #include "app/OptionParsing.h"
+#include "core/model/BlockModelFile.h"
 #include "core/model/ModelFile.h"
+#include "core/render/RenderMemory.h"
 #include "core/util/Error.h"
+#include "core/util/MemoryBudget.h"
 #include "io/ScatteredLoader.h"
 
 namespace mfadvr::app {
@@ -60,6 +65,32 @@ void takeScatteredFacts(LoadedScene& s, const ScatteredData& data, const EncodeO
 
 }  // namespace
 
+namespace {
+
+std::uint64_t fileBytes(const std::string& path) {
+  std::error_code ec;
+  const std::uintmax_t size = std::filesystem::file_size(path, ec);
+  if (ec) throw Error("cannot read " + path + ": " + ec.message());
+  return size;
+}
+
+// Refuses, before anything is loaded, a model (or the blocks of one) that the renderer could
+// not hold.
+void requireRenderMemory(const std::string& input, const std::vector<ModelFileSummary>& models) {
+  std::int64_t points = 0;
+  for (const ModelFileSummary& m : models)
+    points += m.controlCounts[0] * m.controlCounts[1] * m.controlCounts[2];
+  char count[32];
+  std::snprintf(count, sizeof count, "%.3g", static_cast<double>(points));
+  std::string what = "rendering " + input + " (" + count + " control points";
+  if (models.size() > 1)
+    what += " in " + std::to_string(models.size()) +
+            " blocks; ParaView's MFA reader spreads the blocks over MPI ranks";
+  requireMemory(sceneRenderBytes(models), what + ")");
+}
+
+}  // namespace
+
 void printReaderNotes(const StructuredGrid& grid) {
   for (const std::string& note : grid.notes)
     std::cerr << "mfadvr: note: " << grid.source << ": " << note << "\n";
@@ -90,6 +121,7 @@ LoadedScene loadScene(const std::string& input, const SceneNeeds& needs,
   const auto start = Clock::now();
   if (isBlockModelInput(input)) {
     const BlockIndex index = readBlockIndex(input);
+    requireRenderMemory(input, summarizeBlocks(input, index));
     s.blocks = loadBlockModels(input);
     s.model = s.blocks.front().model;
     takeModelFacts(s);
@@ -101,6 +133,7 @@ LoadedScene loadScene(const std::string& input, const SceneNeeds& needs,
     return s;
   }
   if (isModelFile(input)) {
+    requireRenderMemory(input, {summarizeModelFile(input, 0, fileBytes(input))});
     s.model = loadModel(input);
     takeModelFacts(s);
     const Provenance& p = s.model->provenance();

@@ -23,14 +23,15 @@ inline std::string slurp(const std::filesystem::path& p) {
   return s.str();
 }
 
-// `args` is appended to the program path as a shell command line.
-inline CliResult runMfadvr(const std::string& args) {
+// `args` is appended to the program path as a shell command line; `env` (e.g. "NAME=value")
+// goes before it.
+inline CliResult runMfadvr(const std::string& args, const std::string& env = "") {
   const auto dir = std::filesystem::path(MFADVR_TEST_TMP_DIR) / "cli-output";
   std::filesystem::create_directories(dir);
   const auto outFile = dir / (std::to_string(::getpid()) + ".stdout");
   const auto errFile = dir / (std::to_string(::getpid()) + ".stderr");
-  const std::string cmd =
-      std::string(MFADVR_EXE) + " " + args + " >" + outFile.string() + " 2>" + errFile.string();
+  const std::string cmd = (env.empty() ? "" : env + " ") + std::string(MFADVR_EXE) + " " + args +
+                          " >" + outFile.string() + " 2>" + errFile.string();
   const int raw = std::system(cmd.c_str());
   CliResult r;
   r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;

@@ -119,6 +119,40 @@ TEST(CliRender, BadArgumentsFailCleanly) {
   EXPECT_FALSE(std::filesystem::exists(dir / "x.png"));
 }
 
+TEST(CliRender, ModelTooLargeForTheMemoryIsRefusedBeforeLoading) {
+  const auto dir = test::scratchDir();
+  const std::string single = (dir / "one.mfa").string(), blocks = (dir / "blocks.mfa").string();
+  ASSERT_EQ(runMfadvr("encode builtin:marschner-lobb:24 -o " + single).status, 0);
+  ASSERT_EQ(runMfadvr("encode builtin:marschner-lobb:24 --blocks 2,1,1 -o " + blocks).status, 0);
+  const std::string png = (dir / "x.png").string();
+  for (const std::string& model : {single, blocks}) {
+    // 24^3 control points need about 13 B each (control points, value ranges, flags).
+    const auto r =
+        runMfadvr("render " + model + " --size 32x32 -o " + png, "MFADVR_MEMORY_LIMIT=100K");
+    EXPECT_EQ(r.status, 1) << model;
+    EXPECT_NE(r.err.find("needs about"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("100 KB are available"), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(png));
+    EXPECT_EQ(
+        runMfadvr("render " + model + " --size 32x32 -o " + png, "MFADVR_MEMORY_LIMIT=1G").status,
+        0);
+    std::filesystem::remove(png);
+  }
+  EXPECT_NE(runMfadvr("render " + blocks + " -o " + png, "MFADVR_MEMORY_LIMIT=100K")
+                .err.find("control points in 2 blocks"),
+            std::string::npos);
+  const std::string nrrd = (dir / "x.nrrd").string();
+  const auto decode = runMfadvr("decode " + single + " -q -o " + nrrd, "MFADVR_MEMORY_LIMIT=100K");
+  EXPECT_EQ(decode.status, 1);
+  EXPECT_NE(decode.err.find("decoding " + single + " needs about"), std::string::npos)
+      << decode.err;
+  EXPECT_FALSE(std::filesystem::exists(nrrd));
+  const auto bad = runMfadvr("render " + single + " -o " + png, "MFADVR_MEMORY_LIMIT=lots");
+  EXPECT_EQ(bad.status, 1);
+  EXPECT_NE(bad.err.find("MFADVR_MEMORY_LIMIT: 'lots' is not a memory size"), std::string::npos)
+      << bad.err;
+}
+
 TEST(CliDemo, WritesImagesMontageAndMetrics) {
   const auto dir = test::scratchDir() / "demo";
   const auto r = runMfadvr("demo --size 96x96 --json --out " + dir.string());

@@ -1,5 +1,7 @@
 #include "core/model/ModelFile.h"
 
+#include "core/model/ControlCoding.h"
+
 #include <gtest/gtest.h>
 #include <zlib.h>
 
@@ -378,6 +380,33 @@ TEST(ModelFile, ClearMessages) {
   auto shortFile = full;
   shortFile.resize(full.size() - 100);
   EXPECT_NE(errorOf(shortFile).find("truncated"), std::string::npos);
+}
+
+TEST(ModelFile, SummaryReadsTheHeaderAlone) {
+  const Model m = smallModel();
+  const auto whole = bytesOf(serializeModel(m));
+  for (const Model& model : {m, codeControlPoints(m, {ControlCoder::kZfp, 1e-3})}) {
+    const auto bytes = bytesOf(serializeModel(model));
+    // The prefix and the header are enough (the knots and control points follow them).
+    const size_t headBytes = 18 + bytes[14] + (bytes[15] << 8);
+    const auto s = summarizeModelHead(std::span(bytes).first(headBytes), bytes.size(), "m");
+    EXPECT_EQ(s.degree, (Degree3{3, 2, 2}));
+    EXPECT_EQ(s.controlCounts, (Index3{6, 5, 4}));
+    EXPECT_EQ(s.coder, model.controlCoding().coder);
+    EXPECT_EQ(s.fileBytes, bytes.size());
+    EXPECT_THROW(summarizeModelHead(std::span(bytes).first(headBytes - 1), bytes.size(), "m"),
+                 Error);
+  }
+  const auto path = test::scratchDir() / "summary.mfa";
+  saveModel(m, path);
+  EXPECT_EQ(summarizeModelFile(path, 0, whole.size()).controlCounts, (Index3{6, 5, 4}));
+  EXPECT_THROW(summarizeModelHead(bytesOf("not a model at all, but long enough"), 40, "m"), Error);
+  // A header that names impossible counts is an Error, as when the model is loaded.
+  std::string text(reinterpret_cast<const char*>(whole.data()), whole.size());
+  const size_t at = text.find("\"control_counts\":[6,5,4]");
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, 24, "\"control_counts\":[6,5,1]");
+  EXPECT_THROW(summarizeModelHead(bytesOf(text), text.size(), "m"), Error);
 }
 
 TEST(ModelFile, SemanticValidationBehindValidChecksum) {

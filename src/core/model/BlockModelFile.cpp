@@ -287,6 +287,15 @@ Model parseBlock(std::span<const std::uint8_t> bytes, const BlockEntry& e,
 
 }  // namespace
 
+std::vector<ModelFileSummary> summarizeBlocks(const std::filesystem::path& path,
+                                              const BlockIndex& index) {
+  std::vector<ModelFileSummary> out;
+  out.reserve(index.entries.size());
+  for (const BlockEntry& e : index.entries)
+    out.push_back(summarizeModelFile(path, e.offset, e.bytes));
+  return out;
+}
+
 Model loadBlock(const std::filesystem::path& path, const BlockIndex& index, size_t i) {
   if (i >= index.entries.size()) throw Error("block index out of range");
   const BlockEntry& e = index.entries[i];

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "core/model/Model.h"
+#include "core/model/ModelFile.h"
 #include "core/util/AtomicFile.h"
 
 namespace mfadvr {
@@ -78,6 +79,10 @@ class BlockModelFileWriter {
 BlockIndex parseBlockIndex(std::span<const std::uint8_t> head, std::uint64_t fileBytes,
                            const std::string& name);
 BlockIndex readBlockIndex(const std::filesystem::path& path);
+
+// Each block's model size as its header says (only the headers are read: memory estimates).
+std::vector<ModelFileSummary> summarizeBlocks(const std::filesystem::path& path,
+                                              const BlockIndex& index);
 
 // Block i's model (its bytes alone are read and checked).
 Model loadBlock(const std::filesystem::path& path, const BlockIndex& index, size_t i);

@@ -156,6 +156,58 @@ std::string headerText(const Model& m, const std::array<json, 3>& rules, std::in
   return h.dump();
 }
 
+Error invalidModel(const std::string& name, const std::string& why) {
+  return Error(name + ": not a valid .mfa model: " + why);
+}
+
+struct ModelPrefix {
+  std::uint32_t version = 0;
+  std::uint32_t headerBytes = 0;
+};
+
+// The magic bytes, version and header length of a model of fileBytes bytes starting at `b` (which
+// holds at least its prefix when the file is long enough).
+ModelPrefix checkedPrefix(std::span<const std::uint8_t> b, std::uint64_t fileBytes,
+                          const std::string& name) {
+  if (b.size() >= 8 && std::memcmp(b.data(), "MFADVRMB", 8) == 0)
+    throw Error(name +
+                ": is a multi-block model (mfadvr encode --blocks), not a single model; "
+                "`mfadvr render` and `info` read it, and ParaView's MFA reader");
+  if (b.size() < sizeof(kMagic) || std::memcmp(b.data(), kMagic, sizeof(kMagic)) != 0)
+    throw Error(name + ": not an .mfa model file (wrong magic bytes)");
+  if (b.size() < kPrefixBytes || fileBytes < kPrefixBytes + 4)
+    throw invalidModel(name, "file is truncated");
+  const auto version = readBytesAt<std::uint32_t>(b, sizeof(kMagic));
+  if (version < kOldestModelFormatVersion || version > kModelFormatVersion)
+    throw Error(name + ": .mfa format version " + std::to_string(version) +
+                " is not supported; this build reads versions " +
+                std::to_string(kOldestModelFormatVersion) + " to " +
+                std::to_string(kModelFormatVersion));
+  const auto headerBytes = readBytesAt<std::uint32_t>(b, sizeof(kMagic) + 4);
+  if (headerBytes > kMaxHeaderBytes || kPrefixBytes + headerBytes + 4 > fileBytes)
+    throw invalidModel(name,
+                       "header length " + std::to_string(headerBytes) + " does not fit the file");
+  return {version, headerBytes};
+}
+
+// Degrees and control counts as the reader accepts them.
+void checkShape(const Degree3& p, const Index3& n, const std::string& name) {
+  for (int a = 0; a < 3; ++a) {
+    if (p[a] < 1 || p[a] > kMaxDegree)
+      throw invalidModel(name, "degree outside 1.." + std::to_string(kMaxDegree));
+    if (n[a] < p[a] + 1 || n[a] > kMaxControlPerAxis)
+      throw invalidModel(name, "control count out of range");
+  }
+}
+
+Degree3 degreesOf(const json& h) {
+  const Index3 degree = integers3(h, "degree");
+  Degree3 p{};
+  for (int a = 0; a < 3; ++a)
+    p[a] = degree[a] < 1 || degree[a] > kMaxDegree ? 0 : static_cast<int>(degree[a]);
+  return p;
+}
+
 std::uint32_t crc(const std::uint8_t* data, size_t n) {
   return crc32Of(data, n);
 }
@@ -237,25 +289,8 @@ std::int64_t modelFileSize(const Model& model) {
 
 Model parseModel(std::span<const std::uint8_t> b, const std::string& name,
                  std::uint32_t* formatVersion) {
-  auto bad = [&](const std::string& why) -> Error {
-    return Error(name + ": not a valid .mfa model: " + why);
-  };
-  if (b.size() >= 8 && std::memcmp(b.data(), "MFADVRMB", 8) == 0)
-    throw Error(name +
-                ": is a multi-block model (mfadvr encode --blocks), not a single model; "
-                "`mfadvr render` and `info` read it, and ParaView's MFA reader");
-  if (b.size() < sizeof(kMagic) || std::memcmp(b.data(), kMagic, sizeof(kMagic)) != 0)
-    throw Error(name + ": not an .mfa model file (wrong magic bytes)");
-  if (b.size() < kPrefixBytes + 4) throw bad("file is truncated");
-  const auto version = readBytesAt<std::uint32_t>(b, sizeof(kMagic));
-  if (version < kOldestModelFormatVersion || version > kModelFormatVersion)
-    throw Error(name + ": .mfa format version " + std::to_string(version) +
-                " is not supported; this build reads versions " +
-                std::to_string(kOldestModelFormatVersion) + " to " +
-                std::to_string(kModelFormatVersion));
-  const auto headerBytes = readBytesAt<std::uint32_t>(b, sizeof(kMagic) + 4);
-  if (headerBytes > kMaxHeaderBytes || kPrefixBytes + headerBytes + 4 > b.size())
-    throw bad("header length " + std::to_string(headerBytes) + " does not fit the file");
+  auto bad = [&](const std::string& why) { return invalidModel(name, why); };
+  const auto [version, headerBytes] = checkedPrefix(b, b.size(), name);
 
   json h;
   Degree3 p{};
@@ -272,13 +307,9 @@ Model parseModel(std::span<const std::uint8_t> b, const std::string& name,
   try {
     h = json::parse(b.begin() + kPrefixBytes, b.begin() + kPrefixBytes + headerBytes);
     if (h.value("format", "") != "mfadvr-model") throw bad("header is not an mfadvr-model header");
-    const Index3 degree = integers3(h, "degree");
-    for (int a = 0; a < 3; ++a) {
-      if (degree[a] < 1 || degree[a] > kMaxDegree)
-        throw bad("degree outside 1.." + std::to_string(kMaxDegree));
-      p[a] = static_cast<int>(degree[a]);
-    }
+    p = degreesOf(h);
     n = integers3(h, "control_counts");
+    checkShape(p, n, name);
     lo = vec3(h, "domain_min");
     hi = vec3(h, "domain_max");
     range = h.at("value_range").get<std::array<double, 2>>();
@@ -335,8 +366,6 @@ Model parseModel(std::span<const std::uint8_t> b, const std::string& name,
     throw bad(std::string("header is corrupt (") + e.what() + ")");
   }
   for (int a = 0; a < 3; ++a) {
-    if (p[a] < 1 || p[a] > kMaxDegree) throw bad("degree outside 1.." + std::to_string(kMaxDegree));
-    if (n[a] < p[a] + 1 || n[a] > kMaxControlPerAxis) throw bad("control count out of range");
     if (!(std::isfinite(lo[a]) && std::isfinite(hi[a]) && hi[a] > lo[a]))
       throw bad("domain box is empty or not finite");
   }
@@ -470,6 +499,60 @@ Model loadModel(const std::filesystem::path& path, std::uint32_t* formatVersion)
                                   std::istreambuf_iterator<char>());
   if (in.bad()) throw Error("cannot read " + path.string());
   return parseModel(bytes, path.string(), formatVersion);
+}
+
+std::int64_t loadedModelBytes(const ModelFileSummary& m) {
+  const std::int64_t points = m.controlCounts[0] * m.controlCounts[1] * m.controlCounts[2];
+  return 4 * points + (m.coder == ControlCoder::kZfp ? static_cast<std::int64_t>(m.fileBytes) : 0);
+}
+
+std::uint64_t maxModelHeadBytes() {
+  return kPrefixBytes + kMaxHeaderBytes;
+}
+
+ModelFileSummary summarizeModelHead(std::span<const std::uint8_t> head, std::uint64_t fileBytes,
+                                    const std::string& name) {
+  const ModelPrefix prefix = checkedPrefix(head, fileBytes, name);
+  if (head.size() < kPrefixBytes + prefix.headerBytes)
+    throw invalidModel(name, "header is incomplete");
+  ModelFileSummary out;
+  out.fileBytes = fileBytes;
+  try {
+    const json h =
+        json::parse(head.begin() + kPrefixBytes, head.begin() + kPrefixBytes + prefix.headerBytes);
+    out.degree = degreesOf(h);
+    out.controlCounts = integers3(h, "control_counts");
+    if (prefix.version >= 3) {
+      const json& coding = h.at("control_points").at("coding");
+      if (!coding.is_string()) throw invalidModel(name, "control-point coding must be a string");
+      out.coder = parseControlCoder(coding.get<std::string>());
+    }
+  } catch (const json::exception& e) {
+    throw invalidModel(name, std::string("header is corrupt (") + e.what() + ")");
+  }
+  checkShape(out.degree, out.controlCounts, name);
+  return out;
+}
+
+ModelFileSummary summarizeModelFile(const std::filesystem::path& path, std::uint64_t offset,
+                                    std::uint64_t bytes) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error("cannot open " + path.string() + ": " + std::strerror(errno));
+  auto readAt = [&](std::uint64_t at, std::uint64_t n) {
+    std::vector<std::uint8_t> out(static_cast<size_t>(n));
+    in.seekg(static_cast<std::streamoff>(offset + at));
+    in.read(reinterpret_cast<char*>(out.data()), static_cast<std::streamsize>(n));
+    out.resize(static_cast<size_t>(std::max<std::streamsize>(in.gcount(), 0)));
+    in.clear();
+    return out;
+  };
+  std::vector<std::uint8_t> head = readAt(0, std::min<std::uint64_t>(bytes, kPrefixBytes));
+  if (head.size() == kPrefixBytes && std::memcmp(head.data(), kMagic, sizeof(kMagic)) == 0) {
+    const std::uint64_t headerBytes =
+        std::min(readBytesAt<std::uint32_t>(head, sizeof(kMagic) + 4), kMaxHeaderBytes);
+    head = readAt(0, std::min<std::uint64_t>(bytes, kPrefixBytes + headerBytes));
+  }
+  return summarizeModelHead(head, bytes, path.string());
 }
 
 }  // namespace mfadvr

@@ -16,6 +16,7 @@
 #include <span>
 #include <string>
 
+#include "core/model/ControlCoding.h"
 #include "core/model/Model.h"
 
 namespace mfadvr {
@@ -32,6 +33,29 @@ Model parseModel(std::span<const std::uint8_t> bytes, const std::string& name = 
 // Writes atomically: a temporary file beside the target, flushed, then renamed over it.
 void saveModel(const Model& model, const std::filesystem::path& path);
 Model loadModel(const std::filesystem::path& path, std::uint32_t* formatVersion = nullptr);
+
+// What a model file's header says about the model's size, read without its control points: for
+// memory estimates before a model (or each block of a multi-block file) is loaded.
+struct ModelFileSummary {
+  Degree3 degree{};
+  Index3 controlCounts{};
+  ControlCoder coder = ControlCoder::kFloat32;
+  std::uint64_t fileBytes = 0;
+};
+// What the model holds once loaded: its control points as float32 and, for a lossy coding, the
+// coded bytes it keeps for writing the model again.
+std::int64_t loadedModelBytes(const ModelFileSummary& model);
+// Header bytes needed at most: the prefix and the longest header a reader accepts.
+std::uint64_t maxModelHeadBytes();
+// `head`: the first bytes of a model of `fileBytes` bytes, at least its prefix and header (or the
+// whole model). Checks what it reads (magic, version, header length, degrees, control counts) as
+// parseModel does; throws mfadvr::Error naming `name`.
+ModelFileSummary summarizeModelHead(std::span<const std::uint8_t> head, std::uint64_t fileBytes,
+                                    const std::string& name);
+// The model whose bytes lie at [offset, offset + bytes) of `path` (a whole .mfa file: 0 and its
+// size); reads only the prefix and the header.
+ModelFileSummary summarizeModelFile(const std::filesystem::path& path, std::uint64_t offset,
+                                    std::uint64_t bytes);
 
 std::int64_t modelFileSize(const Model& model);
 // Bytes of the model's control-point section: its kept coding, 4 per point when uncoded, else

@@ -7,9 +7,15 @@
 
 namespace mfadvr {
 
-// Memory the system can give this process now (Linux: MemAvailable of /proc/meminfo; else the
-// physical memory); 0 when unknown.
+// Memory the system can give this process now: the least of MemAvailable (/proc/meminfo; else
+// the physical memory), what the process's cgroup v2 limit leaves (memory.max - memory.current:
+// a container's or a batch job's limit) and the environment variable MFADVR_MEMORY_LIMIT (a
+// user's cap, e.g. "8G"; an invalid value is an Error); 0 when unknown.
 std::int64_t availableMemoryBytes();
+
+// "8G", "512M", "1.5e9": bytes (K, M, G, T are powers of 1000, as formatBytes prints them).
+// Throws mfadvr::Error for anything else, or for less than one byte.
+std::int64_t parseByteCount(const std::string& text);
 
 // The most memory this process has held so far (Linux: the peak resident set); 0 when unknown.
 std::int64_t peakResidentBytes();

@@ -1,0 +1,21 @@
+#pragma once
+// What rendering a model will hold in memory, from its file's header alone, so that a model too
+// large for the machine is refused before its blocks are read (MemoryBudget.h).
+#include <cstdint>
+#include <span>
+
+#include "core/model/ModelFile.h"
+
+namespace mfadvr {
+
+// Bytes a renderer holds for one model: the loaded model (loadedModelBytes: 4 B per control
+// point, and the coded bytes of a lossy coding) and for empty-space skipping two floats of value
+// range per knot-span cell (SpanRanges) and one flag per cell with the pyramid above them
+// (EmptySpaceFlags: under 1/7 more).
+std::int64_t modelRenderBytes(const ModelFileSummary& model);
+
+// A whole scene of models (one, or the blocks of a multi-block file): the sum of
+// modelRenderBytes plus, while a model is read, its file bytes once more (the largest).
+std::int64_t sceneRenderBytes(std::span<const ModelFileSummary> models);
+
+}  // namespace mfadvr

@@ -1,0 +1,47 @@
+// Memory figures used to refuse work before it starts: the byte counts a user may give
+// (MFADVR_MEMORY_LIMIT) and what rendering a model will hold.
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "core/render/RenderMemory.h"
+#include "core/util/Error.h"
+#include "core/util/MemoryBudget.h"
+
+namespace mfadvr {
+namespace {
+
+TEST(MemoryBudget, ByteCountsWithUnits) {
+  EXPECT_EQ(parseByteCount("8G"), 8'000'000'000);
+  EXPECT_EQ(parseByteCount("512m"), 512'000'000);
+  EXPECT_EQ(parseByteCount("100K"), 100'000);
+  EXPECT_EQ(parseByteCount("1.5e9"), 1'500'000'000);
+  EXPECT_EQ(parseByteCount("2T"), 2'000'000'000'000);
+  EXPECT_EQ(parseByteCount("4096"), 4096);
+  for (const char* bad : {"", "G", "-1", "0", "8X", "8GB", " 8G", "1e30", "nan"})
+    EXPECT_THROW(parseByteCount(bad), Error) << bad;
+}
+
+TEST(RenderMemory, ControlPointsRangesAndFlags) {
+  ModelFileSummary f32;
+  f32.degree = {3, 3, 3};
+  f32.controlCounts = {512, 512, 512};
+  f32.fileBytes = 4ull * 512 * 512 * 512 + 4096;
+  // float32 control points (4 B), two floats of range and a flag per cell (~9.1 B): the
+  // measured peak of rendering such a model was 13.1 B per control point (docs/benchmarks.md).
+  const double perPoint = static_cast<double>(modelRenderBytes(f32)) / (512.0 * 512 * 512);
+  EXPECT_GT(perPoint, 12.9);
+  EXPECT_LT(perPoint, 13.2);
+  // A zfp-coded model keeps its coded bytes besides the decoded points.
+  ModelFileSummary zfp = f32;
+  zfp.coder = ControlCoder::kZfp;
+  zfp.fileBytes = 1'000'000;
+  EXPECT_EQ(modelRenderBytes(zfp) - modelRenderBytes(f32), 1'000'000);
+  // A scene adds the largest file once (it is read whole before it is decoded).
+  const std::vector<ModelFileSummary> scene{f32, zfp};
+  EXPECT_EQ(sceneRenderBytes(scene), modelRenderBytes(f32) + modelRenderBytes(zfp) +
+                                         static_cast<std::int64_t>(f32.fileBytes));
+}
+
+}  // namespace
+}  // namespace mfadvr
