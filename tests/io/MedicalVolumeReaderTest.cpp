@@ -186,6 +186,24 @@ TEST(DicomReader, ReadsASeriesDirectoryInSlicePositionOrder) {
   EXPECT_TRUE(containsNote(g, "DICOM series of 3 slices"));
 }
 
+TEST(DicomReader, EmptyTypeOneValueIsAnError) {
+  // Found by fuzzing: VTK's reader took an empty Photometric Interpretation as a null string.
+  const fs::path dir = writeDicomSeries("ct-empty-photometric");
+  std::string slice = dicomSlice(0);
+  const std::string tag(
+      "\x28\x00\x04\x00"
+      "CS",
+      6);
+  const size_t at = slice.find(tag);
+  ASSERT_NE(at, std::string::npos);
+  const size_t length = static_cast<unsigned char>(slice[at + 6]);
+  slice.erase(at + 8, length);
+  slice[at + 6] = '\0';
+  std::ofstream(dir / "a.dcm", std::ios::binary) << slice;
+  expectError([&] { loadStructuredVolume(dir.string()); },
+              {(dir / "a.dcm").string(), "element (0028,0004) is empty"});
+}
+
 TEST(DicomReader, RejectsEmptyDirectoriesAndSingleFiles) {
   const fs::path empty = test::scratchDir() / "no-dicom";
   fs::remove_all(empty);

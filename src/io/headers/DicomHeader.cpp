@@ -27,6 +27,27 @@ struct DicomWalk {
   std::string problem;           // why the walk stopped early ("" when it did not)
 };
 
+// Type-1 attributes (never empty in a valid file) that VTK 9.1's DICOM reader takes the value of
+// without looking at its length: an empty one makes it dereference a null pointer (found by
+// fuzzing: an empty Photometric Interpretation ended the program).
+bool needsValue(std::uint32_t group, std::uint32_t element) {
+  static constexpr std::uint32_t kTags[][2] = {
+      {0x0002, 0x0010},  // transfer syntax
+      {0x0020, 0x0032},  // image position (patient)
+      {0x0020, 0x0037},  // image orientation (patient)
+      {0x0028, 0x0004},  // photometric interpretation
+      {0x0028, 0x0010},  // rows
+      {0x0028, 0x0011},  // columns
+      {0x0028, 0x0030},  // pixel spacing
+      {0x0028, 0x0100},  // bits allocated
+      {0x0028, 0x0103},  // pixel representation
+      {0x0028, 0x1052},  // rescale intercept
+      {0x0028, 0x1053},  // rescale slope
+  };
+  return std::any_of(std::begin(kTags), std::end(kTags),
+                     [&](const auto& t) { return t[0] == group && t[1] == element; });
+}
+
 DicomWalk walkDicom(std::istream& in, std::int64_t size) {
   DicomWalk w;
   std::int64_t pos = 132;
@@ -88,11 +109,16 @@ DicomWalk walkDicom(std::istream& in, std::int64_t size) {
                     grouped(std::max<std::int64_t>(0, size - valueAt)) + " follow";
       return w;
     }
+    char name[16];
+    std::snprintf(name, sizeof name, "(%04X,%04X)", group, element);
     if (valueAt + length > size) {
-      char name[16];
-      std::snprintf(name, sizeof name, "(%04X,%04X)", group, element);
       w.problem = std::string("element ") + name + " declares " + grouped(length) +
                   " bytes, past the end of the file";
+      return w;
+    }
+    if (length == 0 && needsValue(group, element)) {
+      w.problem = std::string("element ") + name +
+                  " is empty, but the image cannot be read without its value";
       return w;
     }
     unsigned char value[64] = {};
