@@ -160,18 +160,74 @@ std::array<int, 256> cellDimensions(vtkDataSet* data) {
   return dims;
 }
 
-// VTK's readers take a cell's type and its point list from separate arrays without checking
-// that they agree, so a "tetrahedron" may come with any number of points.
-void appendTets(vtkDataSet* data, const std::string& path, std::vector<Tetrahedron>& tets) {
+// Whether a 3-D cell of VTK type `type` can have n points. VTK's readers take a cell's type and
+// its point list from separate arrays without checking that they agree, and its filters
+// (vtkDataSetTriangleFilter) then read past the list or crash (found by fuzzing: a Lagrange
+// tetrahedron of 1 point). Higher-order (Lagrange, Bezier) cells have the point counts of their
+// order, the same along every axis unless a "HigherOrderDegrees" cell array says otherwise.
+bool pointCountFits(int type, vtkIdType n, bool anisotropicOrders) {
+  auto someOrder = [&](auto count) {
+    for (vtkIdType k = 1; k <= 64; ++k)
+      if (count(k) == n) return true;
+    return false;
+  };
+  switch (type) {
+    case VTK_TETRA:
+      return n == 4;
+    case VTK_VOXEL:
+    case VTK_HEXAHEDRON:
+      return n == 8;
+    case VTK_WEDGE:
+      return n == 6;
+    case VTK_PYRAMID:
+      return n == 5;
+    case VTK_PENTAGONAL_PRISM:
+      return n == 10;
+    case VTK_HEXAGONAL_PRISM:
+      return n == 12;
+    case VTK_QUADRATIC_TETRA:
+      return n == 10;
+    case VTK_QUADRATIC_HEXAHEDRON:
+      return n == 20;
+    case VTK_QUADRATIC_WEDGE:
+      return n == 15;
+    case VTK_QUADRATIC_PYRAMID:
+      return n == 13;
+    case VTK_TRIQUADRATIC_PYRAMID:
+      return n == 19;
+    case VTK_TRIQUADRATIC_HEXAHEDRON:
+      return n == 27;
+    case VTK_QUADRATIC_LINEAR_WEDGE:
+      return n == 12;
+    case VTK_BIQUADRATIC_QUADRATIC_WEDGE:
+      return n == 18;
+    case VTK_BIQUADRATIC_QUADRATIC_HEXAHEDRON:
+      return n == 24;
+    case VTK_LAGRANGE_TETRAHEDRON:
+    case VTK_BEZIER_TETRAHEDRON:
+      return someOrder([](vtkIdType k) { return (k + 1) * (k + 2) * (k + 3) / 6; });
+    case VTK_LAGRANGE_HEXAHEDRON:
+    case VTK_BEZIER_HEXAHEDRON:
+      return anisotropicOrders ? n >= 8
+                               : someOrder([](vtkIdType k) { return (k + 1) * (k + 1) * (k + 1); });
+    case VTK_LAGRANGE_WEDGE:
+    case VTK_BEZIER_WEDGE:
+      return anisotropicOrders
+                 ? n >= 6
+                 : someOrder([](vtkIdType k) { return (k + 1) * (k + 1) * (k + 2) / 2; });
+    default:
+      return n >= 4;  // polyhedra, convex point sets and newer types: at least a tetrahedron
+  }
+}
+
+// Every tetrahedron has its 4 points (pointCountFits, checked before).
+void appendTets(vtkDataSet* data, std::vector<Tetrahedron>& tets) {
   vtkNew<vtkIdList> ids;
   const vtkIdType cells = data->GetNumberOfCells();
   tets.reserve(tets.size() + static_cast<size_t>(cells));
   for (vtkIdType c = 0; c < cells; ++c) {
     if (data->GetCellType(c) != VTK_TETRA) continue;
     data->GetCellPoints(c, ids);
-    if (ids->GetNumberOfIds() != 4)
-      throw Error(path + ": cell " + std::to_string(c) + " is a tetrahedron with " +
-                  std::to_string(ids->GetNumberOfIds()) + " points (a tetrahedron has 4)");
     tets.push_back({ids->GetId(0), ids->GetId(1), ids->GetId(2), ids->GetId(3)});
   }
 }
@@ -229,9 +285,16 @@ ScatteredData meshDataOf(vtkDataSet* input, const std::string& path, const Field
   bool allTets = true;
   if (!vtkPolyData::SafeDownCast(data)) {
     const auto dims = cellDimensions(data);
+    const bool anisotropicOrders = data->GetCellData()->HasArray("HigherOrderDegrees") != 0;
+    vtkNew<vtkIdList> ids;
     for (vtkIdType c = 0; c < data->GetNumberOfCells(); ++c) {
       const int type = data->GetCellType(c);
       if (dims[type] != 3) continue;
+      data->GetCellPoints(c, ids);
+      if (!pointCountFits(type, ids->GetNumberOfIds(), anisotropicOrders))
+        throw Error(path + ": cell " + std::to_string(c) + " (VTK cell type " +
+                    std::to_string(type) + ") has " + std::to_string(ids->GetNumberOfIds()) +
+                    " points, which no cell of its type has");
       ++volumeCells;
       allTets = allTets && type == VTK_TETRA;
     }
@@ -243,7 +306,7 @@ ScatteredData meshDataOf(vtkDataSet* input, const std::string& path, const Field
   } else if (allTets && !vtkStructuredGrid::SafeDownCast(data) &&
              !vtkRectilinearGrid::SafeDownCast(data)) {
     out.kind = "tetrahedral mesh";
-    appendTets(data, path, out.tets);
+    appendTets(data, out.tets);
   } else {
     out.kind = vtkStructuredGrid::SafeDownCast(data)    ? "curvilinear grid"
                : vtkRectilinearGrid::SafeDownCast(data) ? "rectilinear grid"
@@ -255,7 +318,7 @@ ScatteredData meshDataOf(vtkDataSet* input, const std::string& path, const Field
     split->TetrahedraOnlyOn();
     split->Update();
     data = split->GetOutput();
-    appendTets(data, path, out.tets);
+    appendTets(data, out.tets);
   }
   if (capture.hasErrors())
     throw Error("cannot prepare the cells of " + path + ": " + capture.errorText());

@@ -492,11 +492,11 @@ TEST(ScatteredLoader, LegacyWordsInsideNumberBlocksAreErrors) {
   expectError([&] { loadScatteredData(path); }, {"cannot read " + path, "'CELLS' where value 3"});
 }
 
-TEST(ScatteredLoader, TetrahedronWithoutFourPointsIsAnError) {
-  // Found by fuzzing: VTK's XML reader accepts a cell of type 10 (tetrahedron) with 2 points.
-  const auto dir = test::scratchDir();
-  const auto path = writeFile(
-      dir / "two.vtu",
+// Two cells on five points (connectivity 0 1 2 3 | 1 2 3 4) with the given offsets and types.
+std::string twoCellGrid(const std::filesystem::path& path, const std::string& offsets,
+                        const std::string& types) {
+  return writeFile(
+      path,
       "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" "
       "byte_order=\"LittleEndian\">\n<UnstructuredGrid>\n<Piece NumberOfPoints=\"5\" "
       "NumberOfCells=\"2\">\n<PointData Scalars=\"f\">\n<DataArray type=\"Float32\" "
@@ -504,10 +504,28 @@ TEST(ScatteredLoader, TetrahedronWithoutFourPointsIsAnError) {
       "<DataArray type=\"Float32\" NumberOfComponents=\"3\" format=\"ascii\">0 0 0 1 0 0 0 "
       "1 0 0 0 1 1 1 1</DataArray>\n</Points>\n<Cells>\n<DataArray type=\"Int64\" "
       "Name=\"connectivity\" format=\"ascii\">0 1 2 3 1 2 3 4</DataArray>\n<DataArray "
-      "type=\"Int64\" Name=\"offsets\" format=\"ascii\">2 8</DataArray>\n<DataArray "
-      "type=\"UInt8\" Name=\"types\" format=\"ascii\">10 10</DataArray>\n</Cells>\n"
-      "</Piece>\n</UnstructuredGrid>\n</VTKFile>\n");
-  expectError([&] { loadScatteredData(path); }, {path, "cell 0 is a tetrahedron with 2 points"});
+      "type=\"Int64\" Name=\"offsets\" format=\"ascii\">" +
+          offsets + "</DataArray>\n<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">" +
+          types + "</DataArray>\n</Cells>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n");
+}
+
+TEST(ScatteredLoader, TetrahedronWithoutFourPointsIsAnError) {
+  // Found by fuzzing: VTK's XML reader accepts a cell of type 10 (tetrahedron) with 2 points.
+  const auto path = twoCellGrid(test::scratchDir() / "two.vtu", "2 8", "10 10");
+  expectError([&] { loadScatteredData(path); }, {path, "has 2 points, which no cell of its type"});
+}
+
+TEST(ScatteredLoader, CellWithThePointsOfNoCellOfItsTypeIsAnError) {
+  // Found by fuzzing: a Lagrange tetrahedron (type 71) of 1 point crashed VTK's tetrahedralizer.
+  const auto dir = test::scratchDir();
+  const auto one = twoCellGrid(dir / "lagrange1.vtu", "1 8", "71 10");
+  expectError([&] { loadScatteredData(one); },
+              {one, "cell 0 (VTK cell type 71) has 1 points, which no cell of its type has"});
+  const auto pyramid = twoCellGrid(dir / "pyramid4.vtu", "4 8", "14 10");
+  expectError([&] { loadScatteredData(pyramid); }, {pyramid, "cell 0 (VTK cell type 14) has 4"});
+  // A first-order Lagrange tetrahedron has the 4 points of a linear one: it loads.
+  const ScatteredData ok = loadScatteredData(twoCellGrid(dir / "lagrange4.vtu", "4 8", "71 10"));
+  EXPECT_EQ(ok.inputCells, 2);
 }
 
 template <typename T>
