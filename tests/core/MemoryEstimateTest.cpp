@@ -38,6 +38,12 @@ TEST(RenderMemory, ControlPointsRangesAndFlags) {
   zfp.fileBytes = 1'000'000;
   EXPECT_EQ(modelRenderBytes(zfp) - modelRenderBytes(f32), 1'000'000);
   // A scene adds the largest file once (it is read whole before it is decoded).
+  // Headers that claim the most control points a file may name do not wrap around.
+  ModelFileSummary huge = f32;
+  huge.controlCounts = {1 << 20, 1 << 20, 1 << 20};
+  huge.degree = {1, 1, 1};
+  const std::vector<ModelFileSummary> hugeScene(4, huge);
+  EXPECT_GT(sceneRenderBytes(hugeScene), std::int64_t{1} << 61);
   const std::vector<ModelFileSummary> scene{f32, zfp};
   EXPECT_EQ(sceneRenderBytes(scene), modelRenderBytes(f32) + modelRenderBytes(zfp) +
                                          static_cast<std::int64_t>(f32.fileBytes));

@@ -506,10 +506,6 @@ std::int64_t loadedModelBytes(const ModelFileSummary& m) {
   return 4 * points + (m.coder == ControlCoder::kZfp ? static_cast<std::int64_t>(m.fileBytes) : 0);
 }
 
-std::uint64_t maxModelHeadBytes() {
-  return kPrefixBytes + kMaxHeaderBytes;
-}
-
 ModelFileSummary summarizeModelHead(std::span<const std::uint8_t> head, std::uint64_t fileBytes,
                                     const std::string& name) {
   const ModelPrefix prefix = checkedPrefix(head, fileBytes, name);

@@ -45,8 +45,6 @@ struct ModelFileSummary {
 // What the model holds once loaded: its control points as float32 and, for a lossy coding, the
 // coded bytes it keeps for writing the model again.
 std::int64_t loadedModelBytes(const ModelFileSummary& model);
-// Header bytes needed at most: the prefix and the longest header a reader accepts.
-std::uint64_t maxModelHeadBytes();
 // `head`: the first bytes of a model of `fileBytes` bytes, at least its prefix and header (or the
 // whole model). Checks what it reads (magic, version, header length, degrees, control counts) as
 // parseModel does; throws mfadvr::Error naming `name`.

@@ -1,20 +1,30 @@
 #include "core/render/RenderMemory.h"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 
 namespace mfadvr {
 
+namespace {
+// Headers not yet checked against their files may claim 2^60 control points: sums saturate here
+// instead of wrapping around.
+constexpr std::int64_t kCap = std::numeric_limits<std::int64_t>::max() / 4;
+}  // namespace
+
 std::int64_t modelRenderBytes(const ModelFileSummary& m) {
-  std::int64_t cells = 1;
-  for (int a = 0; a < 3; ++a) cells *= std::max<std::int64_t>(m.controlCounts[a] - m.degree[a], 1);
-  const std::int64_t flags = cells + cells / 7 + 1;
-  return loadedModelBytes(m) + 2 * 4 * cells + flags;
+  double cells = 1.0;
+  for (int a = 0; a < 3; ++a)
+    cells *= static_cast<double>(std::max<std::int64_t>(m.controlCounts[a] - m.degree[a], 1));
+  const double flags = cells + std::floor(cells / 7.0) + 1.0;
+  const double bytes = static_cast<double>(loadedModelBytes(m)) + 8.0 * cells + flags;
+  return bytes < static_cast<double>(kCap) ? static_cast<std::int64_t>(bytes) : kCap;
 }
 
 std::int64_t sceneRenderBytes(std::span<const ModelFileSummary> models) {
   std::int64_t total = 0, largestFile = 0;
   for (const ModelFileSummary& m : models) {
-    total += modelRenderBytes(m);
+    total = std::min(kCap, total + modelRenderBytes(m));
     largestFile = std::max(largestFile, static_cast<std::int64_t>(m.fileBytes));
   }
   return total + largestFile;
