@@ -275,6 +275,23 @@ TEST(VtiReader, CellDataOnlyIsReadAtTheCellCentres) {
               {path, "point data", "cell data: 'phi'"});
 }
 
+TEST(VtiReader, ExtentsOutsideTheWholeExtentAreErrors) {
+  // Found by fuzzing: VTK's reader copied a piece past its WholeExtent from address 0.
+  const auto dir = test::scratchDir();
+  const std::string good = cellOnlyVtiText();
+  std::string outside = good;
+  outside.replace(outside.find("<Piece Extent=\"0 "), 18, "<Piece Extent=\"1 ");
+  outside.replace(outside.find(" 0 2\">\n<PointData>"), 4, " 0 3");
+  const auto pastEnd = writeFile(dir / "piece-outside.vti", outside);
+  expectError([&] { loadStructuredVolume(pastEnd); },
+              {pastEnd, "a piece's Extent is not six integers inside the WholeExtent"});
+  std::string reversed = good;
+  reversed.replace(reversed.find("WholeExtent=\"0 "), 15, "WholeExtent=\"10 ");
+  const auto empty = writeFile(dir / "whole-reversed.vti", reversed);
+  expectError([&] { loadStructuredVolume(empty); },
+              {empty, "WholeExtent has a maximum below its minimum along x"});
+}
+
 TEST(VtiReader, FlatImageIsTwoDimensionalData) {
   const auto path = writeFile(test::scratchDir() / "flat.vti", cellOnlyVtiText(1));
   expectError([&] { loadStructuredVolume(path); }, {path, "10 x 4 x 1 points", "2-D data"});

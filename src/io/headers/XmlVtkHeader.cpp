@@ -20,10 +20,13 @@ using namespace headers;
 
 namespace {
 
-// The integers of attribute `name` in the first element that has it, or empty.
-std::vector<std::int64_t> attributeCounts(const std::string& text, const std::string& name) {
+// The integers of attribute `name` in the first element that has it at or after `from`, or
+// empty; `next` (optional) receives where to look for the next one (npos: none).
+std::vector<std::int64_t> attributeCounts(const std::string& text, const std::string& name,
+                                          size_t from = 0, size_t* next = nullptr) {
   const std::string key = " " + name + "=\"";
-  const auto at = text.find(key);
+  const auto at = text.find(key, from);
+  if (next) *next = at == std::string::npos ? std::string::npos : at + key.size();
   if (at == std::string::npos) return {};
   const auto end = text.find('"', at + key.size());
   if (end == std::string::npos) return {};
@@ -69,8 +72,29 @@ void checkXmlVtkText(const std::string& head, const std::string& tail, const std
     std::vector<std::int64_t> dims;
     for (int a = 0; a < 3; ++a) {
       const std::int64_t lo = extent[2 * a], hi = extent[2 * a + 1];
-      if (hi < lo || hi - lo >= std::numeric_limits<std::int64_t>::max() / 2) return;
+      if (hi < lo)
+        throw Error("cannot read " + path +
+                    " as VTK XML: its WholeExtent has a maximum below its "
+                    "minimum along " +
+                    "xyz"[a]);
+      if (hi - lo >= std::numeric_limits<std::int64_t>::max() / 2) return;
       dims.push_back(hi - lo + 1);
+    }
+    // VTK's structured readers copy each piece's extent into the whole one without checking
+    // that it lies inside (found by fuzzing: a piece past the whole extent made them copy
+    // memory from address 0).
+    size_t from = 0;
+    for (;;) {
+      const auto piece = attributeCounts(head, "Extent", from, &from);
+      if (from == std::string::npos) break;
+      bool inside = piece.size() == 6;
+      for (int a = 0; inside && a < 3; ++a)
+        inside = extent[2 * a] <= piece[2 * a] && piece[2 * a] <= piece[2 * a + 1] &&
+                 piece[2 * a + 1] <= extent[2 * a + 1];
+      if (!inside)
+        throw Error("cannot read " + path +
+                    " as VTK XML: a piece's Extent is not six integers "
+                    "inside the WholeExtent");
     }
     // A field of the image has a value per point or per cell: at least one byte per cell.
     std::vector<std::int64_t> cells;
