@@ -11,11 +11,16 @@
 #include "app/SceneLoader.h"
 #include "core/image/FloatImageFile.h"
 #include "core/image/PngFile.h"
+#include "core/render/kernel/EmptySpaceProfile.h"
 #include "core/util/Error.h"
 #include "device/RenderDevice.h"
 #include "io/ScatteredLoader.h"
 #include "io/VolumeLoader.h"
 #include "vtkrender/VtkBaselineRenderer.h"
+
+#if MFADVR_EMPTY_SPACE_PROFILE
+#include <tbb/info.h>
+#endif
 
 namespace mfadvr::app {
 
@@ -234,9 +239,29 @@ Command addRenderCommand(CLI::App& app) {
     MethodRenderStats stats;
     Image image;
     std::vector<double> frameSeconds;
+#if MFADVR_EMPTY_SPACE_PROFILE
+    // The frames after the first (all of them when there is one): cycles of the rays, and the
+    // time-stamp counter's rate measured over the same frames.
+    EmptySpaceCycles profile;
+    std::int64_t profileTicks = 0;
+#endif
     for (int i = 0; i < frames; ++i) {
+#if MFADVR_EMPTY_SPACE_PROFILE
+      const std::int64_t ticks = cycleCount();
+      EmptySpaceProfile::take();
+#endif
       image = renderMethod(scene.view(), spec, settings, &stats);
       frameSeconds.push_back(stats.seconds);
+#if MFADVR_EMPTY_SPACE_PROFILE
+      if (frames == 1 || i > 0) {
+        const EmptySpaceCycles c = EmptySpaceProfile::take();
+        profile.ray += c.ray;
+        profile.marching += c.marching;
+        profile.transparent += c.transparent;
+        profile.jumps += c.jumps;
+        profileTicks += cycleCount() - ticks;
+      }
+#endif
     }
     const double firstFrame = frameSeconds.front();
     const double frameTime =
@@ -277,6 +302,13 @@ Command addRenderCommand(CLI::App& app) {
       j["rays_terminated_early"] = stats.terminated;
       j["samples_skipped"] = stats.skipped;
       j["samples_per_second"] = frameTime > 0 ? stats.samples / frameTime : 0.0;
+#if MFADVR_EMPTY_SPACE_PROFILE
+      j["profile_cycles"] = {{"rays", profile.ray},
+                             {"marching", profile.marching},
+                             {"transparent_samples", profile.transparent},
+                             {"jumps", profile.jumps},
+                             {"frames", frames == 1 ? 1 : frames - 1}};
+#endif
       std::cout << j.dump(2) << "\n";
     } else {
       std::printf("%s: %s, %dx%d, step %.4g, %s\n", o->output.c_str(), label.c_str(),
@@ -291,6 +323,26 @@ Command addRenderCommand(CLI::App& app) {
       if (scene.encodeSeconds > 0) std::printf(", encode %.3f s", scene.encodeSeconds);
       if (stats.setupSeconds > 0.001) std::printf(", setup %.3f s", stats.setupSeconds);
       std::printf(", total %.3f s\n  on the %s\n", total, device.description.c_str());
+#if MFADVR_EMPTY_SPACE_PROFILE
+      if (profile.ray > 0) {
+        // Thread time of the frames: their ticks (wall time at the counter's rate) per thread.
+        const double threadTicks =
+            static_cast<double>(profileTicks) *
+            (settings.threads > 0 ? settings.threads : tbb::info::default_concurrency());
+        const double ray = static_cast<double>(profile.ray);
+        std::printf(
+            "  profile of the rays: marching (steps, empty-space checks, jumps) %.1f %%, "
+            "evaluating transparent samples %.1f %%, together %.1f %% of the rays' time; the "
+            "rays %.1f %% of the frames' thread time\n",
+            100.0 * profile.marching / ray, 100.0 * profile.transparent / ray,
+            100.0 * (profile.marching + profile.transparent) / ray, 100.0 * ray / threadTicks);
+        const double measured = frames == 1 ? 1.0 : frames - 1.0;
+        std::printf("  %.1f M jumps over empty space per frame, %.2f per ray that hits the box\n",
+                    static_cast<double>(profile.jumps) / measured / 1e6,
+                    static_cast<double>(profile.jumps) / measured /
+                        static_cast<double>(std::max<std::int64_t>(stats.raysHit, 1)));
+      }
+#endif
     }
     return 0;
   };

@@ -63,6 +63,9 @@ void forEachTile(const RenderSettings& s, const TileFunction& tile, RenderStats*
       hits += c.hits;
       terminated += c.terminated;
       skipped += c.skipped;
+#if MFADVR_EMPTY_SPACE_PROFILE
+      EmptySpaceProfile::add(c.cycles);
+#endif
     });
   };
   if (s.threads > 0) {

@@ -134,6 +134,9 @@ MFADVR_HD MFADVR_INLINE void integrateRay(const RayParams& rp, Sampler& sampler,
       const float df[3] = {float(d[0]), float(d[1]), float(d[2])};
       prepareRayShading(rp.shading, df, rayShading);
     }
+#if MFADVR_EMPTY_SPACE_PROFILE
+    const std::int64_t rayStart = cycleCount();
+#endif
     sampler.beginRay(o, d);
     constexpr int K = Sampler::kBatch;
     std::int64_t k = 0;
@@ -146,6 +149,9 @@ MFADVR_HD MFADVR_INLINE void integrateRay(const RayParams& rp, Sampler& sampler,
       std::int64_t skippedBefore[K];
       std::int64_t skipped = 0;
       int n = 0;
+#if MFADVR_EMPTY_SPACE_PROFILE
+      const std::int64_t marchStart = cycleCount();
+#endif
       while (n < K && k < steps) {
         double length;
         const double t = rayStep(static_cast<double>(k), t0, tEnter, tExit, dt, length);
@@ -172,6 +178,9 @@ MFADVR_HD MFADVR_INLINE void integrateRay(const RayParams& rp, Sampler& sampler,
                                                            : steps;
             skipped += 1 + (next - k);
             k = next;
+#if MFADVR_EMPTY_SPACE_PROFILE
+            ++counters.cycles.jumps;
+#endif
             continue;
           }
         }
@@ -182,7 +191,17 @@ MFADVR_HD MFADVR_INLINE void integrateRay(const RayParams& rp, Sampler& sampler,
         ++n;
       }
       float values[K];
+#if MFADVR_EMPTY_SPACE_PROFILE
+      const std::int64_t evaluateStart = cycleCount();
+      counters.cycles.marching += evaluateStart - marchStart;
       if (n > 0) sampler.evaluate(n, values);
+      const std::int64_t evaluateCycles = cycleCount() - evaluateStart;
+      int transparent = 0;
+      for (int i = 0; i < n; ++i) transparent += !(rp.tf.classify(values[i]).alpha > 0.0f);
+      if (n > 0) counters.cycles.transparent += evaluateCycles * transparent / n;
+#else
+      if (n > 0) sampler.evaluate(n, values);
+#endif
       bool stopped = false;
       for (int i = 0; i < n && !stopped; ++i) {
         counters.skipped += skippedBefore[i];
@@ -208,6 +227,9 @@ MFADVR_HD MFADVR_INLINE void integrateRay(const RayParams& rp, Sampler& sampler,
       }
       if (!stopped) counters.skipped += skipped;
     }
+#if MFADVR_EMPTY_SPACE_PROFILE
+    counters.cycles.ray += cycleCount() - rayStart;
+#endif
   }
   overBackground(rp, red, green, blue, alpha, out);
 }

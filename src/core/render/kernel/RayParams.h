@@ -6,6 +6,7 @@
 #include <cstdint>
 
 #include "core/render/kernel/CameraRays.h"
+#include "core/render/kernel/EmptySpaceProfile.h"
 #include "core/render/kernel/ShadingKernel.h"
 #include "core/render/kernel/TransferFunctionView.h"
 
@@ -32,6 +33,9 @@ struct RayCounters {
   std::int64_t hits = 0;        // rays that crossed the box
   std::int64_t terminated = 0;  // rays stopped early
   std::int64_t skipped = 0;     // samples passed over by empty-space skipping
+#if MFADVR_EMPTY_SPACE_PROFILE
+  EmptySpaceCycles cycles;  // the profiling build's measurements (EmptySpaceProfile.h)
+#endif
 };
 
 }  // namespace mfadvr
