@@ -63,10 +63,6 @@ void takeScatteredFacts(LoadedScene& s, const ScatteredData& data, const EncodeO
   }
 }
 
-}  // namespace
-
-namespace {
-
 std::uint64_t fileBytes(const std::string& path) {
   std::error_code ec;
   const std::uintmax_t size = std::filesystem::file_size(path, ec);
