@@ -182,14 +182,10 @@ Command addDecodeCommand(CLI::App& app) {
                   ": is a multi-block model; decode reads single models (decoding blocks onto "
                   "one grid is not supported yet)");
     // The file is read whole before it is decoded; slabs of up to 2^24 doubles go to the output.
-    std::error_code ec;
-    const std::uintmax_t fileBytes = std::filesystem::file_size(o->model, ec);
-    if (!ec) {
-      const ModelFileSummary summary = summarizeModelFile(o->model, 0, fileBytes);
-      requireMemory(loadedModelBytes(summary) + static_cast<std::int64_t>(fileBytes) +
-                        (std::int64_t(8) << 24),
-                    "decoding " + o->model);
-    }
+    const ModelFileSummary summary = summarizeModelFile(o->model);
+    requireMemory(loadedModelBytes(summary) + static_cast<std::int64_t>(summary.fileBytes) +
+                      (std::int64_t(8) << 24),
+                  "decoding " + o->model);
     const Model model = loadModel(o->model);
     const std::string ext = lower(std::filesystem::path(o->output).extension().string());
     if (ext != ".nrrd" && ext != ".nhdr" && ext != ".raw" && ext != ".vti")

@@ -254,11 +254,7 @@ Command addRenderCommand(CLI::App& app) {
       frameSeconds.push_back(stats.seconds);
 #if MFADVR_EMPTY_SPACE_PROFILE
       if (frames == 1 || i > 0) {
-        const EmptySpaceCycles c = EmptySpaceProfile::take();
-        profile.ray += c.ray;
-        profile.marching += c.marching;
-        profile.transparent += c.transparent;
-        profile.jumps += c.jumps;
+        profile += EmptySpaceProfile::take();
         profileTicks += cycleCount() - ticks;
       }
 #endif

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
-#include <filesystem>
 #include <iostream>
 
 #include "app/OptionParsing.h"
@@ -61,13 +60,6 @@ void takeScatteredFacts(LoadedScene& s, const ScatteredData& data, const EncodeO
     const std::int64_t n = std::max(counts[a], mask[a]);
     s.spacing[a] = (s.boxMax[a] - s.boxMin[a]) / double(std::max<std::int64_t>(n - 1, 1));
   }
-}
-
-std::uint64_t fileBytes(const std::string& path) {
-  std::error_code ec;
-  const std::uintmax_t size = std::filesystem::file_size(path, ec);
-  if (ec) throw Error("cannot read " + path + ": " + ec.message());
-  return size;
 }
 
 // Refuses, before anything is loaded, a model (or the blocks of one) that the renderer could
@@ -129,7 +121,7 @@ LoadedScene loadScene(const std::string& input, const SceneNeeds& needs,
     return s;
   }
   if (isModelFile(input)) {
-    requireRenderMemory(input, {summarizeModelFile(input, 0, fileBytes(input))});
+    requireRenderMemory(input, {summarizeModelFile(input)});
     s.model = loadModel(input);
     takeModelFacts(s);
     const Provenance& p = s.model->provenance();

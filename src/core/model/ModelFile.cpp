@@ -551,4 +551,11 @@ ModelFileSummary summarizeModelFile(const std::filesystem::path& path, std::uint
   return summarizeModelHead(head, bytes, path.string());
 }
 
+ModelFileSummary summarizeModelFile(const std::filesystem::path& path) {
+  std::error_code ec;
+  const std::uintmax_t size = std::filesystem::file_size(path, ec);
+  if (ec) throw Error("cannot open " + path.string() + ": " + ec.message());
+  return summarizeModelFile(path, 0, size);
+}
+
 }  // namespace mfadvr

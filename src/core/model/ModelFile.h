@@ -54,6 +54,8 @@ ModelFileSummary summarizeModelHead(std::span<const std::uint8_t> head, std::uin
 // size); reads only the prefix and the header.
 ModelFileSummary summarizeModelFile(const std::filesystem::path& path, std::uint64_t offset,
                                     std::uint64_t bytes);
+// A whole .mfa file.
+ModelFileSummary summarizeModelFile(const std::filesystem::path& path);
 
 std::int64_t modelFileSize(const Model& model);
 // Bytes of the model's control-point section: its kept coding, 4 per point when uncoded, else

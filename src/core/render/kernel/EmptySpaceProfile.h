@@ -25,6 +25,14 @@ struct EmptySpaceCycles {
   std::int64_t marching = 0;     // steps, empty-space checks and jumps between evaluations
   std::int64_t transparent = 0;  // evaluating samples whose opacity is 0
   std::int64_t jumps = 0;        // empty-space checks that found the sample's cell empty
+
+  EmptySpaceCycles& operator+=(const EmptySpaceCycles& o) {
+    ray += o.ray;
+    marching += o.marching;
+    transparent += o.transparent;
+    jumps += o.jumps;
+    return *this;
+  }
 };
 
 #if MFADVR_EMPTY_SPACE_PROFILE

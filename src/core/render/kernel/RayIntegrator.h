@@ -196,9 +196,7 @@ MFADVR_HD MFADVR_INLINE void integrateRay(const RayParams& rp, Sampler& sampler,
       counters.cycles.marching += evaluateStart - marchStart;
       if (n > 0) sampler.evaluate(n, values);
       const std::int64_t evaluateCycles = cycleCount() - evaluateStart;
-      int transparent = 0;
-      for (int i = 0; i < n; ++i) transparent += !(rp.tf.classify(values[i]).alpha > 0.0f);
-      if (n > 0) counters.cycles.transparent += evaluateCycles * transparent / n;
+      int transparent = 0;  // counted as the samples are classified below
 #else
       if (n > 0) sampler.evaluate(n, values);
 #endif
@@ -207,7 +205,12 @@ MFADVR_HD MFADVR_INLINE void integrateRay(const RayParams& rp, Sampler& sampler,
         counters.skipped += skippedBefore[i];
         ++counters.samples;
         const TfEntry tf = rp.tf.classify(values[i]);
-        if (!(tf.alpha > 0.0f)) continue;
+        if (!(tf.alpha > 0.0f)) {
+#if MFADVR_EMPTY_SPACE_PROFILE
+          ++transparent;
+#endif
+          continue;
+        }
         const double length = lengths[i];
         const float a = length == dt
                             ? tf.alphaStep
@@ -226,6 +229,9 @@ MFADVR_HD MFADVR_INLINE void integrateRay(const RayParams& rp, Sampler& sampler,
         }
       }
       if (!stopped) counters.skipped += skipped;
+#if MFADVR_EMPTY_SPACE_PROFILE
+      if (n > 0) counters.cycles.transparent += evaluateCycles * transparent / n;
+#endif
     }
 #if MFADVR_EMPTY_SPACE_PROFILE
     counters.cycles.ray += cycleCount() - rayStart;
