@@ -10,8 +10,8 @@
 //   - ASCII data: at least 2 bytes per value (a digit and a separator);
 //   - compressed data: at most 1032 bytes per compressed byte (the deflate limit).
 // A mismatch throws mfadvr::Error naming the file, what the header declares and what the file
-// holds. Headers the check cannot interpret (exotic encodings, file lists) are left to the
-// reader, which reports its own errors.
+// holds. Headers the check cannot interpret (exotic encodings) are left to the reader, which
+// reports its own errors.
 #include <cstdint>
 #include <functional>
 #include <istream>
@@ -53,7 +53,8 @@ std::vector<double> readAsciiValues(const std::string& path, std::int64_t offset
                                     std::int64_t count);
 
 // MetaImage (.mha, or .mhd + data file): DimSize, ElementType, channels, compression; also
-// that a detached data file exists.
+// that a detached data file exists, and every file of a file series (LIST, or a slice-number
+// pattern) with its slice.
 DeclaredPayload checkMetaImageDeclaredSize(const std::string& path);
 
 // Legacy VTK: DIMENSIONS / POINT_DATA and the first SCALARS block of structured points, or the
