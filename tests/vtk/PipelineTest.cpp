@@ -8,6 +8,7 @@
 #include <vtkCommand.h>
 #include <vtkDataSetTriangleFilter.h>
 #include <vtkDoubleArray.h>
+#include <vtkFieldData.h>
 #include <vtkImageData.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
@@ -15,12 +16,16 @@
 #include <vtkPolyData.h>
 #include <vtkUnstructuredGrid.h>
 
+#include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <random>
 #include <string>
 
 #include "TestSupport.h"
 #include "VtkSceneFixture.h"
+#include "core/encode/PieceEncoder.h"
+#include "core/model/BlockModelFile.h"
 #include "core/model/ModelFile.h"
 #include "vtkMFAEncoder.h"
 #include "vtkMFAReader.h"
@@ -88,6 +93,49 @@ TEST(MFAReader, ReportsBadFilesWithoutOutput) {
     EXPECT_FALSE(log.text.empty()) << path;
     EXPECT_FALSE(vtkMFAReader::CanReadFile(path.c_str()) && expected != "truncated") << path;
   }
+}
+
+// The reader checks what rendering a model will hold before it reads it (each MPI rank its own
+// blocks), against MFADVR_MEMORY_LIMIT here.
+TEST(MFAReader, RefusesModelsTheMemoryCannotHold) {
+  const auto dir = scratchDir();
+  const auto single = dir / "ml.mfa", blocks = dir / "ml-blocks.mfa";
+  saveModel(*marschnerLobbModel(), single);
+  saveBlockModels(encodeStructuredBlocks(mlGrid(33), {2, 1, 1}, -1, EncodeOptions{}), {2, 1, 1},
+                  blocks);
+  struct Limit {
+    explicit Limit(const char* bytes) { setenv("MFADVR_MEMORY_LIMIT", bytes, 1); }
+    ~Limit() { unsetenv("MFADVR_MEMORY_LIMIT"); }
+  };
+  const auto read = [](const std::filesystem::path& path, bool image, int piece, int pieces) {
+    vtkNew<vtkMFAReader> reader;
+    ErrorLog log(reader);
+    reader->SetFileName(path.c_str());
+    reader->SetOutputImageData(image);
+    reader->UpdatePiece(piece, pieces, 0);
+    const bool model = image ? vtkImageData::SafeDownCast(reader->GetOutputDataObject(0))
+                                       ->GetFieldData()
+                                       ->GetNumberOfArrays() > 0
+                             : reader->GetOutput()->HasModel();
+    return std::make_pair(model, log.text);
+  };
+  {
+    const Limit tight("1K");
+    for (bool image : {false, true}) {
+      const auto [model, errors] = read(single, image, 0, 1);
+      EXPECT_FALSE(model);
+      EXPECT_NE(errors.find("reading " + single.string()), std::string::npos) << errors;
+      EXPECT_NE(errors.find("1 KB are available"), std::string::npos) << errors;
+    }
+    const auto [model, errors] = read(blocks, true, 1, 2);
+    EXPECT_FALSE(model);
+    EXPECT_NE(errors.find("blocks 1..1 of " + blocks.string() + " in piece 1 of 2"),
+              std::string::npos)
+        << errors;
+  }
+  const Limit roomy("1G");
+  EXPECT_TRUE(read(single, false, 0, 1).first);
+  EXPECT_TRUE(read(blocks, true, 1, 2).first);
 }
 
 TEST(MFAEncoder, FitsImageDataWithTheGivenControlCounts) {

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <vector>
 
+#include <cstdio>
 #include <cstring>
 #include <exception>
 #include <filesystem>
@@ -22,6 +23,8 @@
 #include "core/model/BlockModelFile.h"
 #include "core/model/Model.h"
 #include "core/model/ModelFile.h"
+#include "core/render/RenderMemory.h"
+#include "core/util/MemoryBudget.h"
 
 vtkStandardNewMacro(vtkMFAReader);
 
@@ -101,6 +104,21 @@ std::vector<Share> shareOf(int piece, int pieces, const std::vector<mfadvr::Doma
   return out;
 }
 
+// Refuses, before they are read, models that this process could not hold while it renders them
+// (RenderMemory.h): with MPI each rank checks its own share of the blocks.
+void requireModelMemory(const std::vector<mfadvr::ModelFileSummary>& models,
+                        const std::string& what) {
+  double points = 0.0;
+  for (const auto& m : models) {
+    points += static_cast<double>(m.controlCounts[0]) * static_cast<double>(m.controlCounts[1]) *
+              static_cast<double>(m.controlCounts[2]);
+  }
+  char count[32];
+  std::snprintf(count, sizeof count, "%.3g", points);
+  mfadvr::requireMemory(mfadvr::sceneRenderBytes(models),
+                        "reading " + what + " (" + count + " control points)");
+}
+
 // Whether the regions tile their bounding box (their volumes add up to its volume): then a
 // rank's share of blocks is one box, as ordered compositing across ranks assumes.
 bool regionsFormABox(const std::vector<mfadvr::vtkglue::CarriedModel>& models) {
@@ -135,6 +153,7 @@ const vtkMFAReader::Layout& vtkMFAReader::ReadLayout() {
     step = mfadvr::loadBlock(this->FileName, layout->index, 0).dataSpacing();
     layout->whole = mfadvr::vtkglue::wholeCarrierGrid(layout->index.box, step);
   } else {
+    requireModelMemory({mfadvr::summarizeModelFile(this->FileName)}, this->FileName);
     layout->single = std::make_shared<const mfadvr::Model>(mfadvr::loadModel(this->FileName));
     layout->regions.push_back(layout->single->domain());
     layout->whole =
@@ -186,6 +205,7 @@ int vtkMFAReader::RequestData(vtkInformation*, vtkInformationVector**,
                          "ParaView does) or render it with `mfadvr render`");
         return 0;
       }
+      requireModelMemory({mfadvr::summarizeModelFile(this->FileName)}, this->FileName);
       this->SetOutputModel(
           outInfo, std::make_shared<const mfadvr::Model>(mfadvr::loadModel(this->FileName)));
       return 1;
@@ -195,6 +215,18 @@ int vtkMFAReader::RequestData(vtkInformation*, vtkInformationVector**,
         shareOf(std::max(piece, 0), std::max(pieces, 1), layout.regions, layout.whole);
     if (share.empty()) {
       return 1;  // a piece without a block (more pieces than the blocks can be cut into)
+    }
+    if (layout.multiBlock) {
+      const std::vector<mfadvr::ModelFileSummary> blocks =
+          mfadvr::summarizeBlocks(this->FileName, layout.index);
+      std::vector<mfadvr::ModelFileSummary> mine;
+      for (const Share& s : share) {
+        mine.push_back(blocks[s.block]);
+      }
+      requireModelMemory(mine, "blocks " + std::to_string(share.front().block) + ".." +
+                                   std::to_string(share.back().block) + " of " + this->FileName +
+                                   " in piece " + std::to_string(piece) + " of " +
+                                   std::to_string(pieces));
     }
     std::vector<mfadvr::vtkglue::CarriedModel> models;
     mfadvr::DomainBox all = share.front().region;
