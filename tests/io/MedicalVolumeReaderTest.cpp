@@ -154,6 +154,14 @@ TEST(NiftiReader, RejectsBrokenFilesWithTheReason) {
   const std::string garbage = (dir / "garbage.nii").string();
   std::ofstream(garbage, std::ios::binary) << std::string(600, 'x');
   expectError([&] { loadStructuredVolume(garbage); }, {"cannot read " + garbage, "NIfTI"});
+  // Found by fuzzing: a NIfTI-1 magic with a wrong sizeof_hdr and datatype reached VTK's
+  // reader, whose datatype lookup ran off its table.
+  std::string wrongSize = good;
+  wrongSize.replace(0, 4, std::string("\x5c\x01\x00\x2f", 4));
+  const std::string sized = (dir / "wrong-size.nii").string();
+  std::ofstream(sized, std::ios::binary) << wrongSize;
+  expectError([&] { loadStructuredVolume(sized); },
+              {"cannot read " + sized, "sizeof_hdr is 788529500", "348"});
   const std::string other = (dir / "notes.gz").string();
   std::ofstream(other, std::ios::binary) << "x";
   expectError([&] { loadStructuredVolume(other); }, {"unknown volume format '.gz'", ".nii.gz"});

@@ -51,13 +51,18 @@ std::int64_t checkNiftiHeaderBytes(const std::string& header, const std::string&
       break;
     }
   }
-  if (version == 0 || (version == 2 && header.size() < 540)) return -1;
   // VTK's reader indexes its arrays with dim[0] and sizes samples from datatype without
   // checking them: a damaged header crashes it. So the fields it trusts are checked here.
   const auto fail = [&](const std::string& why) {
     throw Error("cannot read " + path + " as NIfTI: " + why +
                 "; the header is damaged or not a NIfTI header");
   };
+  // VTK's reader goes by the magic string, not by sizeof_hdr: a header with a wrong size would
+  // reach it unchecked (fuzzing found its datatype lookup running off its table on one).
+  if (version == 0)
+    fail("sizeof_hdr is " + std::to_string(readAt<std::int32_t>(header, 0, false)) +
+         ", not 348 (NIfTI-1, Analyze) or 540 (NIfTI-2)");
+  if (version == 2 && header.size() < 540) return -1;
   std::vector<std::int64_t> dims;
   std::int64_t bitpix = 0, voxOffset = 0, datatype = 0, rank = 0;
   if (version == 1) {
