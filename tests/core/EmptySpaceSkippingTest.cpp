@@ -89,19 +89,21 @@ TEST(SpanRanges, BoundEveryValueOfTheCell) {
         (loc[0].span - 3) +
         r.cells[0] * ((loc[1].span - 3) + std::int64_t(r.cells[1]) * (loc[2].span - 3));
     const float value = splineValue<3>(v, u);
-    const float pad = static_cast<float>(r.relativeRounding) *
-                      std::max(std::abs(r.min[cell]), std::abs(r.max[cell]));
-    EXPECT_GE(value, r.min[cell] - pad);
-    EXPECT_LE(value, r.max[cell] + pad);
+    float lo, hi;
+    ASSERT_TRUE(r.bounds(cell, lo, hi));
+    const float pad = static_cast<float>(r.relativeRounding) * std::max(std::abs(lo), std::abs(hi));
+    EXPECT_GE(value, lo - pad);
+    EXPECT_LE(value, hi + pad);
   }
   EXPECT_GT(r.relativeRounding, 0.0);
   EXPECT_LT(r.relativeRounding, 1e-3);  // a bound, not a guess: it should stay small
 }
 
-// Each cell's range is exactly the least and greatest of its (p+1)^3 control points, for mixed
-// degrees and uneven counts (brute force against the separable sliding windows).
+// Each cell's bounds hold the least and greatest of its (p+1)^3 control points and are at most
+// one level (1/65535 of the range) wider, for mixed degrees and uneven counts (brute force
+// against the separable sliding windows, which go a slab of cells at a time).
 TEST(SpanRanges, AreTheControlPointRangeOfEachCell) {
-  const int degree[3] = {1, 2, 3}, count[3] = {7, 6, 9};
+  const int degree[3] = {1, 2, 3}, count[3] = {7, 6, 19};
   std::mt19937 rng(11);
   std::uniform_real_distribution<float> uni(-5.0f, 5.0f);
   std::vector<float> ctrl(static_cast<size_t>(count[0] * count[1] * count[2]));
@@ -112,7 +114,10 @@ TEST(SpanRanges, AreTheControlPointRangeOfEachCell) {
                              ctrl);
   const SpanRanges& r = *spline.spanRanges();
   for (int a = 0; a < 3; ++a) ASSERT_EQ(r.cells[a], count[a] - degree[a]);
-  ASSERT_EQ(r.min.size(), static_cast<size_t>(r.cells[0] * r.cells[1] * r.cells[2]));
+  ASSERT_EQ(r.cellCount(), r.cells[0] * r.cells[1] * r.cells[2]);
+  EXPECT_EQ(r.lowest, *std::min_element(ctrl.begin(), ctrl.end()));
+  EXPECT_EQ(r.highest, *std::max_element(ctrl.begin(), ctrl.end()));
+  const float level = (r.highest - r.lowest) / SpanRanges::kTop;
   for (int k = 0; k < r.cells[2]; ++k)
     for (int j = 0; j < r.cells[1]; ++j)
       for (int i = 0; i < r.cells[0]; ++i) {
@@ -124,10 +129,39 @@ TEST(SpanRanges, AreTheControlPointRangeOfEachCell) {
               lo = std::min(lo, c);
               hi = std::max(hi, c);
             }
-        const size_t cell = static_cast<size_t>(i + r.cells[0] * (j + r.cells[1] * k));
-        EXPECT_EQ(r.min[cell], lo) << i << " " << j << " " << k;
-        EXPECT_EQ(r.max[cell], hi) << i << " " << j << " " << k;
+        const std::int64_t cell = i + r.cells[0] * (j + std::int64_t(r.cells[1]) * k);
+        float boundLo, boundHi;
+        ASSERT_TRUE(r.bounds(cell, boundLo, boundHi));
+        EXPECT_LE(boundLo, lo) << i << " " << j << " " << k;
+        EXPECT_GE(boundHi, hi) << i << " " << j << " " << k;
+        EXPECT_GT(boundLo, lo - 1.01f * level) << i << " " << j << " " << k;
+        EXPECT_LT(boundHi, hi + 1.01f * level) << i << " " << j << " " << k;
       }
+}
+
+// A cell with a control point that is NaN or infinite has no bounds (it is never skipped); the
+// others keep theirs, and NaN makes the whole range NaN.
+TEST(SpanRanges, CellsWithoutFiniteControlPointsHaveNoBounds) {
+  std::vector<float> ctrl(6 * 6 * 6);
+  for (size_t i = 0; i < ctrl.size(); ++i) ctrl[i] = static_cast<float>(i % 7);
+  ctrl[0] = INFINITY;
+  const auto spline = [&] {
+    const KnotVector k = KnotVector::clampedUniform(2, 6);
+    return TensorBSpline({k, k, k}, ctrl);
+  };
+  const SpanRanges withInfinity = *spline().spanRanges();
+  float lo, hi;
+  EXPECT_FALSE(withInfinity.bounds(0, lo, hi));
+  const std::int64_t last = withInfinity.cellCount() - 1;
+  ASSERT_TRUE(withInfinity.bounds(last, lo, hi));
+  EXPECT_EQ(lo, 0.0f);  // the finite range is the levels' scale: 0 and 6 exactly
+  EXPECT_EQ(hi, 6.0f);
+  EXPECT_EQ(withInfinity.highest, INFINITY);
+  ctrl[0] = NAN;
+  const SpanRanges withNan = *spline().spanRanges();
+  EXPECT_FALSE(withNan.bounds(0, lo, hi));
+  EXPECT_TRUE(withNan.bounds(last, lo, hi));
+  EXPECT_TRUE(std::isnan(withNan.lowest));
 }
 
 // 2000 value ranges [lo, hi] around the test functions' [0, 1], every third one narrow (as most
@@ -200,9 +234,11 @@ TEST(EmptySpaceFlags, NoCellEmptyWhenTheWholeRangeIsVisible) {
     const TransferFunctionTable table(tf, OpacityCorrection(0.5));
     const EmptySpaceFlags f = buildEmptySpaceFlags(r, table);
     std::int64_t empty = 0;
-    for (std::size_t i = 0; i < r.min.size(); ++i) {
-      const float pad = skippingMargin(r, r.min[i], r.max[i]);
-      empty += table.transparentOver(r.min[i] - pad, r.max[i] + pad) ? 1 : 0;
+    for (std::int64_t i = 0; i < r.cellCount(); ++i) {
+      float lo, hi;
+      ASSERT_TRUE(r.bounds(i, lo, hi));
+      const float pad = skippingMargin(r, lo, hi);
+      empty += table.transparentOver(lo - pad, hi + pad) ? 1 : 0;
     }
     EXPECT_EQ(f.emptyCells, empty);
     if (f.cells.empty()) {

@@ -10,7 +10,7 @@
 namespace mfadvr {
 
 EmptySpaceFlags buildEmptySpaceFlags(const SpanRanges& r, const TransferFunctionTable& table) {
-  const std::int64_t n = std::int64_t(r.cells[0]) * r.cells[1] * r.cells[2];
+  const std::int64_t n = r.cellCount();
   EmptySpaceFlags out;
   // A cell's widened range lies within the whole spline's, widened by at least as much, and
   // the entries a range touches grow with it: when the whole range touches no transparent
@@ -23,7 +23,8 @@ EmptySpaceFlags buildEmptySpaceFlags(const SpanRanges& r, const TransferFunction
   tbb::parallel_for(tbb::blocked_range<std::int64_t>(0, n, 1 << 14), [&](const auto& range) {
     std::int64_t count = 0;
     for (std::int64_t i = range.begin(); i < range.end(); ++i) {
-      const float lo = r.min[i], hi = r.max[i];
+      float lo, hi;
+      if (!r.bounds(i, lo, hi)) continue;  // a control point that is not finite
       const float pad = skippingMargin(r, lo, hi);
       flags[i] = table.transparentOver(lo - pad, hi + pad) ? 1 : 0;
       count += flags[i];

@@ -9,8 +9,8 @@
 namespace mfadvr {
 
 // Bytes a renderer holds for one model: the loaded model (loadedModelBytes: 4 B per control
-// point, and the coded bytes of a lossy coding) and for empty-space skipping two floats of value
-// range per knot-span cell (SpanRanges) and one flag per cell with the pyramid above them
+// point, and the coded bytes of a lossy coding) and for empty-space skipping two 16-bit bounds
+// per knot-span cell (SpanRanges) and one flag per cell with the pyramid above them
 // (EmptySpaceFlags: under 1/7 more).
 std::int64_t modelRenderBytes(const ModelFileSummary& model);
 
