@@ -10,7 +10,6 @@
 #include "core/model/ModelFile.h"
 #include "core/render/RenderMemory.h"
 #include "core/util/Error.h"
-#include "core/util/MemoryBudget.h"
 #include "io/ScatteredLoader.h"
 
 namespace mfadvr::app {
@@ -65,16 +64,11 @@ void takeScatteredFacts(LoadedScene& s, const ScatteredData& data, const EncodeO
 // Refuses, before anything is loaded, a model (or the blocks of one) that the renderer could
 // not hold.
 void requireRenderMemory(const std::string& input, const std::vector<ModelFileSummary>& models) {
-  std::int64_t points = 0;
-  for (const ModelFileSummary& m : models)
-    points += m.controlCounts[0] * m.controlCounts[1] * m.controlCounts[2];
-  char count[32];
-  std::snprintf(count, sizeof count, "%.3g", static_cast<double>(points));
-  std::string what = "rendering " + input + " (" + count + " control points";
-  if (models.size() > 1)
-    what += " in " + std::to_string(models.size()) +
-            " blocks; ParaView's MFA reader spreads the blocks over MPI ranks";
-  requireMemory(sceneRenderBytes(models), what + ")");
+  requireSceneRenderMemory(
+      models, "rendering " + input,
+      models.size() > 1 ? " in " + std::to_string(models.size()) +
+                              " blocks; ParaView's MFA reader spreads the blocks over MPI ranks"
+                        : "");
 }
 
 }  // namespace

@@ -1,7 +1,10 @@
 #include "core/render/RenderMemory.h"
 
+#include "core/util/MemoryBudget.h"
+
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 namespace mfadvr {
@@ -28,6 +31,17 @@ std::int64_t sceneRenderBytes(std::span<const ModelFileSummary> models) {
     largestFile = std::max(largestFile, static_cast<std::int64_t>(m.fileBytes));
   }
   return total + largestFile;
+}
+
+void requireSceneRenderMemory(std::span<const ModelFileSummary> models, const std::string& what,
+                              const std::string& detail) {
+  double points = 0.0;
+  for (const ModelFileSummary& m : models)
+    points += static_cast<double>(m.controlCounts[0]) * static_cast<double>(m.controlCounts[1]) *
+              static_cast<double>(m.controlCounts[2]);
+  char count[32];
+  std::snprintf(count, sizeof count, "%.3g", points);
+  requireMemory(sceneRenderBytes(models), what + " (" + count + " control points" + detail + ")");
 }
 
 }  // namespace mfadvr

@@ -3,6 +3,7 @@
 // large for the machine is refused before its blocks are read (MemoryBudget.h).
 #include <cstdint>
 #include <span>
+#include <string>
 
 #include "core/model/ModelFile.h"
 
@@ -17,5 +18,10 @@ std::int64_t modelRenderBytes(const ModelFileSummary& model);
 // A whole scene of models (one, or the blocks of a multi-block file): the sum of
 // modelRenderBytes plus, while a model is read, its file bytes once more (the largest).
 std::int64_t sceneRenderBytes(std::span<const ModelFileSummary> models);
+
+// Throws mfadvr::Error (MemoryBudget.h's requireMemory) when the scene cannot be held: the
+// message is "<what> (N control points<detail>) needs about ...".
+void requireSceneRenderMemory(std::span<const ModelFileSummary> models, const std::string& what,
+                              const std::string& detail = "");
 
 }  // namespace mfadvr

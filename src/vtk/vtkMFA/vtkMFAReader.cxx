@@ -11,7 +11,6 @@
 #include <cmath>
 #include <vector>
 
-#include <cstdio>
 #include <cstring>
 #include <exception>
 #include <filesystem>
@@ -24,7 +23,6 @@
 #include "core/model/Model.h"
 #include "core/model/ModelFile.h"
 #include "core/render/RenderMemory.h"
-#include "core/util/MemoryBudget.h"
 
 vtkStandardNewMacro(vtkMFAReader);
 
@@ -108,15 +106,7 @@ std::vector<Share> shareOf(int piece, int pieces, const std::vector<mfadvr::Doma
 // (RenderMemory.h): with MPI each rank checks its own share of the blocks.
 void requireModelMemory(const std::vector<mfadvr::ModelFileSummary>& models,
                         const std::string& what) {
-  double points = 0.0;
-  for (const auto& m : models) {
-    points += static_cast<double>(m.controlCounts[0]) * static_cast<double>(m.controlCounts[1]) *
-              static_cast<double>(m.controlCounts[2]);
-  }
-  char count[32];
-  std::snprintf(count, sizeof count, "%.3g", points);
-  mfadvr::requireMemory(mfadvr::sceneRenderBytes(models),
-                        "reading " + what + " (" + count + " control points)");
+  mfadvr::requireSceneRenderMemory(models, "reading " + what);
 }
 
 // Whether the regions tile their bounding box (their volumes add up to its volume): then a
