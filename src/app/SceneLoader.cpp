@@ -93,11 +93,13 @@ SceneData LoadedScene::view() const {
   d.grid = grid ? &*grid : nullptr;
   d.truth = truth.get();
   d.differenceStep = spacing;
+  d.emptySpace = emptySpace.get();
   return d;
 }
 
-LoadedScene loadScene(const std::string& input, const SceneNeeds& needs,
-                      const SceneLoadOptions& options) {
+namespace {
+LoadedScene loadSceneData(const std::string& input, const SceneNeeds& needs,
+                          const SceneLoadOptions& options) {
   LoadedScene s;
   s.input = input;
   const auto start = Clock::now();
@@ -173,6 +175,14 @@ LoadedScene loadScene(const std::string& input, const SceneNeeds& needs,
     s.model = encodeStructured(*s.grid, encode);
     s.encodeSeconds = since(encodeStart);
   }
+  return s;
+}
+}  // namespace
+
+LoadedScene loadScene(const std::string& input, const SceneNeeds& needs,
+                      const SceneLoadOptions& options) {
+  LoadedScene s = loadSceneData(input, needs, options);
+  s.emptySpace = std::make_unique<EmptySpaceCache[]>(std::max<size_t>(s.blocks.size(), 1));
   return s;
 }
 

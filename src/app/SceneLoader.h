@@ -12,6 +12,7 @@
 #include "core/mesh/ScatteredData.h"
 #include "core/model/BlockModelFile.h"
 #include "core/model/Model.h"
+#include "core/render/EmptySpaceGrid.h"
 #include "core/render/ReconstructionMethod.h"
 #include "io/VolumeLoader.h"
 
@@ -36,6 +37,8 @@ struct LoadedScene {
   Vec3d spacing = Vec3d::Ones();          // of the data samples: default step and difference step
   double valueMin = 0.0, valueMax = 1.0;  // of the data samples: what the TF is relative to
   double loadSeconds = 0.0, encodeSeconds = 0.0;
+  // The model's (or each block's) empty-space flags, kept from one frame to the next.
+  std::unique_ptr<EmptySpaceCache[]> emptySpace;
 
   SceneData view() const;
 };

@@ -13,8 +13,10 @@
 #include "core/encode/StructuredEncoder.h"
 #include "core/field/ModelField.h"
 #include "core/image/ImageMetrics.h"
+#include "core/model/BlockModelFile.h"
 #include "core/render/EmptySpaceGrid.h"
 #include "core/render/RayCaster.h"
+#include "core/render/ReconstructionMethod.h"
 #include "core/render/kernel/SplineRaySampler.h"
 #include "core/spline/SplineKernel.h"
 
@@ -347,6 +349,47 @@ TEST(EmptySpaceCache, RebuildsOnlyWhenTheZeroSetChanges) {
   }
   EXPECT_GT(emptyBlocks, 0);              // the test sees empty blocks ...
   EXPECT_LT(emptyBlocks, blocksChecked);  // ... and non-empty ones
+}
+
+// A scene that carries caches keeps each model's flags from one render to the next (the
+// command line's frames), for a single model and for each block of a multi-block one.
+TEST(EmptySpaceCache, SceneCachesKeepTheFlagsBetweenRenders) {
+  const Model& m = marschnerLobb();
+  const RenderSettings s = settingsFor(m, testTransferFunctions()[1], true);
+  MethodSpec spec;
+  spec.method = ReconstructionMethod::Mfa;
+
+  EmptySpaceCache single;
+  SceneData scene;
+  scene.model = &m;
+  scene.emptySpace = &single;
+  EXPECT_EQ(single.current(), nullptr);
+  const Image first = renderMethod(scene, spec, s);
+  const auto flags = single.current();
+  ASSERT_NE(flags, nullptr);
+  EXPECT_GT(flags->emptyCells, 0);
+  EXPECT_EQ(renderMethod(scene, spec, s).rgba, first.rgba);
+  EXPECT_EQ(single.current(), flags);  // not rebuilt
+  scene.emptySpace = nullptr;
+  EXPECT_EQ(renderMethod(scene, spec, s).rgba, first.rgba);
+
+  // Two blocks, the model's halves in x: one cache each, each holding its own block's flags.
+  const DomainBox box = m.domain();
+  const double middle = 0.5 * (box.min.x() + box.max.x());
+  std::vector<ModelBlock> blocks(2, ModelBlock{box, m});
+  blocks[0].region.max.x() = middle;
+  blocks[1].region.min.x() = middle;
+  EmptySpaceCache perBlock[2];
+  SceneData split;
+  split.model = &blocks[0].model;
+  split.blocks = &blocks;
+  split.emptySpace = perBlock;
+  const Image pieces = renderMethod(split, spec, s);
+  ASSERT_NE(perBlock[0].current(), nullptr);
+  ASSERT_NE(perBlock[1].current(), nullptr);
+  const auto blockFlags = perBlock[1].current();
+  EXPECT_EQ(renderMethod(split, spec, s).rgba, pieces.rgba);
+  EXPECT_EQ(perBlock[1].current(), blockFlags);
 }
 
 // A model wrapped so that renderVolume takes the generic field path (FieldRaySampler over the

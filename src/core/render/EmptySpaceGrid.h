@@ -53,6 +53,11 @@ class EmptySpaceCache {
   // Flags for `spline` under `table`; the object stays valid as long as the pointer is held.
   std::shared_ptr<const EmptySpaceFlags> flags(const TensorBSpline& spline,
                                                const TransferFunctionTable& table);
+  // The flags built last, or null before the first call.
+  std::shared_ptr<const EmptySpaceFlags> current() {
+    std::lock_guard lock(mutex_);
+    return flags_;
+  }
 
  private:
   std::mutex mutex_;

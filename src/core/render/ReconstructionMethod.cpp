@@ -7,6 +7,7 @@
 #include "core/field/GridField.h"
 #include "core/field/GridFilters.h"
 #include "core/field/ModelField.h"
+#include "core/render/EmptySpaceGrid.h"
 #include "core/render/PieceCompositor.h"
 #include "core/render/RayCaster.h"
 #include "core/util/Error.h"
@@ -41,7 +42,7 @@ void withField(const SceneData& scene, ReconstructionMethod method, Fn&& fn) {
   switch (method) {
     case ReconstructionMethod::Mfa:
       if (!scene.model) throw Error("method 'mfa' needs a model");
-      return fn(ModelField(*scene.model));
+      return fn(ModelField(*scene.model, scene.emptySpace));
     case ReconstructionMethod::Truth:
       if (!scene.truth)
         throw Error(
@@ -142,7 +143,8 @@ Image renderMethod(const SceneData& scene, const MethodSpec& spec, const RenderS
     image = renderPieces(
         settings, regions,
         [&](size_t i, const RenderSettings& piece, RenderStats* pieceStats) {
-          const ModelField field((*scene.blocks)[i].model);
+          const ModelField field((*scene.blocks)[i].model,
+                                 scene.emptySpace ? &scene.emptySpace[i] : nullptr);
           if (spec.device) return spec.device->renderModel(field, piece, pieceStats);
           if (spec.gradient == GradientMode::CentralDifference)
             return renderVolume(CentralDifferenceField(field, scene.differenceStep), piece,

@@ -15,6 +15,8 @@
 
 namespace mfadvr {
 
+class EmptySpaceCache;
+
 enum class ReconstructionMethod { Mfa, Truth, Nearest, Trilinear, Tricubic, CatmullRom, BSpline };
 
 // mfa, truth, nearest, trilinear, tricubic, catmull-rom, bspline.
@@ -52,6 +54,10 @@ struct SceneData {
   const BuiltinFunction* truth = nullptr;
   // Step of central differences, physical units per axis (normally the data spacing).
   Vec3d differenceStep = Vec3d::Constant(0.01);
+  // Empty-space flags kept between renders by a caller that renders the scene repeatedly (they
+  // are rebuilt only when the transfer function's transparent entries change): one cache for
+  // `model`, or one per block of `blocks`. Null: each render builds its own.
+  EmptySpaceCache* emptySpace = nullptr;
 };
 
 struct MethodRenderStats : RenderStats {
