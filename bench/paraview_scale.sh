@@ -2,13 +2,14 @@
 # ParaView scale figures (docs/benchmarks.md): the MFA plugin encodes and renders an N^3
 # Wavelet (degree 2, one control point per sample) on 1 and 2 MPI ranks.
 #   bench/paraview_scale.sh [N=512] [IMAGE=800] [RANKS="1 2"]
+# MFADVR_PLUGIN: another build of the plugin (default: the paraview preset's).
 # Needs the paraview preset built (scripts/install-deps.sh --paraview first).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 n=${1:-512}
 size=${2:-800}
 ranks=${3:-"1 2"}
-export MFADVR_PLUGIN=$PWD/build/paraview/lib/paraview-plugins/MFADVR/MFADVR.so
+export MFADVR_PLUGIN=${MFADVR_PLUGIN:-$PWD/build/paraview/lib/paraview-plugins/MFADVR/MFADVR.so}
 export MFADVR_PARAVIEW_PYTHONPATH=$PWD/build/deps/python3-paraview/usr/lib/python3/dist-packages
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 for r in $ranks; do
