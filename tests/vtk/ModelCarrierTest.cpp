@@ -19,7 +19,6 @@
 #include "core/model/ModelFile.h"
 #include "vtkMFAEncoder.h"
 #include "vtkMFAReader.h"
-#include "vtkMFAVolumeMapper.h"
 
 namespace mfadvr::test {
 namespace {
@@ -76,45 +75,6 @@ TEST(ModelCarrier, ReaderOutputsAnImageThatRendersLikeTheModel) {
   bytes->SetValue(40, static_cast<unsigned char>(bytes->GetValue(40) ^ 0x5a));
   scene.mapper->SetInputData(broken);
   EXPECT_EQ(coverage(scene.render(), scene.coreSettings().background), 0.0);
-}
-
-// The mapper renders a carrier made in its own process from the models it was made of (one
-// copy of the control points); a deep copy of the carrier, or one whose bytes were edited, is
-// parsed from its bytes.
-TEST(ModelCarrier, MapperSharesTheModelsOfACarrierMadeInItsProcess) {
-  const auto path = scratchDir() / "shared-carrier.mfa";
-  saveModel(*marschnerLobbModel(), path);
-  vtkNew<vtkMFAReader> reader;
-  reader->SetFileName(path.c_str());
-  reader->OutputImageDataOn();
-  reader->Update();
-  auto* image = vtkImageData::SafeDownCast(reader->GetOutputDataObject(0));
-  ASSERT_NE(image, nullptr);
-  auto modelOf = [](vtkImageData* carrier) -> std::shared_ptr<const Model> {
-    vtkNew<vtkMFAVolumeMapper> mapper;
-    mapper->SetInputData(carrier);
-    mapper->GetBounds();
-    return mapper->GetMFAInput() ? mapper->GetMFAInput()->GetModel() : nullptr;
-  };
-  const auto original = modelOf(image);
-  ASSERT_NE(original, nullptr);
-  vtkNew<vtkImageData> shallow;
-  shallow->ShallowCopy(image);
-  EXPECT_EQ(modelOf(shallow), original);  // the same model object: nothing parsed
-
-  vtkNew<vtkImageData> deep;
-  deep->DeepCopy(image);
-  const auto parsed = modelOf(deep);
-  ASSERT_NE(parsed, nullptr);
-  EXPECT_NE(parsed, original);
-  EXPECT_EQ(parsed->spline().controlPoints(), original->spline().controlPoints());
-
-  // Bytes edited in place (and marked modified): parsed, so the damage is found.
-  auto* bytes = vtkUnsignedCharArray::SafeDownCast(shallow->GetFieldData()->GetArray("MFAModel0"));
-  ASSERT_NE(bytes, nullptr);
-  bytes->SetValue(40, static_cast<unsigned char>(bytes->GetValue(40) ^ 0x5a));
-  bytes->Modified();
-  EXPECT_EQ(modelOf(shallow), nullptr);
 }
 
 // The scene's model as a single carrier: the reference of the partitioned renders (the same

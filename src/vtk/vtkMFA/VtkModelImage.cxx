@@ -4,10 +4,7 @@
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
-#include "vtkInformation.h"
-#include "vtkInformationObjectBaseKey.h"
 #include "vtkNew.h"
-#include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkUnsignedCharArray.h"
 
@@ -29,48 +26,6 @@ constexpr const char* kRegionsArray = "MFARegions";
 
 std::string modelArrayName(size_t i) {
   return "MFAModel" + std::to_string(i);
-}
-
-// The model a carrier's byte array was serialized from, attached to the array (its
-// information) by the process that made the carrier, so that a mapper in that process renders
-// it without parsing a second copy of the control points. It is used only while the array is
-// the one it was attached to, unmodified: a deep copy or an edited array is parsed.
-class CarriedModelHolder : public vtkObject {
- public:
-  static CarriedModelHolder* New();
-  vtkTypeMacro(CarriedModelHolder, vtkObject);
-  std::shared_ptr<const Model> model;
-  const void* bytes = nullptr;
-  vtkIdType size = 0;
-  vtkMTimeType time = 0;
-
- protected:
-  CarriedModelHolder() = default;
-};
-vtkStandardNewMacro(CarriedModelHolder);
-
-vtkInformationObjectBaseKey* carriedModelKey() {
-  static vtkInformationObjectBaseKey* const key =
-      new vtkInformationObjectBaseKey("MFA_CARRIED_MODEL", "mfadvr::vtkglue");
-  return key;
-}
-
-void attachModel(vtkUnsignedCharArray* array, std::shared_ptr<const Model> model) {
-  vtkNew<CarriedModelHolder> holder;
-  holder->model = std::move(model);
-  array->GetInformation()->Set(carriedModelKey(), holder);
-  holder->bytes = array->GetVoidPointer(0);
-  holder->size = array->GetNumberOfTuples();
-  holder->time = array->GetMTime();
-}
-
-std::shared_ptr<const Model> attachedModel(vtkUnsignedCharArray* array) {
-  if (!array->HasInformation()) return nullptr;
-  auto* holder = CarriedModelHolder::SafeDownCast(array->GetInformation()->Get(carriedModelKey()));
-  if (!holder || holder->bytes != array->GetVoidPointer(0) ||
-      holder->size != array->GetNumberOfTuples() || holder->time != array->GetMTime())
-    return nullptr;
-  return holder->model;
 }
 
 }  // namespace
@@ -147,7 +102,6 @@ vtkSmartPointer<vtkImageData> imageOfModels(const std::vector<CarriedModel>& mod
     array->SetName(modelArrayName(i).c_str());
     array->SetNumberOfTuples(static_cast<vtkIdType>(bytes.size()));
     std::memcpy(array->GetPointer(0), bytes.data(), bytes.size());
-    attachModel(array, models[i].model);
     image->GetFieldData()->AddArray(array);
   }
   image->GetFieldData()->AddArray(regions);
@@ -238,12 +192,10 @@ std::vector<CarriedModel> modelsOfImage(vtkImageData* image) {
     if (!bytes || bytes->GetNumberOfComponents() != 1)
       throw Error("the carrier lacks its model array " + name);
     CarriedModel c;
-    c.model = attachedModel(bytes);
-    if (!c.model)
-      c.model = std::make_shared<const Model>(
-          parseModel(std::span<const std::uint8_t>(bytes->GetPointer(0),
-                                                   static_cast<size_t>(bytes->GetNumberOfTuples())),
-                     "the carried model " + name));
+    c.model = std::make_shared<const Model>(
+        parseModel(std::span<const std::uint8_t>(bytes->GetPointer(0),
+                                                 static_cast<size_t>(bytes->GetNumberOfTuples())),
+                   "the carried model " + name));
     double tuple[6];
     regions->GetTypedTuple(i, tuple);
     for (int a = 0; a < 3; ++a) {

@@ -4,9 +4,8 @@
 // more models, each with the region it renders (the blocks of a multi-block file that one rank
 // reads, or one piece of a partitioned volume):
 //   field data "MFAModel0", "MFAModel1", ...: each model as the bytes of a .mfa file (unsigned
-//     char; the process that made the carrier also attaches the model itself to the array,
-//     see modelsOfImage), and "MFARegions" (double, 6 components: xmin, xmax, ymin, ymax, zmin,
-//     zmax, one tuple per model);
+//     char), and "MFARegions" (double, 6 components: xmin, xmax, ymin, ymax, zmin, zmax, one
+//     tuple per model);
 //   geometry: a grid over the union of the regions with the spacing of the data the models
 //     stand for (Model::dataSpacing), so that a pipeline sees the carrier where its models
 //     render, at the data's resolution (ParaView derives its default opacity unit distance from
@@ -76,9 +75,7 @@ std::string carrierArrayName(const Model& model);
 bool carriesModels(vtkDataObject* data);
 
 // The models of a carrier, checked as a .mfa file is; throws mfadvr::Error for a damaged or
-// inconsistent carrier. A carrier made by imageOfModels in this process, whose byte arrays are
-// those it made (shared by shallow copies), unmodified, gives the models it was made of
-// without parsing them again: one copy of the control points, not two.
+// inconsistent carrier.
 std::vector<CarriedModel> modelsOfImage(vtkImageData* image);
 
 }  // namespace mfadvr::vtkglue
