@@ -183,8 +183,9 @@ Command addRenderCommand(CLI::App& app) {
       ->check(CLI::IsMember({"analytic", "central"}))
       ->capture_default_str();
   sub->add_option("--frames", o->frames,
-                  "Frames to render and time: the first is reported apart (for VTK it builds "
-                  "the mapper's structures), the frame time is the median of the others "
+                  "Frames to render and time: the first is reported apart (it builds VTK's "
+                  "mapper structures, or the MFA model's empty-space flags), the frame time is "
+                  "the median of the others "
                   "[default: 3 for vtk-*, 1 otherwise]")
       ->check(CLI::Range(1, 1000));
   addDeviceOption(sub, o->device);
