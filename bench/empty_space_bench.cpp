@@ -1,5 +1,6 @@
 // The per-transfer-function cost of empty-space skipping on a 256^3 model (253^3 knot-span
-// cells at p = 3): the flags' build (classifying every cell's range, then the pyramid).
+// cells at p = 3): the flags' build (every cell's control-point range computed and classified,
+// then the pyramid).
 //
 //   build/release/bench/mfadvr_bench --benchmark_filter=EmptySpace --benchmark_repetitions=5
 //       --benchmark_report_aggregates_only=true   (one command line)
@@ -50,7 +51,7 @@ void BM_EmptySpaceFlagsBuild(benchmark::State& state) {
   const SpanRanges& ranges = *blobs().spanRanges();
   std::int64_t empty = 0;
   for (auto _ : state) {
-    const EmptySpaceFlags f = buildEmptySpaceFlags(ranges, stepTable());
+    const EmptySpaceFlags f = buildEmptySpaceFlags(blobs().view(), ranges, stepTable());
     empty = f.emptyCells;
     benchmark::DoNotOptimize(f.cells.data());
   }

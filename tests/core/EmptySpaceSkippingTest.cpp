@@ -77,9 +77,25 @@ RenderSettings settingsFor(const Model& m, const TransferFunction& tf, bool shad
   return s;
 }
 
+// Every cell's bounds, x fastest, from one scanner going through the planes in order.
+struct CellBounds {
+  std::vector<float> lo, hi;
+};
+CellBounds allCellBounds(const TensorBSpline& spline) {
+  const SpanRanges& r = *spline.spanRanges();
+  const std::int64_t plane = std::int64_t(r.cells[0]) * r.cells[1];
+  CellBounds b;
+  b.lo.resize(static_cast<size_t>(r.cellCount()));
+  b.hi.resize(b.lo.size());
+  SpanRangeScanner scan(spline.view());
+  for (int z = 0; z < r.cells[2]; ++z) scan.plane(z, &b.lo[z * plane], &b.hi[z * plane]);
+  return b;
+}
+
 TEST(SpanRanges, BoundEveryValueOfTheCell) {
   const Model& m = marschnerLobb();
   const SpanRanges& r = *m.spline().spanRanges();
+  const CellBounds b = allCellBounds(m.spline());
   const SplineView v = m.spline().view();
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> uni(0.0, 1.0);
@@ -91,8 +107,7 @@ TEST(SpanRanges, BoundEveryValueOfTheCell) {
         (loc[0].span - 3) +
         r.cells[0] * ((loc[1].span - 3) + std::int64_t(r.cells[1]) * (loc[2].span - 3));
     const float value = splineValue<3>(v, u);
-    float lo, hi;
-    ASSERT_TRUE(r.bounds(cell, lo, hi));
+    const float lo = b.lo[static_cast<size_t>(cell)], hi = b.hi[static_cast<size_t>(cell)];
     const float pad = static_cast<float>(r.relativeRounding) * std::max(std::abs(lo), std::abs(hi));
     EXPECT_GE(value, lo - pad);
     EXPECT_LE(value, hi + pad);
@@ -101,9 +116,9 @@ TEST(SpanRanges, BoundEveryValueOfTheCell) {
   EXPECT_LT(r.relativeRounding, 1e-3);  // a bound, not a guess: it should stay small
 }
 
-// Each cell's bounds hold the least and greatest of its (p+1)^3 control points and are at most
-// one level (1/65535 of the range) wider, for mixed degrees and uneven counts (brute force
-// against the separable sliding windows, which go a slab of cells at a time).
+// Each cell's bounds are the least and greatest of its (p+1)^3 control points, for mixed
+// degrees and uneven counts (brute force against the separable sliding windows), whether a
+// scanner starts at the first plane, in the middle, or jumps back and forth.
 TEST(SpanRanges, AreTheControlPointRangeOfEachCell) {
   const int degree[3] = {1, 2, 3}, count[3] = {7, 6, 19};
   std::mt19937 rng(11);
@@ -116,11 +131,10 @@ TEST(SpanRanges, AreTheControlPointRangeOfEachCell) {
                              ctrl);
   const SpanRanges& r = *spline.spanRanges();
   for (int a = 0; a < 3; ++a) ASSERT_EQ(r.cells[a], count[a] - degree[a]);
-  ASSERT_EQ(r.cellCount(), r.cells[0] * r.cells[1] * r.cells[2]);
   EXPECT_EQ(r.lowest, *std::min_element(ctrl.begin(), ctrl.end()));
   EXPECT_EQ(r.highest, *std::max_element(ctrl.begin(), ctrl.end()));
-  const float level = (r.highest - r.lowest) / SpanRanges::kTop;
-  for (int k = 0; k < r.cells[2]; ++k)
+  const int plane = r.cells[0] * r.cells[1];
+  const auto expectExact = [&](const float* boundLo, const float* boundHi, int k) {
     for (int j = 0; j < r.cells[1]; ++j)
       for (int i = 0; i < r.cells[0]; ++i) {
         float lo = INFINITY, hi = -INFINITY;
@@ -131,18 +145,22 @@ TEST(SpanRanges, AreTheControlPointRangeOfEachCell) {
               lo = std::min(lo, c);
               hi = std::max(hi, c);
             }
-        const std::int64_t cell = i + r.cells[0] * (j + std::int64_t(r.cells[1]) * k);
-        float boundLo, boundHi;
-        ASSERT_TRUE(r.bounds(cell, boundLo, boundHi));
-        EXPECT_LE(boundLo, lo) << i << " " << j << " " << k;
-        EXPECT_GE(boundHi, hi) << i << " " << j << " " << k;
-        EXPECT_GT(boundLo, lo - 1.01f * level) << i << " " << j << " " << k;
-        EXPECT_LT(boundHi, hi + 1.01f * level) << i << " " << j << " " << k;
+        EXPECT_EQ(boundLo[i + r.cells[0] * j], lo) << i << " " << j << " " << k;
+        EXPECT_EQ(boundHi[i + r.cells[0] * j], hi) << i << " " << j << " " << k;
       }
+  };
+  const CellBounds all = allCellBounds(spline);
+  for (int k = 0; k < r.cells[2]; ++k) expectExact(&all.lo[k * plane], &all.hi[k * plane], k);
+  SpanRangeScanner scan(spline.view());
+  std::vector<float> lo(plane), hi(plane);
+  for (int k : {9, 10, 11, 15, 3, 4, 15, 13, 0}) {
+    scan.plane(k, lo.data(), hi.data());
+    expectExact(lo.data(), hi.data(), k);
+  }
 }
 
-// A cell with a control point that is NaN or infinite has no bounds (it is never skipped); the
-// others keep theirs, and NaN makes the whole range NaN.
+// A cell with a control point that is NaN or infinite gets the whole line as its range (it is
+// never skipped); the others keep theirs, and NaN makes the whole range NaN.
 TEST(SpanRanges, CellsWithoutFiniteControlPointsHaveNoBounds) {
   std::vector<float> ctrl(6 * 6 * 6);
   for (size_t i = 0; i < ctrl.size(); ++i) ctrl[i] = static_cast<float>(i % 7);
@@ -151,19 +169,20 @@ TEST(SpanRanges, CellsWithoutFiniteControlPointsHaveNoBounds) {
     const KnotVector k = KnotVector::clampedUniform(2, 6);
     return TensorBSpline({k, k, k}, ctrl);
   };
-  const SpanRanges withInfinity = *spline().spanRanges();
-  float lo, hi;
-  EXPECT_FALSE(withInfinity.bounds(0, lo, hi));
-  const std::int64_t last = withInfinity.cellCount() - 1;
-  ASSERT_TRUE(withInfinity.bounds(last, lo, hi));
-  EXPECT_EQ(lo, 0.0f);  // the finite range is the levels' scale: 0 and 6 exactly
-  EXPECT_EQ(hi, 6.0f);
-  EXPECT_EQ(withInfinity.highest, INFINITY);
+  const TensorBSpline withInfinity = spline();
+  const CellBounds inf = allCellBounds(withInfinity);
+  EXPECT_EQ(inf.lo.front(), -INFINITY);
+  EXPECT_EQ(inf.hi.front(), INFINITY);
+  EXPECT_EQ(inf.lo.back(), 0.0f);
+  EXPECT_EQ(inf.hi.back(), 6.0f);
+  EXPECT_EQ(withInfinity.spanRanges()->highest, INFINITY);
   ctrl[0] = NAN;
-  const SpanRanges withNan = *spline().spanRanges();
-  EXPECT_FALSE(withNan.bounds(0, lo, hi));
-  EXPECT_TRUE(withNan.bounds(last, lo, hi));
-  EXPECT_TRUE(std::isnan(withNan.lowest));
+  const TensorBSpline withNan = spline();
+  const CellBounds nan = allCellBounds(withNan);
+  EXPECT_EQ(nan.lo.front(), -INFINITY);
+  EXPECT_EQ(nan.hi.front(), INFINITY);
+  EXPECT_EQ(nan.hi.back(), 6.0f);
+  EXPECT_TRUE(std::isnan(withNan.spanRanges()->lowest));
 }
 
 // 2000 value ranges [lo, hi] around the test functions' [0, 1], every third one narrow (as most
@@ -227,6 +246,7 @@ TEST(TransferFunctionTable, MayBeTransparentOverFindsEveryTransparentRange) {
 TEST(EmptySpaceFlags, NoCellEmptyWhenTheWholeRangeIsVisible) {
   const Model& m = marschnerLobb();
   const SpanRanges& r = *m.spline().spanRanges();
+  const CellBounds b = allCellBounds(m.spline());
   EXPECT_LE(r.lowest, r.highest);
   std::vector<TransferFunction> tfs = testTransferFunctions();
   // Transparent only below the model's values: nothing can be skipped.
@@ -234,11 +254,10 @@ TEST(EmptySpaceFlags, NoCellEmptyWhenTheWholeRangeIsVisible) {
   int shortcuts = 0;
   for (const TransferFunction& tf : tfs) {
     const TransferFunctionTable table(tf, OpacityCorrection(0.5));
-    const EmptySpaceFlags f = buildEmptySpaceFlags(r, table);
+    const EmptySpaceFlags f = buildEmptySpaceFlags(m.spline().view(), r, table);
     std::int64_t empty = 0;
     for (std::int64_t i = 0; i < r.cellCount(); ++i) {
-      float lo, hi;
-      ASSERT_TRUE(r.bounds(i, lo, hi));
+      const float lo = b.lo[static_cast<size_t>(i)], hi = b.hi[static_cast<size_t>(i)];
       const float pad = skippingMargin(r, lo, hi);
       empty += table.transparentOver(lo - pad, hi + pad) ? 1 : 0;
     }

@@ -9,25 +9,39 @@
 
 namespace mfadvr {
 
-EmptySpaceFlags buildEmptySpaceFlags(const SpanRanges& r, const TransferFunctionTable& table) {
+EmptySpaceFlags buildEmptySpaceFlags(const SplineView& spline, const SpanRanges& r,
+                                     const TransferFunctionTable& table) {
   const std::int64_t n = r.cellCount();
   EmptySpaceFlags out;
   // A cell's widened range lies within the whole spline's, widened by at least as much, and
   // the entries a range touches grow with it: when the whole range touches no transparent
   // entry, no cell is empty, and the per-cell pass (a sizeable part of a frame) is not needed.
   const float wholePad = skippingMargin(r, r.lowest, r.highest);
-  if (!table.mayBeTransparentOver(r.lowest - wholePad, r.highest + wholePad)) return out;
+  if (n <= 0 || !table.mayBeTransparentOver(r.lowest - wholePad, r.highest + wholePad)) return out;
   std::vector<std::uint8_t>& flags = out.cells;
-  flags.assign(static_cast<size_t>(n), 0);
+  flags.resize(static_cast<size_t>(n));
+  // Slabs of cell planes, one scanner each; a slab's first planes read p more control planes
+  // than its cells need, so slabs are not thin.
+  const std::int64_t plane = std::int64_t(r.cells[0]) * r.cells[1], Z = r.cells[2];
+  const std::int64_t slab = std::max<std::int64_t>(16, (Z + 15) / 16);
   std::atomic<std::int64_t> empties{0};
-  tbb::parallel_for(tbb::blocked_range<std::int64_t>(0, n, 1 << 14), [&](const auto& range) {
+  tbb::parallel_for(std::int64_t(0), (Z + slab - 1) / slab, [&](std::int64_t task) {
+    SpanRangeScanner scan(spline);
+    std::vector<float> lo(static_cast<size_t>(plane)), hi(lo.size());
     std::int64_t count = 0;
-    for (std::int64_t i = range.begin(); i < range.end(); ++i) {
-      float lo, hi;
-      if (!r.bounds(i, lo, hi)) continue;  // a control point that is not finite
-      const float pad = skippingMargin(r, lo, hi);
-      flags[i] = table.transparentOver(lo - pad, hi + pad) ? 1 : 0;
-      count += flags[i];
+    for (std::int64_t z = task * slab; z < std::min(Z, (task + 1) * slab); ++z) {
+      scan.plane(z, lo.data(), hi.data());
+      std::uint8_t* f = flags.data() + z * plane;
+      for (std::int64_t q = 0; q < plane; ++q) {
+        const float l = lo[static_cast<size_t>(q)], h = hi[static_cast<size_t>(q)];
+        bool empty = false;
+        if (std::isfinite(l) && std::isfinite(h)) {  // else a control point is not finite
+          const float pad = skippingMargin(r, l, h);
+          empty = table.transparentOver(l - pad, h + pad);
+        }
+        f[q] = empty ? 1 : 0;
+        count += empty;
+      }
     }
     empties += count;
   });
@@ -81,7 +95,8 @@ std::shared_ptr<const EmptySpaceFlags> EmptySpaceCache::flags(const TensorBSplin
 
   std::lock_guard lock(mutex_);
   if (!flags_ || ranges != ranges_ || key != key_) {
-    flags_ = std::make_shared<const EmptySpaceFlags>(buildEmptySpaceFlags(*ranges, table));
+    flags_ = std::make_shared<const EmptySpaceFlags>(
+        buildEmptySpaceFlags(spline.view(), *ranges, table));
     ranges_ = ranges;
     key_ = std::move(key);
   }

@@ -2,10 +2,10 @@
 // Exact empty-space skipping for MFA models: per knot-span cell, whether the transfer function
 // makes every value the spline can take there transparent.
 //
-// A cell's values lie within its control points' range (SpanRanges: the B-spline convex-hull
-// property), widened by a bound on the kernel's float rounding. The table classifies a value by
-// interpolating two neighbouring entries, and which entries a value touches is monotone in the
-// value, so a range whose touched entries all have opacity 0 yields opacity exactly 0 for every
+// A cell's values lie within its control points' range (SpanRangeScanner: the B-spline
+// convex-hull property), widened by a bound on the kernel's float rounding. The table classifies a
+// value by interpolating two neighbouring entries, and which entries a value touches is monotone in
+// the value, so a range whose touched entries all have opacity 0 yields opacity exactly 0 for every
 // sample in the cell: skipping such cells leaves the image bit-identical.
 //
 // The flags depend on the model and on which table entries are transparent; the cache rebuilds
@@ -46,7 +46,10 @@ inline float skippingMargin(const SpanRanges& r, float lo, float hi) {
   return static_cast<float>(r.relativeRounding) * std::max(std::abs(lo), std::abs(hi)) * 2.0f;
 }
 
-EmptySpaceFlags buildEmptySpaceFlags(const SpanRanges& ranges, const TransferFunctionTable& table);
+// `ranges`: spline's (SpanRanges::compute). The cells' bounds are computed here, a slab of cells
+// per task, and not kept.
+EmptySpaceFlags buildEmptySpaceFlags(const SplineView& spline, const SpanRanges& ranges,
+                                     const TransferFunctionTable& table);
 
 class EmptySpaceCache {
  public:

@@ -20,7 +20,7 @@ std::int64_t modelRenderBytes(const ModelFileSummary& m) {
   for (int a = 0; a < 3; ++a)
     cells *= static_cast<double>(std::max<std::int64_t>(m.controlCounts[a] - m.degree[a], 1));
   const double flags = cells + std::floor(cells / 7.0) + 1.0;
-  const double bytes = static_cast<double>(loadedModelBytes(m)) + 4.0 * cells + flags;
+  const double bytes = static_cast<double>(loadedModelBytes(m)) + flags;
   return bytes < static_cast<double>(kCap) ? static_cast<std::int64_t>(bytes) : kCap;
 }
 

@@ -10,9 +10,9 @@
 namespace mfadvr {
 
 // Bytes a renderer holds for one model: the loaded model (loadedModelBytes: 4 B per control
-// point, and the coded bytes of a lossy coding) and for empty-space skipping two 16-bit bounds
-// per knot-span cell (SpanRanges) and one flag per cell with the pyramid above them
-// (EmptySpaceFlags: under 1/7 more).
+// point, and the coded bytes of a lossy coding) and for empty-space skipping one flag per
+// knot-span cell with the pyramid above them (EmptySpaceFlags: under 1/7 more; the cells'
+// bounds are computed for the flags and not kept).
 std::int64_t modelRenderBytes(const ModelFileSummary& model);
 
 // A whole scene of models (one, or the blocks of a multi-block file): the sum of

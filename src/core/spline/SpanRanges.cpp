@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace mfadvr {
 namespace {
@@ -32,18 +33,15 @@ SpanRanges SpanRanges::compute(const SplineView& v) {
     dims[a] = v.axis[a].count;
     r.cells[a] = v.axis[a].count - v.axis[a].degree;
   }
-  const std::int64_t N0 = dims[0], N1 = dims[1], N2 = dims[2];
-  const std::int64_t X = r.cells[0], Y = r.cells[1], Z = r.cells[2], plane = X * Y;
-  const int w0 = v.axis[0].degree + 1, w1 = v.axis[1].degree + 1, w2 = v.axis[2].degree + 1;
-  if (plane * Z <= 0) return r;
+  if (r.cellCount() <= 0) return r;
 
-  // The whole range (NaN anywhere makes it NaN), and the finite one that the levels cover.
+  // The whole range (NaN anywhere makes it NaN).
   struct Extremes {
-    float lowest = INFINITY, highest = -INFINITY, finiteLow = INFINITY, finiteHigh = -INFINITY;
+    float lowest = INFINITY, highest = -INFINITY;
     bool nan = false;
   };
   const Extremes whole = tbb::parallel_reduce(
-      tbb::blocked_range<std::int64_t>(0, N0 * N1 * N2, 1 << 16), Extremes{},
+      tbb::blocked_range<std::int64_t>(0, dims[0] * dims[1] * dims[2], 1 << 16), Extremes{},
       [&](const auto& range, Extremes e) {
         for (std::int64_t i = range.begin(); i < range.end(); ++i) {
           const float c = v.ctrl[i];
@@ -53,104 +51,17 @@ SpanRanges SpanRanges::compute(const SplineView& v) {
           }
           e.lowest = std::min(e.lowest, c);
           e.highest = std::max(e.highest, c);
-          if (std::isfinite(c)) {
-            e.finiteLow = std::min(e.finiteLow, c);
-            e.finiteHigh = std::max(e.finiteHigh, c);
-          }
         }
         return e;
       },
       [](Extremes a, const Extremes& b) {
         a.lowest = std::min(a.lowest, b.lowest);
         a.highest = std::max(a.highest, b.highest);
-        a.finiteLow = std::min(a.finiteLow, b.finiteLow);
-        a.finiteHigh = std::max(a.finiteHigh, b.finiteHigh);
         a.nan = a.nan || b.nan;
         return a;
       });
   r.lowest = whole.nan ? NAN : whole.lowest;
   r.highest = whole.nan ? NAN : whole.highest;
-  const bool anyFinite = whole.finiteLow <= whole.finiteHigh;
-  r.levelBase = anyFinite ? whole.finiteLow : 0.0f;
-  r.levelTop = anyFinite ? whole.finiteHigh : 0.0f;
-  r.levelStep = (static_cast<double>(r.levelTop) - r.levelBase) / kTop;
-  // The highest level at or below lo and the lowest at or above hi (checked on the very levels
-  // bounds() gives, whatever the rounding of the division).
-  const auto lowLevel = [&r](float lo) {
-    int q = r.levelStep > 0.0
-                ? static_cast<int>(std::clamp(std::floor((lo - double(r.levelBase)) / r.levelStep),
-                                              0.0, double(kTop)))
-                : 0;
-    while (q > 0 && r.level(q) > lo) --q;
-    return static_cast<std::uint16_t>(q);
-  };
-  const auto highLevel = [&r](float hi) {
-    int q = r.levelStep > 0.0
-                ? static_cast<int>(std::clamp(std::ceil((hi - double(r.levelBase)) / r.levelStep),
-                                              0.0, double(kTop)))
-                : 0;
-    while (q < kTop && r.level(q) < hi) ++q;
-    return static_cast<std::uint16_t>(q);
-  };
-
-  // The least of lo and the greatest of hi over `window` entries `stride` apart, into out;
-  // written so that a NaN among them makes the result NaN (std::min would drop it).
-  auto slide = [](const float* lo, const float* hi, std::int64_t stride, int window, float* loOut,
-                  float* hiOut) {
-    float l = lo[0], h = hi[0];
-    for (int w = 1; w < window; ++w) {
-      const float a = lo[w * stride], b = hi[w * stride];
-      l = a < l || a != a ? a : l;
-      h = b > h || b != b ? b : h;
-    }
-    *loOut = l;
-    *hiOut = h;
-  };
-  r.low.resize(static_cast<size_t>(plane * Z));
-  r.high.resize(r.low.size());
-  // Slabs of cell planes, one per task: control-point planes slid along x and y into a ring of
-  // w2 planes, which a cell plane then slides along z.
-  const std::int64_t slab = std::max<std::int64_t>(4, Z / 64);
-  tbb::parallel_for(std::int64_t(0), (Z + slab - 1) / slab, [&](std::int64_t task) {
-    const std::int64_t z0 = task * slab, z1 = std::min(Z, z0 + slab);
-    std::vector<float> lx(static_cast<size_t>(X * N1)), hx(lx.size());
-    std::vector<float> ringLo(static_cast<size_t>(plane * w2)), ringHi(ringLo.size());
-    std::int64_t ready = z0;  // control planes z0 .. ready - 1 are in the ring
-    for (std::int64_t z = z0; z < z1; ++z) {
-      for (; ready < std::min(N2, z + w2); ++ready) {
-        const float* c = v.ctrl + ready * N0 * N1;
-        for (std::int64_t j = 0; j < N1; ++j)
-          for (std::int64_t i = 0; i < X; ++i) {
-            const std::int64_t at = i + X * j;
-            slide(c + i + N0 * j, c + i + N0 * j, 1, w0, &lx[at], &hx[at]);
-          }
-        float* lo = ringLo.data() + (ready % w2) * plane;
-        float* hi = ringHi.data() + (ready % w2) * plane;
-        for (std::int64_t j = 0; j < Y; ++j)
-          for (std::int64_t i = 0; i < X; ++i) {
-            const std::int64_t at = i + X * j;
-            slide(&lx[at], &hx[at], X, w1, lo + at, hi + at);
-          }
-      }
-      for (std::int64_t q = 0; q < plane; ++q) {
-        float l = ringLo[static_cast<size_t>((z % w2) * plane + q)];
-        float h = ringHi[static_cast<size_t>((z % w2) * plane + q)];
-        for (int w = 1; w < w2; ++w) {
-          const size_t at = static_cast<size_t>(((z + w) % w2) * plane + q);
-          l = ringLo[at] < l || ringLo[at] != ringLo[at] ? ringLo[at] : l;
-          h = ringHi[at] > h || ringHi[at] != ringHi[at] ? ringHi[at] : h;
-        }
-        const size_t cell = static_cast<size_t>(q + plane * z);
-        if (std::isfinite(l) && std::isfinite(h)) {
-          r.low[cell] = lowLevel(l);
-          r.high[cell] = highLevel(h);
-        } else {
-          r.low[cell] = kTop;  // no bounds
-          r.high[cell] = 0;
-        }
-      }
-    }
-  });
 
   // Float rounding of the kernel: each basis value carries about (p+2) roundings of partial
   // sums bounded by the coefficient sum S, and the contraction (p+1)^3 roundings of sums bounded
@@ -165,6 +76,78 @@ SpanRanges SpanRanges::compute(const SplineView& v) {
   }
   r.relativeRounding = 4.0 * ((basis - 1.0) + 3.0 * terms * basis * eps);
   return r;
+}
+
+namespace {
+
+// dst[i] = min(dst[i], src[i]) and the maximum: written as the compare-and-select that SIMD
+// min and max instructions perform, so that the loops vectorize (no NaN reaches them).
+void minInto(float* dst, const float* src, std::int64_t n) {
+  for (std::int64_t i = 0; i < n; ++i) dst[i] = src[i] < dst[i] ? src[i] : dst[i];
+}
+void maxInto(float* dst, const float* src, std::int64_t n) {
+  for (std::int64_t i = 0; i < n; ++i) dst[i] = src[i] > dst[i] ? src[i] : dst[i];
+}
+
+}  // namespace
+
+SpanRangeScanner::SpanRangeScanner(const SplineView& v) : v_(v) {
+  for (int a = 0; a < 3; ++a) {
+    n_[a] = v.axis[a].count;
+    w_[a] = v.axis[a].degree + 1;
+    cells_[a] = std::max<std::int64_t>(0, n_[a] - v.axis[a].degree);
+  }
+  const std::int64_t plane = cells_[0] * cells_[1];
+  rowLo_.resize(static_cast<size_t>(n_[0]));
+  rowHi_.resize(rowLo_.size());
+  lx_.resize(static_cast<size_t>(cells_[0] * n_[1]));
+  hx_.resize(lx_.size());
+  ringLo_.resize(static_cast<size_t>(plane * w_[2]));
+  ringHi_.resize(ringLo_.size());
+}
+
+void SpanRangeScanner::addControlPlane(std::int64_t k) {
+  const std::int64_t N0 = n_[0], N1 = n_[1], X = cells_[0], Y = cells_[1];
+  const float* c = v_.ctrl + k * N0 * N1;
+  for (std::int64_t j = 0; j < N1; ++j) {
+    // A value that is not finite widens its cells' bounds to the whole line, which no transfer
+    // function can make transparent.
+    const float* row = c + N0 * j;
+    for (std::int64_t i = 0; i < N0; ++i) {
+      const bool finite = std::abs(row[i]) <= std::numeric_limits<float>::max();
+      rowLo_[i] = finite ? row[i] : -INFINITY;
+      rowHi_[i] = finite ? row[i] : INFINITY;
+    }
+    float* lo = lx_.data() + X * j;
+    float* hi = hx_.data() + X * j;
+    std::copy_n(rowLo_.data(), X, lo);
+    std::copy_n(rowHi_.data(), X, hi);
+    for (int w = 1; w < w_[0]; ++w) {
+      minInto(lo, rowLo_.data() + w, X);
+      maxInto(hi, rowHi_.data() + w, X);
+    }
+  }
+  const std::int64_t plane = X * Y;
+  float* lo = ringLo_.data() + (k % w_[2]) * plane;
+  float* hi = ringHi_.data() + (k % w_[2]) * plane;
+  std::copy_n(lx_.data(), plane, lo);
+  std::copy_n(hx_.data(), plane, hi);
+  for (int w = 1; w < w_[1]; ++w) {
+    minInto(lo, lx_.data() + X * w, plane);
+    maxInto(hi, hx_.data() + X * w, plane);
+  }
+}
+
+void SpanRangeScanner::plane(std::int64_t z, float* lo, float* hi) {
+  if (next_ < z || next_ > z + w_[2]) next_ = z;  // the first plane, or a jump: refill the ring
+  for (; next_ < z + w_[2]; ++next_) addControlPlane(next_);
+  const std::int64_t plane = cells_[0] * cells_[1];
+  std::copy_n(ringLo_.data() + (z % w_[2]) * plane, plane, lo);
+  std::copy_n(ringHi_.data() + (z % w_[2]) * plane, plane, hi);
+  for (int w = 1; w < w_[2]; ++w) {
+    minInto(lo, ringLo_.data() + ((z + w) % w_[2]) * plane, plane);
+    maxInto(hi, ringHi_.data() + ((z + w) % w_[2]) * plane, plane);
+  }
 }
 
 }  // namespace mfadvr
