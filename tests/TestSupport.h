@@ -2,6 +2,7 @@
 // Helpers shared by the test programs: where the real data lives, scratch folders.
 #include <cstdlib>
 #include <filesystem>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -13,6 +14,11 @@
 namespace mfadvr::test {
 
 // Folder of the shared real volumes ($MFADVR_DATA_DIR overrides the configured default).
+// A copy of `s` as a vector, for comparisons (spans have no ==).
+inline std::vector<float> values(std::span<const float> s) {
+  return {s.begin(), s.end()};
+}
+
 inline std::filesystem::path dataDir() {
   if (const char* env = std::getenv("MFADVR_DATA_DIR")) return env;
   return MFADVR_DEFAULT_DATA_DIR;

@@ -378,7 +378,8 @@ TEST(EncodeCli, StreamedHeaderFormatsAreEncodedInBlocksLikeRawFiles) {
   ASSERT_EQ(fromRaw.size(), 8u);
   ASSERT_EQ(fromNrrd.size(), fromRaw.size());
   for (size_t i = 0; i < fromRaw.size(); ++i)
-    EXPECT_EQ(fromNrrd[i].model.spline().controlPoints(), fromRaw[i].model.spline().controlPoints())
+    EXPECT_EQ(test::values(fromNrrd[i].model.spline().controlPoints()),
+              test::values(fromRaw[i].model.spline().controlPoints()))
         << "block " << i;
 }
 

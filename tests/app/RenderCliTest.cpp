@@ -126,23 +126,23 @@ TEST(CliRender, ModelTooLargeForTheMemoryIsRefusedBeforeLoading) {
   ASSERT_EQ(runMfadvr("encode builtin:marschner-lobb:24 --blocks 2,1,1 -o " + blocks).status, 0);
   const std::string png = (dir / "x.png").string();
   for (const std::string& model : {single, blocks}) {
-    // 24^3 control points need about 13 B each (control points, value ranges, flags).
+    // 24^3 control points need about 5 B each (control points, flags): 70 KB.
     const auto r =
-        runMfadvr("render " + model + " --size 32x32 -o " + png, "MFADVR_MEMORY_LIMIT=100K");
+        runMfadvr("render " + model + " --size 32x32 -o " + png, "MFADVR_MEMORY_LIMIT=50K");
     EXPECT_EQ(r.status, 1) << model;
     EXPECT_NE(r.err.find("needs about"), std::string::npos) << r.err;
-    EXPECT_NE(r.err.find("100 KB are available"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("50 KB are available"), std::string::npos) << r.err;
     EXPECT_FALSE(std::filesystem::exists(png));
     EXPECT_EQ(
         runMfadvr("render " + model + " --size 32x32 -o " + png, "MFADVR_MEMORY_LIMIT=1G").status,
         0);
     std::filesystem::remove(png);
   }
-  EXPECT_NE(runMfadvr("render " + blocks + " -o " + png, "MFADVR_MEMORY_LIMIT=100K")
+  EXPECT_NE(runMfadvr("render " + blocks + " -o " + png, "MFADVR_MEMORY_LIMIT=50K")
                 .err.find("control points in 2 blocks"),
             std::string::npos);
   const std::string nrrd = (dir / "x.nrrd").string();
-  const auto decode = runMfadvr("decode " + single + " -q -o " + nrrd, "MFADVR_MEMORY_LIMIT=100K");
+  const auto decode = runMfadvr("decode " + single + " -q -o " + nrrd, "MFADVR_MEMORY_LIMIT=50K");
   EXPECT_EQ(decode.status, 1);
   EXPECT_NE(decode.err.find("decoding " + single + " needs about"), std::string::npos)
       << decode.err;

@@ -47,6 +47,14 @@ TEST(RenderMemory, ControlPointsAndFlags) {
   const std::vector<ModelFileSummary> scene{f32, zfp};
   EXPECT_EQ(sceneRenderBytes(scene), modelRenderBytes(f32) + modelRenderBytes(zfp) +
                                          static_cast<std::int64_t>(f32.fileBytes));
+  // A file whose control points are used where they are read holds no second copy.
+  ModelFileSummary inPlace = f32;
+  inPlace.readInPlace = true;
+  const std::vector<ModelFileSummary> alone{inPlace};
+  EXPECT_EQ(sceneRenderBytes(alone), modelRenderBytes(inPlace));
+  const std::vector<ModelFileSummary> mixed{inPlace, zfp};
+  EXPECT_EQ(sceneRenderBytes(mixed), modelRenderBytes(inPlace) + modelRenderBytes(zfp) +
+                                         static_cast<std::int64_t>(zfp.fileBytes));
 }
 
 }  // namespace

@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include "TestSupport.h"
+
 #include "MarschnerLobbScene.h"
 #include "core/analytic/BuiltinFunction.h"
 #include "core/analytic/BuiltinGridSource.h"
@@ -141,7 +143,7 @@ TEST(PieceEncoder, BlocksFromASourceEqualBlocksFromMemory) {
     // (The files would differ only in the fit times and dates of their provenance.)
     const TensorBSpline &a = streamed[i].model.spline(), &b = inMemory[i].model.spline();
     EXPECT_EQ(a.counts(), b.counts()) << "block " << i;
-    EXPECT_EQ(a.controlPoints(), b.controlPoints()) << "block " << i;
+    EXPECT_EQ(test::values(a.controlPoints()), test::values(b.controlPoints())) << "block " << i;
     EXPECT_EQ(streamed[i].region.min, inMemory[i].region.min);
     EXPECT_EQ(streamed[i].region.max, inMemory[i].region.max);
     EXPECT_EQ(streamed[i].model.valueMax(), inMemory[i].model.valueMax());

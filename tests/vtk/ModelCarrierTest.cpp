@@ -58,8 +58,13 @@ TEST(ModelCarrier, ReaderOutputsAnImageThatRendersLikeTheModel) {
     worst = std::max(worst, std::abs(values->GetTuple1(i) - samples.values[i]));
   EXPECT_LT(worst, 1e-5);
 
+  // The mapper's model uses the carrier's bytes in place: it holds a reference to them.
+  auto* carried = vtkUnsignedCharArray::SafeDownCast(image->GetFieldData()->GetArray("MFAModel0"));
+  ASSERT_NE(carried, nullptr);
+  const int referencesBefore = carried->GetReferenceCount();
   scene.mapper->SetInputConnection(reader->GetOutputPort());
   const Image8 viaCarrier = scene.render();
+  EXPECT_EQ(carried->GetReferenceCount(), referencesBefore + 1);
   // The carrier path samples at multiples of the step from the camera, the model path from
   // where each ray enters the box: the same volume sampled at other points.
   EXPECT_GT(compareImages(reference, viaCarrier).psnr, 33.0);

@@ -119,7 +119,7 @@ class Coder {
 
 // Bytes of a fit's control points stored with a coder that is not zfp (float32: no coding).
 std::int64_t codedSize(const Model& m, ControlCoder coder) {
-  const std::vector<float>& ctrl = m.spline().controlPoints();
+  const std::span<const float> ctrl = m.spline().controlPoints();
   if (coder == ControlCoder::kFloat32) return 4 * static_cast<std::int64_t>(ctrl.size());
   return static_cast<std::int64_t>(
       encodeControlPoints(ctrl, m.spline().counts(), {coder, 0.0}).size());

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <memory>
 #include <nlohmann/json.hpp>
 
 #include "core/model/ModelFile.h"
@@ -273,9 +274,10 @@ BlockIndex readBlockIndex(const std::filesystem::path& path) {
 
 namespace {
 
-Model parseBlock(std::span<const std::uint8_t> bytes, const BlockEntry& e,
-                 const std::string& name) {
-  Model m = parseModel(bytes, name);
+// owner: as parseModel's (the block's float32 control points used where they were read).
+Model parseBlock(std::span<const std::uint8_t> bytes, const BlockEntry& e, const std::string& name,
+                 std::shared_ptr<const void> owner = nullptr) {
+  Model m = parseModel(bytes, name, nullptr, std::move(owner));
   // Up to rounding (a writer computes both from the same grid, along different sums).
   const DomainBox& d = m.domain();
   const Vec3d slack = 1e-9 * d.extent();
@@ -299,8 +301,11 @@ std::vector<ModelFileSummary> summarizeBlocks(const std::filesystem::path& path,
 Model loadBlock(const std::filesystem::path& path, const BlockIndex& index, size_t i) {
   if (i >= index.entries.size()) throw Error("block index out of range");
   const BlockEntry& e = index.entries[i];
-  return parseBlock(readRange(path, e.offset, e.bytes), e,
-                    path.string() + " (block " + std::to_string(i) + ")");
+  auto bytes =
+      std::make_shared<const std::vector<std::uint8_t>>(readRange(path, e.offset, e.bytes));
+  const std::span<const std::uint8_t> view(*bytes);
+  return parseBlock(view, e, path.string() + " (block " + std::to_string(i) + ")",
+                    std::move(bytes));
 }
 
 std::vector<ModelBlock> parseBlockModels(std::span<const std::uint8_t> bytes,

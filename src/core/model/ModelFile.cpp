@@ -156,6 +156,24 @@ std::string headerText(const Model& m, const std::array<json, 3>& rules, std::in
   return h.dump();
 }
 
+// Bytes of the knots a model file stores (those without a rule).
+std::int64_t storedKnotBytes(const Model& m, const std::array<json, 3>& rules) {
+  std::int64_t knots = 0;
+  for (int a = 0; a < 3; ++a)
+    if (stored(rules[a])) knots += static_cast<std::int64_t>(m.spline().knots(a).knots().size());
+  return 8 * knots;
+}
+
+// The header, padded with spaces (JSON allows them) so that the control points start at a
+// multiple of kControlAlignment bytes: a reader can then use float32 control points where the
+// file's bytes lie (parseModel with an owner), without a copy.
+constexpr size_t kControlAlignment = 16;
+std::string paddedHeader(std::string header, std::int64_t knotBytes) {
+  const size_t start = kPrefixBytes + header.size() + static_cast<size_t>(knotBytes);
+  header.append((kControlAlignment - start % kControlAlignment) % kControlAlignment, ' ');
+  return header;
+}
+
 Error invalidModel(const std::string& name, const std::string& why) {
   return Error(name + ": not a valid .mfa model: " + why);
 }
@@ -235,8 +253,10 @@ ModelFilePieces modelFilePieces(const Model& model) {
   p.mask = model.mask().empty() ? std::string() : compressedMask(model.mask());
   p.controls = codedControls(model, p.ownedControls);
   const auto rules = knotRules(model);
-  const std::string header = headerText(model, rules, static_cast<std::int64_t>(p.controls.size()),
-                                        static_cast<std::int64_t>(p.mask.size()));
+  const std::string header =
+      paddedHeader(headerText(model, rules, static_cast<std::int64_t>(p.controls.size()),
+                              static_cast<std::int64_t>(p.mask.size())),
+                   storedKnotBytes(model, rules));
   std::string& out = p.head;
   out.append(kMagic, sizeof(kMagic));
   appendBytes(out, kModelFormatVersion);
@@ -278,17 +298,15 @@ std::int64_t modelFileSize(const Model& model) {
   const std::int64_t mask =
       model.mask().empty() ? 0 : static_cast<std::int64_t>(compressedMask(model.mask()).size());
   const auto rules = knotRules(model);
-  std::int64_t knots = 0;
-  for (int a = 0; a < 3; ++a)
-    if (stored(rules[a]))
-      knots += static_cast<std::int64_t>(model.spline().knots(a).knots().size());
+  const std::int64_t knotBytes = storedKnotBytes(model, rules);
   const std::int64_t ctrl = codedControlBytes(model);
-  return static_cast<std::int64_t>(kPrefixBytes + headerText(model, rules, ctrl, mask).size()) +
-         8 * knots + ctrl + mask + 4;
+  return static_cast<std::int64_t>(
+             kPrefixBytes + paddedHeader(headerText(model, rules, ctrl, mask), knotBytes).size()) +
+         knotBytes + ctrl + mask + 4;
 }
 
 Model parseModel(std::span<const std::uint8_t> b, const std::string& name,
-                 std::uint32_t* formatVersion) {
+                 std::uint32_t* formatVersion, std::shared_ptr<const void> owner) {
   auto bad = [&](const std::string& why) { return invalidModel(name, why); };
   const auto [version, headerBytes] = checkedPrefix(b, b.size(), name);
 
@@ -434,16 +452,28 @@ Model parseModel(std::span<const std::uint8_t> b, const std::string& name,
   }
   const auto controlSection = b.subspan(offset, static_cast<size_t>(storedControlBytes));
   offset += controlSection.size();
-  std::vector<float> ctrl;
-  try {
-    ctrl = decodeControlPoints(controlSection, n, coding);
-  } catch (const Error& e) {
-    throw bad(e.what());
+  // float32 control points where the bytes lie, when their owner keeps them and they are
+  // aligned (files written since the header was padded); else decoded into a new array.
+  const bool inPlace =
+      owner && coding.coder == ControlCoder::kFloat32 && storedControlBytes == 4 * ctrlCount &&
+      reinterpret_cast<std::uintptr_t>(controlSection.data()) % alignof(float) == 0;
+  std::vector<float> decoded;
+  std::span<const float> ctrl;
+  if (inPlace) {
+    ctrl = {reinterpret_cast<const float*>(controlSection.data()), static_cast<size_t>(ctrlCount)};
+  } else {
+    try {
+      decoded = decodeControlPoints(controlSection, n, coding);
+    } catch (const Error& e) {
+      throw bad(e.what());
+    }
+    ctrl = decoded;
   }
   for (float c : ctrl)
     if (!std::isfinite(c)) throw bad("a control point is NaN or infinite");
-  Model model(TensorBSpline(std::move(knots), std::move(ctrl)), DomainBox{lo, hi}, range[0],
-              range[1], std::move(prov));
+  Model model(inPlace ? TensorBSpline(std::move(knots), std::move(owner), ctrl)
+                      : TensorBSpline(std::move(knots), std::move(decoded)),
+              DomainBox{lo, hi}, range[0], range[1], std::move(prov));
   // Keep the coded bytes of lossy codings, so that writing the model again stores the same
   // bytes (coding decoded values again would move them once more).
   if (coding.coder == ControlCoder::kZfp)
@@ -499,11 +529,13 @@ Model loadModel(const std::filesystem::path& path, std::uint32_t* formatVersion)
   // file's bytes (measured: a 537 MB model peaked at 1.6 GB while loading).
   const auto size = std::filesystem::file_size(path, ec);
   if (ec) throw Error("cannot read " + path.string() + ": " + ec.message());
-  std::vector<std::uint8_t> bytes(static_cast<size_t>(size));
-  in.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
-  if (in.gcount() != static_cast<std::streamsize>(bytes.size()) || in.peek() != EOF)
+  // The model keeps the buffer: its float32 control points stay where they were read.
+  auto bytes = std::make_shared<std::vector<std::uint8_t>>(static_cast<size_t>(size));
+  in.read(reinterpret_cast<char*>(bytes->data()), static_cast<std::streamsize>(bytes->size()));
+  if (in.gcount() != static_cast<std::streamsize>(bytes->size()) || in.peek() != EOF)
     throw Error("cannot read " + path.string() + ": its size changed while it was read");
-  return parseModel(bytes, path.string(), formatVersion);
+  const std::span<const std::uint8_t> view(*bytes);
+  return parseModel(view, path.string(), formatVersion, std::move(bytes));
 }
 
 std::int64_t loadedModelBytes(const ModelFileSummary& m) {
@@ -518,6 +550,7 @@ ModelFileSummary summarizeModelHead(std::span<const std::uint8_t> head, std::uin
     throw invalidModel(name, "header is incomplete");
   ModelFileSummary out;
   out.fileBytes = fileBytes;
+  bool storedKnots[3] = {true, true, true};
   try {
     const json h =
         json::parse(head.begin() + kPrefixBytes, head.begin() + kPrefixBytes + prefix.headerBytes);
@@ -528,10 +561,19 @@ ModelFileSummary summarizeModelHead(std::span<const std::uint8_t> head, std::uin
       if (!coding.is_string()) throw invalidModel(name, "control-point coding must be a string");
       out.coder = parseControlCoder(coding.get<std::string>());
     }
+    // The knots the file stores: all of them before version 3, else those whose rule is
+    // "stored".
+    for (int a = 0; a < 3; ++a)
+      storedKnots[a] = prefix.version < 3 || h.at("knots").at(a).at("rule") == "stored";
   } catch (const json::exception& e) {
     throw invalidModel(name, std::string("header is corrupt (") + e.what() + ")");
   }
   checkShape(out.degree, out.controlCounts, name);
+  // The control points start after the stored knots (every count is at most 2^20 here).
+  std::int64_t start = static_cast<std::int64_t>(kPrefixBytes + prefix.headerBytes);
+  for (int a = 0; a < 3; ++a)
+    if (storedKnots[a]) start += 8 * (out.controlCounts[a] + out.degree[a] + 1);
+  out.readInPlace = out.coder == ControlCoder::kFloat32 && start % alignof(float) == 0;
   return out;
 }
 

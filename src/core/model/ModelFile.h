@@ -13,6 +13,7 @@
 // control points only) and 3.
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <span>
 #include <string>
 
@@ -26,9 +27,12 @@ inline constexpr std::uint32_t kOldestModelFormatVersion = 1;  // oldest read
 
 std::string serializeModel(const Model& model);
 // `name` appears in error messages (usually the path). formatVersion (optional) receives the
-// version the bytes were written in.
+// version the bytes were written in. owner (optional): what keeps `bytes` alive and unchanged;
+// given it, float32 control points are used where they lie in `bytes` (when aligned: files of
+// this build pad their header for it), and the model holds the owner instead of a copy.
 Model parseModel(std::span<const std::uint8_t> bytes, const std::string& name = "model",
-                 std::uint32_t* formatVersion = nullptr);
+                 std::uint32_t* formatVersion = nullptr,
+                 std::shared_ptr<const void> owner = nullptr);
 
 // Writes atomically: a temporary file beside the target, flushed, then renamed over it.
 void saveModel(const Model& model, const std::filesystem::path& path);
@@ -41,6 +45,9 @@ struct ModelFileSummary {
   Index3 controlCounts{};
   ControlCoder coder = ControlCoder::kFloat32;
   std::uint64_t fileBytes = 0;
+  // Loading keeps the file's bytes as the model's float32 control points (aligned in the file):
+  // no second copy while it is read.
+  bool readInPlace = false;
 };
 // What the model holds once loaded: its control points as float32 and, for a lossy coding, the
 // coded bytes it keeps for writing the model again.

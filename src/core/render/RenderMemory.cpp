@@ -28,7 +28,7 @@ std::int64_t sceneRenderBytes(std::span<const ModelFileSummary> models) {
   std::int64_t total = 0, largestFile = 0;
   for (const ModelFileSummary& m : models) {
     total = std::min(kCap, total + modelRenderBytes(m));
-    largestFile = std::max(largestFile, static_cast<std::int64_t>(m.fileBytes));
+    if (!m.readInPlace) largestFile = std::max(largestFile, static_cast<std::int64_t>(m.fileBytes));
   }
   return total + largestFile;
 }

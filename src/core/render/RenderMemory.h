@@ -16,7 +16,8 @@ namespace mfadvr {
 std::int64_t modelRenderBytes(const ModelFileSummary& model);
 
 // A whole scene of models (one, or the blocks of a multi-block file): the sum of
-// modelRenderBytes plus, while a model is read, its file bytes once more (the largest).
+// modelRenderBytes plus, while a model is read, its file bytes once more (the largest of those
+// not read in place: ModelFileSummary::readInPlace).
 std::int64_t sceneRenderBytes(std::span<const ModelFileSummary> models);
 
 // Throws mfadvr::Error (MemoryBudget.h's requireMemory) when the scene cannot be held: the

@@ -15,7 +15,23 @@ struct TensorBSpline::Derived {
 };
 
 TensorBSpline::TensorBSpline(std::array<KnotVector, 3> knots, std::vector<float> ctrl)
-    : knots_(std::move(knots)), ctrl_(std::move(ctrl)), derived_(std::make_shared<Derived>()) {
+    : knots_(std::move(knots)), derived_(std::make_shared<Derived>()) {
+  auto owned = std::make_shared<const std::vector<float>>(std::move(ctrl));
+  ctrl_ = *owned;
+  ctrlOwner_ = std::move(owned);
+  checkShape();
+}
+
+TensorBSpline::TensorBSpline(std::array<KnotVector, 3> knots, std::shared_ptr<const void> owner,
+                             std::span<const float> ctrl)
+    : knots_(std::move(knots)),
+      ctrlOwner_(std::move(owner)),
+      ctrl_(ctrl),
+      derived_(std::make_shared<Derived>()) {
+  checkShape();
+}
+
+void TensorBSpline::checkShape() const {
   const Index3 n = counts();
   for (int a = 0; a < 3; ++a) {
     if (knots_[a].degree() < 1) throw Error("spline axis " + std::to_string(a) + " has no knots");

@@ -6,12 +6,15 @@
 // [0,1]) and return parametric derivatives; Model maps physical coordinates onto these.
 // A const spline is safe to query from any number of threads.
 //
-// The spline owns its arrays and hands out a SplineView for the header-only evaluation kernel
-// (SplineKernel.h); value(), valueGradient() and valueGradientHessian() are that kernel with the
-// degree chosen at run time, for single queries. Loops over many points (Model::evaluate, the
-// ray caster) choose the degree once and call the kernel directly.
+// The spline owns its knots; its control points it owns too, or shares with whatever holds
+// them (the bytes of a model file read in place, ModelFile.h), and hands out a SplineView for the
+// header-only evaluation kernel (SplineKernel.h); value(), valueGradient() and
+// valueGradientHessian() are that kernel with the degree chosen at run time, for single queries.
+// Loops over many points (Model::evaluate, the ray caster) choose the degree once and call the
+// kernel directly.
 #include <array>
 #include <memory>
+#include <span>
 #include <vector>
 
 #include "core/spline/KnotVector.h"
@@ -37,12 +40,15 @@ class TensorBSpline {
   TensorBSpline() = default;
   // Throws mfadvr::Error when ctrl.size() != n0*n1*n2.
   TensorBSpline(std::array<KnotVector, 3> knots, std::vector<float> ctrl);
+  // Control points held by `owner` (kept alive by the spline and its copies), not copied.
+  TensorBSpline(std::array<KnotVector, 3> knots, std::shared_ptr<const void> owner,
+                std::span<const float> ctrl);
 
   const KnotVector& knots(int axis) const { return knots_[axis]; }
   const std::array<KnotVector, 3>& allKnots() const { return knots_; }
   Degree3 degrees() const;
   Index3 counts() const;
-  const std::vector<float>& controlPoints() const { return ctrl_; }
+  std::span<const float> controlPoints() const { return ctrl_; }
 
   // Parametric coordinates, clamped to [0,1]^3; derivatives are parametric.
   float value(const Vec3d& u) const;
@@ -61,8 +67,11 @@ class TensorBSpline {
 
  private:
   struct Derived;
+  void checkShape() const;
+
   std::array<KnotVector, 3> knots_;
-  std::vector<float> ctrl_;
+  std::shared_ptr<const void> ctrlOwner_;  // what keeps ctrl_ alive; copies share it
+  std::span<const float> ctrl_;
   std::shared_ptr<Derived> derived_;
 };
 

@@ -191,11 +191,14 @@ std::vector<CarriedModel> modelsOfImage(vtkImageData* image) {
         vtkUnsignedCharArray::SafeDownCast(image->GetFieldData()->GetAbstractArray(name.c_str()));
     if (!bytes || bytes->GetNumberOfComponents() != 1)
       throw Error("the carrier lacks its model array " + name);
+    // The model's float32 control points stay in the carrier's array, which the model holds (a
+    // reference): the mapper does not keep a second copy of what the pipeline already holds.
+    auto owner = std::make_shared<const vtkSmartPointer<vtkUnsignedCharArray>>(bytes);
     CarriedModel c;
     c.model = std::make_shared<const Model>(
         parseModel(std::span<const std::uint8_t>(bytes->GetPointer(0),
                                                  static_cast<size_t>(bytes->GetNumberOfTuples())),
-                   "the carried model " + name));
+                   "the carried model " + name, nullptr, std::move(owner)));
     double tuple[6];
     regions->GetTypedTuple(i, tuple);
     for (int a = 0; a < 3; ++a) {
