@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <functional>
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -274,14 +275,26 @@ std::uint32_t crcOf(std::uint32_t crc, std::string_view bytes) {
 
 }  // namespace
 
-std::string serializeModel(const Model& model) {
+void serializeModel(const Model& model, const std::function<std::uint8_t*(size_t)>& allocate) {
   const ModelFilePieces p = modelFilePieces(model);
+  const size_t body = p.head.size() + p.controls.size() + p.mask.size();
+  std::uint8_t* out = allocate(body + 4);
+  std::uint8_t* at = out;
+  for (const std::string_view piece :
+       {std::string_view(p.head), p.controls, std::string_view(p.mask)}) {
+    std::memcpy(at, piece.data(), piece.size());
+    at += piece.size();
+  }
+  const std::uint32_t sum = crc(out, body);
+  std::memcpy(at, &sum, 4);  // little-endian (asserted above)
+}
+
+std::string serializeModel(const Model& model) {
   std::string out;
-  out.reserve(p.head.size() + p.controls.size() + p.mask.size() + 4);
-  out += p.head;
-  out += p.controls;
-  out += p.mask;
-  appendBytes(out, crc(reinterpret_cast<const std::uint8_t*>(out.data()), out.size()));
+  serializeModel(model, [&out](size_t bytes) {
+    out.resize(bytes);
+    return reinterpret_cast<std::uint8_t*>(out.data());
+  });
   return out;
 }
 

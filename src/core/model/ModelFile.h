@@ -13,6 +13,7 @@
 // control points only) and 3.
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <span>
 #include <string>
@@ -26,6 +27,9 @@ inline constexpr std::uint32_t kModelFormatVersion = 3;        // written
 inline constexpr std::uint32_t kOldestModelFormatVersion = 1;  // oldest read
 
 std::string serializeModel(const Model& model);
+// The same bytes written to `allocate(size)` (called once), e.g. an array of a pipeline, with no
+// copy in between: a large model's file is not held twice.
+void serializeModel(const Model& model, const std::function<std::uint8_t*(size_t)>& allocate);
 // `name` appears in error messages (usually the path). formatVersion (optional) receives the
 // version the bytes were written in. owner (optional): what keeps `bytes` alive and unchanged;
 // given it, float32 control points are used where they lie in `bytes` (when aligned: files of

@@ -28,6 +28,16 @@ std::string modelArrayName(size_t i) {
   return "MFAModel" + std::to_string(i);
 }
 
+// The model of a carrier's byte array. Its float32 control points stay in the array, which the
+// model holds (a reference): no second copy of what the pipeline already holds.
+std::shared_ptr<const Model> modelOfArray(vtkUnsignedCharArray* bytes, const std::string& name) {
+  auto owner = std::make_shared<const vtkSmartPointer<vtkUnsignedCharArray>>(bytes);
+  return std::make_shared<const Model>(
+      parseModel(std::span<const std::uint8_t>(bytes->GetPointer(0),
+                                               static_cast<size_t>(bytes->GetNumberOfTuples())),
+                 name, nullptr, std::move(owner)));
+}
+
 }  // namespace
 
 CarrierGrid wholeCarrierGrid(const DomainBox& box, const Vec3d& step) {
@@ -63,7 +73,7 @@ CarrierGrid carrierSubGrid(const CarrierGrid& whole, const DomainBox& region) {
   return g;
 }
 
-vtkSmartPointer<vtkImageData> imageOfModels(const std::vector<CarriedModel>& models,
+vtkSmartPointer<vtkImageData> imageOfModels(std::vector<CarriedModel> models,
                                             const int* firstIndex) {
   if (models.empty()) throw Error("internal: a carrier needs at least one model");
   DomainBox all = models.front().region;
@@ -80,10 +90,10 @@ vtkSmartPointer<vtkImageData> imageOfModels(const std::vector<CarriedModel>& mod
       grid.extent[2 * a + 1] += firstIndex[a];
     }
   }
-  return imageOfModels(models, grid);
+  return imageOfModels(std::move(models), grid);
 }
 
-vtkSmartPointer<vtkImageData> imageOfModels(const std::vector<CarriedModel>& models,
+vtkSmartPointer<vtkImageData> imageOfModels(std::vector<CarriedModel> models,
                                             const CarrierGrid& grid) {
   if (models.empty()) throw Error("internal: a carrier needs at least one model");
   DomainBox all = models.front().region;
@@ -97,12 +107,16 @@ vtkSmartPointer<vtkImageData> imageOfModels(const std::vector<CarriedModel>& mod
     regions->InsertNextTuple(tuple);
     all.min = all.min.cwiseMin(r.min);
     all.max = all.max.cwiseMax(r.max);
-    const std::string bytes = serializeModel(*models[i].model);
     vtkNew<vtkUnsignedCharArray> array;
     array->SetName(modelArrayName(i).c_str());
-    array->SetNumberOfTuples(static_cast<vtkIdType>(bytes.size()));
-    std::memcpy(array->GetPointer(0), bytes.data(), bytes.size());
+    serializeModel(*models[i].model, [&array](size_t bytes) {
+      array->SetNumberOfTuples(static_cast<vtkIdType>(bytes));
+      return array->GetPointer(0);
+    });
     image->GetFieldData()->AddArray(array);
+    // From here on the model is the one in the array: the caller's copy goes now (when it gave
+    // up its references), before the values on the grid are computed.
+    models[i].model = modelOfArray(array, "the carried model " + modelArrayName(i));
   }
   image->GetFieldData()->AddArray(regions);
   const double bounds[6] = {all.min[0], all.max[0], all.min[1], all.max[1], all.min[2], all.max[2]};
@@ -191,14 +205,8 @@ std::vector<CarriedModel> modelsOfImage(vtkImageData* image) {
         vtkUnsignedCharArray::SafeDownCast(image->GetFieldData()->GetAbstractArray(name.c_str()));
     if (!bytes || bytes->GetNumberOfComponents() != 1)
       throw Error("the carrier lacks its model array " + name);
-    // The model's float32 control points stay in the carrier's array, which the model holds (a
-    // reference): the mapper does not keep a second copy of what the pipeline already holds.
-    auto owner = std::make_shared<const vtkSmartPointer<vtkUnsignedCharArray>>(bytes);
     CarriedModel c;
-    c.model = std::make_shared<const Model>(
-        parseModel(std::span<const std::uint8_t>(bytes->GetPointer(0),
-                                                 static_cast<size_t>(bytes->GetNumberOfTuples())),
-                   "the carried model " + name, nullptr, std::move(owner)));
+    c.model = modelOfArray(bytes, "the carried model " + name);
     double tuple[6];
     regions->GetTypedTuple(i, tuple);
     for (int a = 0; a < 3; ++a) {

@@ -56,15 +56,18 @@ CarrierGrid wholeCarrierGrid(const DomainBox& box, const Vec3d& step);
 // least 2 points per axis).
 CarrierGrid carrierSubGrid(const CarrierGrid& whole, const DomainBox& region);
 
-// The carrier of `models` on `grid` (carrierSubGrid of the whole data's grid for a piece).
-vtkSmartPointer<vtkImageData> imageOfModels(const std::vector<CarriedModel>& models,
+// The carrier of `models` on `grid` (carrierSubGrid of the whole data's grid for a piece). Each
+// model is written into its byte array and, from there on, used where it lies there (float32
+// control points): a model that the caller moved in is freed before the carrier's values are
+// computed, so that a large model is not held twice.
+vtkSmartPointer<vtkImageData> imageOfModels(std::vector<CarriedModel> models,
                                             const CarrierGrid& grid);
 
 // The carrier on the data's grid over the union of the models' regions. firstIndex (optional):
 // the index of the carrier's first point, for a carrier made from image data, so that its
 // extent lies in the input's index space (a pipeline crops an image to the update extent it
 // asked for, which is in that space); null: the extent starts at 0.
-vtkSmartPointer<vtkImageData> imageOfModels(const std::vector<CarriedModel>& models,
+vtkSmartPointer<vtkImageData> imageOfModels(std::vector<CarriedModel> models,
                                             const int* firstIndex = nullptr);
 
 // The name of a carrier's point array for `model`: the model's field, "MFA value" when it has

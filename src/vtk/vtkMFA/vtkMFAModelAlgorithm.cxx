@@ -84,12 +84,16 @@ void vtkMFAModelAlgorithm::SetOutputModel(vtkInformationVector* outInfo,
                                           const double* renderBounds, const int* firstIndex) {
   vtkDataObject* output = outInfo->GetInformationObject(0)->Get(vtkDataObject::DATA_OBJECT());
   if (auto* image = vtkImageData::SafeDownCast(output)) {
-    mfadvr::vtkglue::CarriedModel carried{model, model->domain()};
+    mfadvr::vtkglue::CarriedModel carried{nullptr, model->domain()};
     if (renderBounds) {
       carried.region.min = mfadvr::Vec3d(renderBounds[0], renderBounds[2], renderBounds[4]);
       carried.region.max = mfadvr::Vec3d(renderBounds[1], renderBounds[3], renderBounds[5]);
     }
-    image->ShallowCopy(mfadvr::vtkglue::imageOfModels({carried}, firstIndex));
+    // Moved on, so that the carrier can free this copy once it holds the model's bytes.
+    carried.model = std::move(model);
+    std::vector<mfadvr::vtkglue::CarriedModel> models;
+    models.push_back(std::move(carried));
+    image->ShallowCopy(mfadvr::vtkglue::imageOfModels(std::move(models), firstIndex));
   } else if (auto* data = vtkMFAModelData::SafeDownCast(output)) {
     data->SetModel(std::move(model));
   }

@@ -238,8 +238,8 @@ int vtkMFAReader::RequestData(vtkInformation*, vtkInformationVector**,
                          "their bounds and may blend them in the wrong order. Use as many "
                          "ranks as blocks, or a count that splits the block grid into boxes.");
     }
-    output->ShallowCopy(
-        mfadvr::vtkglue::imageOfModels(models, mfadvr::vtkglue::carrierSubGrid(layout.whole, all)));
+    output->ShallowCopy(mfadvr::vtkglue::imageOfModels(
+        std::move(models), mfadvr::vtkglue::carrierSubGrid(layout.whole, all)));
   } catch (const std::exception& e) {
     vtkErrorMacro(<< e.what());
     return 0;
