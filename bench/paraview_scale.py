@@ -4,7 +4,9 @@ many MPI ranks pvbatch runs with (bench/paraview_scale.sh drives it).
     pvbatch bench/paraview_scale.py N IMAGE_SIZE
 
 Prints, per rank, the encode time, the first (still) render, a second render, and the peak
-memory of the rank (max RSS), also as it was after encoding and after Show.
+memory of the rank (max RSS), also as it was after encoding and after Show, and the memory
+resident at those points and after the renders (VmRSS: what stays held, without the peaks of
+the work in between).
 """
 import os
 import resource
@@ -37,7 +39,16 @@ def peak_mib():
     return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
 
 
+def resident_mib():
+    with open("/proc/self/status") as f:
+        for line in f:
+            if line.startswith("VmRSS:"):
+                return int(line.split()[1]) / 1024.0
+    return float("nan")
+
+
 encode_peak = peak_mib()
+encode_resident = resident_mib()
 
 view = pvs.CreateRenderView()
 view.ViewSize = [size, size]
@@ -46,6 +57,7 @@ start = time.perf_counter()
 display = pvs.Show(encoded, view)
 show = time.perf_counter() - start
 show_peak = peak_mib()
+show_resident = resident_mib()
 display.Representation = "MFA Volume"
 pvs.ColorBy(display, ("POINTS", "RTData"))
 lut = pvs.GetColorTransferFunction("RTData")
@@ -65,6 +77,7 @@ for _ in range(2):
     pvs.Render(view)
     times.append(time.perf_counter() - start)
 print("rank %d of %d: %d^3 Wavelet, encode %.2f s, show %.2f s, render %.2f s then %.2f s "
-      "(%dx%d), peak memory %.0f MiB (after encoding %.0f, after Show %.0f)"
+      "(%dx%d), peak memory %.0f MiB (after encoding %.0f, after Show %.0f); resident after "
+      "encoding %.0f, after Show %.0f, after the renders %.0f MiB"
       % (rank, ranks, n, encode, show, times[0], times[1], size, size, peak_mib(), encode_peak,
-         show_peak), flush=True)
+         show_peak, encode_resident, show_resident, resident_mib()), flush=True)
