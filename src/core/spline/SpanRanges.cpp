@@ -89,6 +89,18 @@ void maxInto(float* dst, const float* src, std::int64_t n) {
   for (std::int64_t i = 0; i < n; ++i) dst[i] = src[i] > dst[i] ? src[i] : dst[i];
 }
 
+// loOut[i] = min and hiOut[i] = max of lo[i + w * stride] and hi[i + w * stride] over
+// w = 0 .. window - 1, for i < n.
+void slideWindow(const float* lo, const float* hi, std::int64_t stride, int window, std::int64_t n,
+                 float* loOut, float* hiOut) {
+  std::copy_n(lo, n, loOut);
+  std::copy_n(hi, n, hiOut);
+  for (int w = 1; w < window; ++w) {
+    minInto(loOut, lo + w * stride, n);
+    maxInto(hiOut, hi + w * stride, n);
+  }
+}
+
 }  // namespace
 
 SpanRangeScanner::SpanRangeScanner(const SplineView& v) : v_(v) {
@@ -118,24 +130,11 @@ void SpanRangeScanner::addControlPlane(std::int64_t k) {
       rowLo_[i] = finite ? row[i] : -INFINITY;
       rowHi_[i] = finite ? row[i] : INFINITY;
     }
-    float* lo = lx_.data() + X * j;
-    float* hi = hx_.data() + X * j;
-    std::copy_n(rowLo_.data(), X, lo);
-    std::copy_n(rowHi_.data(), X, hi);
-    for (int w = 1; w < w_[0]; ++w) {
-      minInto(lo, rowLo_.data() + w, X);
-      maxInto(hi, rowHi_.data() + w, X);
-    }
+    slideWindow(rowLo_.data(), rowHi_.data(), 1, w_[0], X, lx_.data() + X * j, hx_.data() + X * j);
   }
-  const std::int64_t plane = X * Y;
-  float* lo = ringLo_.data() + (k % w_[2]) * plane;
-  float* hi = ringHi_.data() + (k % w_[2]) * plane;
-  std::copy_n(lx_.data(), plane, lo);
-  std::copy_n(hx_.data(), plane, hi);
-  for (int w = 1; w < w_[1]; ++w) {
-    minInto(lo, lx_.data() + X * w, plane);
-    maxInto(hi, hx_.data() + X * w, plane);
-  }
+  const std::int64_t plane = X * Y, slot = (k % w_[2]) * plane;
+  slideWindow(lx_.data(), hx_.data(), X, w_[1], plane, ringLo_.data() + slot,
+              ringHi_.data() + slot);
 }
 
 void SpanRangeScanner::plane(std::int64_t z, float* lo, float* hi) {
