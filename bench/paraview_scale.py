@@ -1,7 +1,10 @@
 """ParaView scale figures: encode + render of a large Wavelet with the MFA plugin, on however
 many MPI ranks pvbatch runs with (bench/paraview_scale.sh drives it).
 
-    pvbatch bench/paraview_scale.py N IMAGE_SIZE
+    pvbatch bench/paraview_scale.py N IMAGE_SIZE [RAW]
+
+RAW (optional): an N^3 uint8 raw volume (x fastest, as bench/make_large_volume.py writes) read by
+ParaView's Image Reader instead of the float Wavelet source, as a user's scan would be.
 
 Prints, per rank, the encode time, the first (still) render, a second render, and the peak
 memory of the rank (max RSS), also as it was after encoding and after Show, and the memory
@@ -24,11 +27,22 @@ size = int(sys.argv[2])
 rank = sm.vtkProcessModule.GetProcessModule().GetPartitionId()
 ranks = sm.vtkProcessModule.GetProcessModule().GetNumberOfLocalPartitions()
 
+raw = sys.argv[3] if len(sys.argv) > 3 else None
 pv_scene.load_plugin()
-wavelet = pvs.Wavelet()
-half = n // 2
-wavelet.WholeExtent = [-half, n - 1 - half] * 3
-encoded = pvs.MFAEncode(Input=wavelet)
+if raw:
+    source = pvs.ImageReader(FileNames=[raw])
+    source.DataScalarType = "unsigned char"
+    source.DataExtent = [0, n - 1] * 3
+    source.NumberOfScalarComponents = 1
+    field, lo, hi, what = "ImageFile", 0.0, 255.0, "uint8 volume"
+    hidden, rising = 120.0, 173.0
+else:
+    source = pvs.Wavelet()
+    half = n // 2
+    source.WholeExtent = [-half, n - 1 - half] * 3
+    field, lo, hi, what = "RTData", 37.35, 276.8, "Wavelet"
+    hidden, rising = 150.0, 200.0
+encoded = pvs.MFAEncode(Input=source)
 encoded.Degree = 2
 start = time.perf_counter()
 encoded.UpdatePipeline()
@@ -59,12 +73,13 @@ show = time.perf_counter() - start
 show_peak = peak_mib()
 show_resident = resident_mib()
 display.Representation = "MFA Volume"
-pvs.ColorBy(display, ("POINTS", "RTData"))
-lut = pvs.GetColorTransferFunction("RTData")
-lut.RescaleTransferFunction(37.35, 276.8)
-opacity = pvs.GetOpacityTransferFunction("RTData")
-opacity.Points = [37.35, 0.0, 0.5, 0.0, 150.0, 0.0, 0.5, 0.0, 200.0, 0.3, 0.5, 0.0,
-                  276.8, 0.6, 0.5, 0.0]
+pvs.ColorBy(display, ("POINTS", field))
+lut = pvs.GetColorTransferFunction(field)
+lut.RescaleTransferFunction(lo, hi)
+opacity = pvs.GetOpacityTransferFunction(field)
+# Hidden below `hidden` (47 % of the range), then rising.
+opacity.Points = [lo, 0.0, 0.5, 0.0, hidden, 0.0, 0.5, 0.0, rising, 0.3, 0.5, 0.0,
+                  hi, 0.6, 0.5, 0.0]
 display.ScalarOpacityUnitDistance = n / 16.0
 display.Shade = 1
 view.ResetCamera()
@@ -76,8 +91,8 @@ for _ in range(2):
     start = time.perf_counter()
     pvs.Render(view)
     times.append(time.perf_counter() - start)
-print("rank %d of %d: %d^3 Wavelet, encode %.2f s, show %.2f s, render %.2f s then %.2f s "
+print("rank %d of %d: %d^3 %s, encode %.2f s, show %.2f s, render %.2f s then %.2f s "
       "(%dx%d), peak memory %.0f MiB (after encoding %.0f, after Show %.0f); resident after "
       "encoding %.0f, after Show %.0f, after the renders %.0f MiB"
-      % (rank, ranks, n, encode, show, times[0], times[1], size, size, peak_mib(), encode_peak,
+      % (rank, ranks, n, what, encode, show, times[0], times[1], size, size, peak_mib(), encode_peak,
          show_peak, encode_resident, show_resident, resident_mib()), flush=True)

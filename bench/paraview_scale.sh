@@ -1,10 +1,12 @@
 #!/usr/bin/env bash
 # ParaView scale figures (docs/benchmarks.md): the MFA plugin encodes and renders an N^3
 # Wavelet (degree 2, one control point per sample) on 1 and 2 MPI ranks.
-#   bench/paraview_scale.sh [N=512] [IMAGE=800] [RANKS="1 2"]
+#   bench/paraview_scale.sh [N=512] [IMAGE=800] [RANKS="1 2"] [RAW]
+# RAW: an N^3 uint8 raw volume (bench/make_large_volume.py N) instead of the float Wavelet.
 # MFADVR_PLUGIN: another build of the plugin (default: the paraview preset's).
 # Needs the paraview preset built (scripts/install-deps.sh --paraview first).
 set -euo pipefail
+raw=${4:+$(realpath "$4")}  # before the cd: relative to the caller
 cd "$(dirname "$0")/.."
 n=${1:-512}
 size=${2:-800}
@@ -15,8 +17,8 @@ export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 for r in $ranks; do
   start=$EPOCHREALTIME
   xvfb-run -a -s "-screen 0 1280x1024x24" mpiexec --oversubscribe -np "$r" \
-    pvbatch --symmetric --disable-xdisplay-test bench/paraview_scale.py "$n" "$size" 2>&1 |
-    grep -E "rank [0-9]+ of" || true
+    pvbatch --symmetric --disable-xdisplay-test bench/paraview_scale.py "$n" "$size" ${raw:+"$raw"} 2>&1 |
+    grep -E "rank [0-9]+ of|Error" || true
   awk -v s="$start" -v e="$EPOCHREALTIME" -v r="$r" \
     'BEGIN { printf "%d rank(s): %.1f s in all (start-up included)\n", r, e - s }'
 done
