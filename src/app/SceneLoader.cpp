@@ -10,6 +10,7 @@
 #include "core/model/ModelFile.h"
 #include "core/render/RenderMemory.h"
 #include "core/util/Error.h"
+#include "core/util/MemoryBudget.h"
 #include "io/ScatteredLoader.h"
 
 namespace mfadvr::app {
@@ -63,12 +64,16 @@ void takeScatteredFacts(LoadedScene& s, const ScatteredData& data, const EncodeO
 
 // Refuses, before anything is loaded, a model (or the blocks of one) that the renderer could
 // not hold.
-void requireRenderMemory(const std::string& input, const std::vector<ModelFileSummary>& models) {
+// oneAtATime: for blocks, the memory of rendering them one at a time (also too much).
+void requireRenderMemory(const std::string& input, const std::vector<ModelFileSummary>& models,
+                         std::int64_t oneAtATime = 0) {
   requireSceneRenderMemory(
       models, "rendering " + input,
-      models.size() > 1 ? " in " + std::to_string(models.size()) +
-                              " blocks; ParaView's MFA reader spreads the blocks over MPI ranks"
-                        : "");
+      models.size() > 1
+          ? " in " + std::to_string(models.size()) + " blocks, about " + formatBytes(oneAtATime) +
+                " one at a time; ParaView's MFA reader spreads the blocks over "
+                "MPI ranks"
+          : "");
 }
 
 }  // namespace
@@ -90,6 +95,7 @@ SceneData LoadedScene::view() const {
   SceneData d;
   d.model = model ? &*model : nullptr;
   d.blocks = blocks.empty() ? nullptr : &blocks;
+  d.streamedBlocks = streamedBlocks ? &*streamedBlocks : nullptr;
   d.grid = grid ? &*grid : nullptr;
   d.truth = truth.get();
   d.differenceStep = spacing;
@@ -104,15 +110,37 @@ LoadedScene loadSceneData(const std::string& input, const SceneNeeds& needs,
   s.input = input;
   const auto start = Clock::now();
   if (isBlockModelInput(input)) {
-    const BlockIndex index = readBlockIndex(input);
-    requireRenderMemory(input, summarizeBlocks(input, index));
-    s.blocks = loadBlockModels(input);
-    s.model = s.blocks.front().model;
-    takeModelFacts(s);
-    s.boxMin = index.box.min;
-    s.boxMax = index.box.max;
+    BlockIndex index = readBlockIndex(input);
+    const std::vector<ModelFileSummary> summaries = summarizeBlocks(input, index);
+    const std::int64_t all = sceneRenderBytes(summaries), available = availableMemoryBytes();
+    // When the blocks do not fit at once but one at a time does (the largest, and the first,
+    // kept for the scene's facts), they are read as they are rendered, every frame reading the
+    // file again. Otherwise all are loaded, or refused with the figure for all of them.
+    const auto largest = std::max_element(
+        summaries.begin(), summaries.end(),
+        [](const auto& a, const auto& b) { return modelRenderBytes(a) < modelRenderBytes(b); });
+    const std::vector<ModelFileSummary> held{summaries.front(), *largest};
+    const std::int64_t oneAtATime = sceneRenderBytes(held);
+    const bool stream =
+        summaries.size() > 1 && available > 0 && all > available && oneAtATime <= available;
     if (needs.grid || needs.cells)
       throw Error("a multi-block model renders with --method mfa only (it holds no samples)");
+    const DomainBox box = index.box;
+    if (stream) {
+      std::cerr << "mfadvr: note: " << input << ": its " << summaries.size()
+                << " blocks would need about " << formatBytes(all) << " at once ("
+                << formatBytes(available)
+                << " available): they are read one at a time as each frame renders them\n";
+      s.model = loadBlock(input, index, 0);
+      s.streamedBlocks = BlockModelStream{input, std::move(index)};
+    } else {
+      requireRenderMemory(input, summaries, oneAtATime);
+      s.blocks = loadBlockModels(input);
+      s.model = s.blocks.front().model;
+    }
+    takeModelFacts(s);
+    s.boxMin = box.min;  // the union of the blocks' regions
+    s.boxMax = box.max;
     s.loadSeconds = since(start);
     return s;
   }

@@ -30,6 +30,8 @@ struct LoadedScene {
   std::string input;
   std::optional<Model> model;      // for a multi-block file: its first block's model
   std::vector<ModelBlock> blocks;  // a multi-block model file's blocks
+  // Or its blocks to read one at a time, when they would not fit in memory at once.
+  std::optional<BlockModelStream> streamedBlocks;
   std::optional<StructuredGrid> grid;
   std::optional<ScatteredData> scattered;  // a mesh or point cloud input, when needs.cells
   std::unique_ptr<BuiltinFunction> truth;

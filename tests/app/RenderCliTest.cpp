@@ -153,6 +153,32 @@ TEST(CliRender, ModelTooLargeForTheMemoryIsRefusedBeforeLoading) {
       << bad.err;
 }
 
+TEST(CliRender, BlocksThatDoNotFitTogetherAreReadOneAtATime) {
+  // 2 x 2 x 2 blocks: all of them need more than the limit, two at a time (the first block is
+  // kept) fit. The image is the one rendered with every block in memory, byte for byte.
+  const auto dir = test::scratchDir();
+  const std::string blocks = (dir / "blocks.mfa").string();
+  ASSERT_EQ(runMfadvr("encode builtin:marschner-lobb:40 --blocks 2,2,2 -o " + blocks).status, 0);
+  const std::string whole = (dir / "whole.png").string(),
+                    streamed = (dir / "streamed.png").string();
+  const std::string args = " --shade --tf step:0.5 --size 48x40 --azimuth 35 --elevation 20 -o ";
+  const auto all = runMfadvr("render " + blocks + args + whole, "MFADVR_MEMORY_LIMIT=1G");
+  ASSERT_EQ(all.status, 0) << all.err;
+  EXPECT_EQ(all.err.find("one at a time"), std::string::npos) << all.err;
+  const auto one = runMfadvr("render " + blocks + args + streamed, "MFADVR_MEMORY_LIMIT=250K");
+  ASSERT_EQ(one.status, 0) << one.err;
+  EXPECT_NE(one.err.find("its 8 blocks would need about"), std::string::npos) << one.err;
+  EXPECT_NE(one.err.find("read one at a time"), std::string::npos) << one.err;
+  EXPECT_EQ(test::slurp(whole), test::slurp(streamed));
+  // Less than two blocks: refused with the figure for all of them, nothing written.
+  std::filesystem::remove(streamed);
+  const auto none = runMfadvr("render " + blocks + args + streamed, "MFADVR_MEMORY_LIMIT=60K");
+  EXPECT_EQ(none.status, 1);
+  EXPECT_NE(none.err.find("in 8 blocks, about"), std::string::npos) << none.err;
+  EXPECT_NE(none.err.find("one at a time"), std::string::npos) << none.err;
+  EXPECT_FALSE(std::filesystem::exists(streamed));
+}
+
 TEST(CliDemo, WritesImagesMontageAndMetrics) {
   const auto dir = test::scratchDir() / "demo";
   const auto r = runMfadvr("demo --size 96x96 --json --out " + dir.string());

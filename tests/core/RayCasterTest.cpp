@@ -288,6 +288,70 @@ TEST(RayCaster, PiecesWithAlignedSamplesCompositeToTheWhole) {
   EXPECT_THROW(renderVolume(field, outside), Error);
 }
 
+TEST(RayCaster, GridPiecesCompositedInOneOrderAsTheyAreRendered) {
+  // Pieces that are the cells of a 3 x 2 x 2 grid (uneven faces): renderPieces renders them in
+  // gridVisibilityOrder and composites each at once; the image must be the per-pixel
+  // composite of all pieces' images, bit for bit, from cameras outside, inside and parallel.
+  const auto ml = makeBuiltin("marschner-lobb");
+  const Model model = fitStructured(sampleBuiltin(*ml, {20, 20, 20}), StructuredFitOptions{});
+  const ModelField field(model);
+  const Vec3d lo = model.domain().min, hi = model.domain().max;
+  const double fx[4] = {0.0, 0.3, 0.55, 1.0}, fy[3] = {0.0, 0.7, 1.0}, fz[3] = {0.0, 0.45, 1.0};
+  std::vector<DomainBox> boxes;
+  for (int k = 0; k < 2; ++k)
+    for (int i = 0; i < 3; ++i)  // not in x-fastest order: the order must not matter
+      for (int j = 0; j < 2; ++j) {
+        auto at = [&](int a, double f) { return lo[a] + f * (hi[a] - lo[a]); };
+        boxes.push_back(DomainBox{Vec3d(at(0, fx[i]), at(1, fy[j]), at(2, fz[k])),
+                                  Vec3d(at(0, fx[i + 1]), at(1, fy[j + 1]), at(2, fz[k + 1]))});
+      }
+  int views = 0;
+  for (int view = 0; view < 4; ++view) {
+    RenderSettings s = mlSettings(40);
+    s.background = Vec3f::Zero();
+    s.alignSamplesToCamera = true;
+    if (view == 1) {
+      s.camera.azimuth(140.0);
+      s.camera.elevation(-35.0);
+    }
+    if (view == 2) {  // inside the grid, looking across it
+      s.camera.position = lo + 0.4 * (hi - lo);
+      s.camera.focalPoint = hi;
+    }
+    if (view == 3) {
+      s.camera.parallelProjection = true;
+      s.camera.azimuth(-70.0);
+    }
+    const std::vector<size_t> order = gridVisibilityOrder(s, boxes);
+    ASSERT_EQ(order.size(), boxes.size());
+    std::vector<Image> images;
+    for (const DomainBox& box : boxes) {
+      RenderSettings piece = s;
+      piece.clipBox = box;
+      images.push_back(renderVolume(field, piece));
+    }
+    const Image perPixel = compositeInVisibilityOrder(s, boxes, images);
+    std::vector<size_t> rendered;
+    const Image inOrder =
+        renderPieces(s, boxes, [&](size_t i, const RenderSettings& piece, RenderStats* stats) {
+          rendered.push_back(i);
+          return renderVolume(field, piece, stats);
+        });
+    EXPECT_EQ(rendered, order);
+    EXPECT_EQ(inOrder.rgba, perPixel.rgba) << "view " << view;
+    EXPECT_GT(*std::max_element(inOrder.rgba.begin(), inOrder.rgba.end()), 0.1f);
+    ++views;
+  }
+  EXPECT_EQ(views, 4);
+  // Regions that are not the cells of one grid have no such order.
+  std::vector<DomainBox> uneven = boxes;
+  uneven[0].max[0] = lo[0] + 0.2 * (hi[0] - lo[0]);
+  EXPECT_TRUE(gridVisibilityOrder(mlSettings(40), uneven).empty());
+  std::vector<DomainBox> twice = boxes;
+  twice[1] = twice[0];
+  EXPECT_TRUE(gridVisibilityOrder(mlSettings(40), twice).empty());
+}
+
 TEST(RayCaster, MethodsNeedTheirData) {
   SceneData empty;
   RenderSettings s = slabSettings();

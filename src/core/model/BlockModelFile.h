@@ -84,6 +84,13 @@ BlockIndex readBlockIndex(const std::filesystem::path& path);
 std::vector<ModelFileSummary> summarizeBlocks(const std::filesystem::path& path,
                                               const BlockIndex& index);
 
+// A multi-block file whose blocks are read one at a time, where they are used (rendering a
+// model that does not fit in memory at once: loadBlock for each).
+struct BlockModelStream {
+  std::filesystem::path path;
+  BlockIndex index;
+};
+
 // Block i's model (its bytes alone are read and checked).
 Model loadBlock(const std::filesystem::path& path, const BlockIndex& index, size_t i);
 std::vector<ModelBlock> loadBlockModels(const std::filesystem::path& path);

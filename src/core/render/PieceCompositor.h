@@ -18,11 +18,23 @@ Image compositeInVisibilityOrder(const RenderSettings& settings,
                                  const std::vector<DomainBox>& regions,
                                  const std::vector<Image>& images);
 
+// When the regions are cells of one grid (each spans one interval between consecutive faces of
+// the regions on every axis, no two the same; the blocks of `encode --blocks`): an order of the
+// pieces that is front to back for every ray of `settings`' camera. Along a ray, a cell's
+// distance in cells from the camera's cell (summed over the axes) only grows, so sorting the
+// cells by it orders the cells of every ray. Empty when the regions are not such cells.
+std::vector<size_t> gridVisibilityOrder(const RenderSettings& settings,
+                                        const std::vector<DomainBox>& regions);
+
 // Renders the pieces of a partitioned volume here, as the ranks of a parallel renderer would:
 // renderPiece(i, pieceSettings, pieceStats) renders piece i with `settings` clipped to
 // regions[i], with camera-aligned steps (RenderSettings::alignSamplesToCamera) over a
 // transparent background; the images are composited in visibility order. The result is
 // premultiplied over a transparent background; stats (optional) receive the pieces' sums.
+// Pieces that are cells of a grid (gridVisibilityOrder) are rendered in that order and each
+// composited as soon as it is rendered, so that one piece's image is held at a time (and a
+// caller may read one piece's model at a time); other pieces are composited per pixel, all
+// images held.
 using PieceRenderer = std::function<Image(size_t, const RenderSettings&, RenderStats*)>;
 Image renderPieces(const RenderSettings& settings, const std::vector<DomainBox>& regions,
                    const PieceRenderer& renderPiece, RenderStats* stats = nullptr);

@@ -1,6 +1,7 @@
 #include "core/render/ReconstructionMethod.h"
 
 #include <chrono>
+#include <optional>
 
 #include "core/field/AnalyticField.h"
 #include "core/field/DerivedFields.h"
@@ -137,14 +138,22 @@ Image renderMethod(const SceneData& scene, const MethodSpec& spec, const RenderS
     else
       render(field);
   };
-  if (scene.blocks && spec.method == ReconstructionMethod::Mfa && !spec.gradientFrom) {
+  const BlockModelStream* stream = scene.streamedBlocks;
+  if ((scene.blocks || stream) && spec.method == ReconstructionMethod::Mfa && !spec.gradientFrom) {
     std::vector<DomainBox> regions;
-    for (const ModelBlock& b : *scene.blocks) regions.push_back(b.region);
+    if (stream)
+      for (const BlockEntry& e : stream->index.entries) regions.push_back(e.region);
+    else
+      for (const ModelBlock& b : *scene.blocks) regions.push_back(b.region);
     image = renderPieces(
         settings, regions,
         [&](size_t i, const RenderSettings& piece, RenderStats* pieceStats) {
-          const ModelField field((*scene.blocks)[i].model,
-                                 scene.emptySpace ? &scene.emptySpace[i] : nullptr);
+          // A streamed block is read here and freed after its piece is rendered; its flags are
+          // built for this render only (kept, they would add up over the blocks).
+          std::optional<Model> read;
+          if (stream) read.emplace(loadBlock(stream->path, stream->index, i));
+          const ModelField field(stream ? *read : (*scene.blocks)[i].model,
+                                 !stream && scene.emptySpace ? &scene.emptySpace[i] : nullptr);
           if (spec.device) return spec.device->renderModel(field, piece, pieceStats);
           if (spec.gradient == GradientMode::CentralDifference)
             return renderVolume(CentralDifferenceField(field, scene.differenceStep), piece,

@@ -50,6 +50,9 @@ struct SceneData {
   // A multi-block model (BlockModelFile.h): mfa renders each block in its region and composites
   // them in visibility order, with camera-aligned steps; `model` is then the first block's.
   const std::vector<ModelBlock>* blocks = nullptr;
+  // Or a multi-block file read a block at a time: mfa reads each block as it renders it (and
+  // again for every frame) and composites as it goes, so that one block is held at a time.
+  const BlockModelStream* streamedBlocks = nullptr;
   const StructuredGrid* grid = nullptr;
   const BuiltinFunction* truth = nullptr;
   // Step of central differences, physical units per axis (normally the data spacing).
