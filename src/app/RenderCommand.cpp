@@ -233,10 +233,13 @@ Command addRenderCommand(CLI::App& app) {
     const RenderDevice device = openRenderDevice(o->device, spec);
     spec.device = device.renderer.get();
     const bool progress = wantProgress(o->quiet || o->json);
-    const LoadedScene scene = loadScene(o->input, needs, loadOptions(*o, progress));
+    const int frames = o->frames > 0 ? o->frames : 1;
+    SceneLoadOptions load = loadOptions(*o, progress);
+    // One frame reads every block once either way; one at a time, it holds one.
+    load.streamBlocks = frames == 1;
+    const LoadedScene scene = loadScene(o->input, needs, load);
     RenderSettings settings = o->render.settingsFor(scene);
     if (progress) settings.progress = [](double f) { printProgress("rendering", f); };
-    const int frames = o->frames > 0 ? o->frames : 1;
     MethodRenderStats stats;
     Image image;
     std::vector<double> frameSeconds;

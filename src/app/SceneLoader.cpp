@@ -113,24 +113,28 @@ LoadedScene loadSceneData(const std::string& input, const SceneNeeds& needs,
     BlockIndex index = readBlockIndex(input);
     const std::vector<ModelFileSummary> summaries = summarizeBlocks(input, index);
     const std::int64_t all = sceneRenderBytes(summaries), available = availableMemoryBytes();
-    // When the blocks do not fit at once but one at a time does (the largest, and the first,
-    // kept for the scene's facts), they are read as they are rendered, every frame reading the
-    // file again. Otherwise all are loaded, or refused with the figure for all of them.
+    // Blocks are read one at a time as they are rendered (every frame reading the file again)
+    // when asked to, or when they do not fit in memory together; either way only if one at a
+    // time fits (the largest, and the first, kept for the scene's facts). Otherwise all are
+    // loaded, or refused with the figures for both.
     const auto largest = std::max_element(
         summaries.begin(), summaries.end(),
         [](const auto& a, const auto& b) { return modelRenderBytes(a) < modelRenderBytes(b); });
     const std::vector<ModelFileSummary> held{summaries.front(), *largest};
     const std::int64_t oneAtATime = sceneRenderBytes(held);
-    const bool stream =
-        summaries.size() > 1 && available > 0 && all > available && oneAtATime <= available;
+    const bool tooLarge = available > 0 && all > available;
+    const bool stream = summaries.size() > 1 && (options.streamBlocks || tooLarge) &&
+                        (available <= 0 || oneAtATime <= available);
     if (needs.grid || needs.cells)
       throw Error("a multi-block model renders with --method mfa only (it holds no samples)");
     const DomainBox box = index.box;
-    if (stream) {
+    if (stream && tooLarge) {
       std::cerr << "mfadvr: note: " << input << ": its " << summaries.size()
                 << " blocks would need about " << formatBytes(all) << " at once ("
                 << formatBytes(available)
                 << " available): they are read one at a time as each frame renders them\n";
+    }
+    if (stream) {
       s.model = loadBlock(input, index, 0);
       s.streamedBlocks = BlockModelStream{input, std::move(index)};
     } else {

@@ -162,7 +162,9 @@ TEST(CliRender, BlocksThatDoNotFitTogetherAreReadOneAtATime) {
   const std::string whole = (dir / "whole.png").string(),
                     streamed = (dir / "streamed.png").string();
   const std::string args = " --shade --tf step:0.5 --size 48x40 --azimuth 35 --elevation 20 -o ";
-  const auto all = runMfadvr("render " + blocks + args + whole, "MFADVR_MEMORY_LIMIT=1G");
+  // Two frames: all blocks in memory (one frame reads them one at a time whatever the memory).
+  const auto all =
+      runMfadvr("render " + blocks + " --frames 2" + args + whole, "MFADVR_MEMORY_LIMIT=1G");
   ASSERT_EQ(all.status, 0) << all.err;
   EXPECT_EQ(all.err.find("one at a time"), std::string::npos) << all.err;
   const auto one = runMfadvr("render " + blocks + args + streamed, "MFADVR_MEMORY_LIMIT=250K");
