@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <utility>
 
@@ -93,6 +94,58 @@ std::vector<size_t> gridVisibilityOrder(const RenderSettings& settings,
   return order;
 }
 
+namespace {
+
+// Whether a ray of `rays` that does not end at once (ends: none, or > 0) crosses `region` before
+// its end. Only the pixels onto which the region's corners project are tested, when the region
+// lies in front of a perspective camera (or the camera is parallel).
+bool anyRayCrosses(const CameraRays& rays, const std::vector<float>& ends,
+                   const DomainBox& region) {
+  int x0 = 0, x1 = rays.width - 1, y0 = 0, y1 = rays.height - 1;
+  double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
+  bool inFront = true;
+  for (int corner = 0; corner < 8 && inFront; ++corner) {
+    double v[3];
+    for (int a = 0; a < 3; ++a)
+      v[a] = ((corner >> a) & 1 ? region.max[a] : region.min[a]) - rays.position[a];
+    const double z = v[0] * rays.forward[0] + v[1] * rays.forward[1] + v[2] * rays.forward[2];
+    const double sx = v[0] * rays.right[0] + v[1] * rays.right[1] + v[2] * rays.right[2];
+    const double sy = v[0] * rays.up[0] + v[1] * rays.up[1] + v[2] * rays.up[2];
+    if (!rays.parallel && !(z > 0.0)) inFront = false;
+    const double scale = rays.parallel ? 1.0 : 1.0 / z;
+    const double p[2] = {sx * scale, sy * scale};
+    for (int c = 0; c < 2; ++c) {
+      lo[c] = std::min(lo[c], p[c]);
+      hi[c] = std::max(hi[c], p[c]);
+    }
+  }
+  if (inFront) {
+    // primaryRay's pixel centres: sx = (2 (x + 1/2) / width - 1) halfWidth, sy likewise with y
+    // downwards; two pixels of margin for rounding.
+    auto column = [&](double sx) { return (sx / rays.halfWidth + 1.0) * 0.5 * rays.width - 0.5; };
+    auto row = [&](double sy) { return (1.0 - sy / rays.halfHeight) * 0.5 * rays.height - 0.5; };
+    x0 = static_cast<int>(std::max(0.0, std::floor(column(lo[0])) - 2.0));
+    x1 = static_cast<int>(std::min(rays.width - 1.0, std::ceil(column(hi[0])) + 2.0));
+    y0 = static_cast<int>(std::max(0.0, std::floor(row(hi[1])) - 2.0));
+    y1 = static_cast<int>(std::min(rays.height - 1.0, std::ceil(row(lo[1])) + 2.0));
+  }
+  const double boxLo[3] = {region.min[0], region.min[1], region.min[2]};
+  const double boxHi[3] = {region.max[0], region.max[1], region.max[2]};
+  for (int y = y0; y <= y1; ++y)
+    for (int x = x0; x <= x1; ++x) {
+      const double end = ends.empty() ? INFINITY : ends[static_cast<size_t>(y) * rays.width + x];
+      if (!(end > 0.0)) continue;
+      double o[3], d[3], tEnter, tExit;
+      primaryRay(rays, x, y, o, d);
+      if (intersectBox(o, d, boxLo, boxHi, tEnter, tExit) && tExit > std::max(tEnter, 0.0) &&
+          tEnter < end)
+        return true;
+    }
+  return false;
+}
+
+}  // namespace
+
 Image renderPieces(const RenderSettings& settings, const std::vector<DomainBox>& regions,
                    const PieceRenderer& renderPiece, RenderStats* stats) {
   RenderSettings piece = settings;
@@ -106,8 +159,19 @@ Image renderPieces(const RenderSettings& settings, const std::vector<DomainBox>&
     for (size_t i = 0; i < regions.size(); ++i) order.push_back(i);
   std::vector<Image> images;
   RenderStats total;
+  // In order, a pixel whose composite has reached the early-termination opacity ends its ray
+  // before the pieces behind (piece.rayEnd 0 there), as a ray through the whole volume would
+  // stop; a piece that no ray still going crosses is not rendered at all (nor, by a caller that
+  // reads pieces as they are rendered, read).
+  const CameraRays rays = settings.primaryRays();
+  const float stop = static_cast<float>(settings.earlyTerminationOpacity);
+  bool anyStopped = false;
   for (size_t k = 0; k < order.size(); ++k) {
     const size_t i = order[k];
+    if (anyStopped && !anyRayCrosses(rays, piece.rayEnd, regions[i])) {
+      if (settings.progress) settings.progress(double(k + 1) / double(regions.size()));
+      continue;
+    }
     piece.clipBox = regions[i];
     RenderStats pieceStats;
     Image image = renderPiece(i, piece, &pieceStats);
@@ -124,6 +188,15 @@ Image renderPieces(const RenderSettings& settings, const std::vector<DomainBox>&
         const float behind = 1.0f - acc[q + 3];
         for (int c = 0; c < 4; ++c) acc[q + c] += behind * p[q + c];
       }
+    }
+    if (inOrder) {
+      const std::vector<float>& acc = images.front().rgba;
+      for (size_t q = 0; q < acc.size() / 4; ++q)
+        if (acc[4 * q + 3] >= stop && (piece.rayEnd.empty() || piece.rayEnd[q] > 0.0f)) {
+          if (piece.rayEnd.empty()) piece.rayEnd.assign(acc.size() / 4, INFINITY);
+          piece.rayEnd[q] = 0.0f;
+          anyStopped = true;
+        }
     }
     total.seconds += pieceStats.seconds;
     total.rays = pieceStats.rays;
