@@ -113,7 +113,7 @@ LoadedScene loadSceneData(const std::string& input, const SceneNeeds& needs,
     BlockIndex index = readBlockIndex(input);
     const std::vector<ModelFileSummary> summaries = summarizeBlocks(input, index);
     const std::int64_t all = sceneRenderBytes(summaries), available = availableMemoryBytes();
-    // Blocks are read one at a time as they are rendered (every frame reading the file again)
+    // Blocks are read one at a time as they are rendered (every frame reading them again)
     // when asked to, or when they do not fit in memory together; either way only if one at a
     // time fits (the largest, and the first, kept for the scene's facts). Otherwise all are
     // loaded, or refused with the figures for both.

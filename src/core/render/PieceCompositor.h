@@ -33,8 +33,10 @@ std::vector<size_t> gridVisibilityOrder(const RenderSettings& settings,
 // premultiplied over a transparent background; stats (optional) receive the pieces' sums.
 // Pieces that are cells of a grid (gridVisibilityOrder) are rendered in that order and each
 // composited as soon as it is rendered, so that one piece's image is held at a time (and a
-// caller may read one piece's model at a time); other pieces are composited per pixel, all
-// images held.
+// caller may read one piece's model at a time); a pixel whose composite reaches the early-
+// termination opacity ends its ray before the pieces behind (as one ray through the whole
+// would stop), and a piece that no remaining ray crosses is not rendered (renderPiece is not
+// called for it). Other pieces are composited per pixel, all images held.
 using PieceRenderer = std::function<Image(size_t, const RenderSettings&, RenderStats*)>;
 Image renderPieces(const RenderSettings& settings, const std::vector<DomainBox>& regions,
                    const PieceRenderer& renderPiece, RenderStats* stats = nullptr);
