@@ -96,38 +96,47 @@ std::vector<size_t> gridVisibilityOrder(const RenderSettings& settings,
 
 namespace {
 
+double determinant(const double a[3], const double b[3], const double c[3]) {
+  return a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) +
+         a[2] * (b[0] * c[1] - b[1] * c[0]);
+}
+
 // Whether a ray of `rays` that does not end at once (ends: none, or > 0) crosses `region` before
 // its end. Only the pixels onto which the region's corners project are tested, when the region
 // lies in front of a perspective camera (or the camera is parallel).
 bool anyRayCrosses(const CameraRays& rays, const std::vector<float>& ends,
                    const DomainBox& region) {
   int x0 = 0, x1 = rays.width - 1, y0 = 0, y1 = rays.height - 1;
+  // A point p is position + a forward + b right + c up (the rays' vectors need not be
+  // orthogonal or unit: a host's frustum may be skewed). Perspective: p is on the ray of image
+  // coordinates (b / a, c / a), in front when a > 0; parallel: (b, c).
+  const double det = determinant(rays.forward, rays.right, rays.up);
   double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
-  bool inFront = true;
-  for (int corner = 0; corner < 8 && inFront; ++corner) {
+  bool projected = det != 0.0 && std::isfinite(det);
+  for (int corner = 0; corner < 8 && projected; ++corner) {
     double v[3];
     for (int a = 0; a < 3; ++a)
       v[a] = ((corner >> a) & 1 ? region.max[a] : region.min[a]) - rays.position[a];
-    const double z = v[0] * rays.forward[0] + v[1] * rays.forward[1] + v[2] * rays.forward[2];
-    const double sx = v[0] * rays.right[0] + v[1] * rays.right[1] + v[2] * rays.right[2];
-    const double sy = v[0] * rays.up[0] + v[1] * rays.up[1] + v[2] * rays.up[2];
-    if (!rays.parallel && !(z > 0.0)) inFront = false;
-    const double scale = rays.parallel ? 1.0 : 1.0 / z;
-    const double p[2] = {sx * scale, sy * scale};
-    for (int c = 0; c < 2; ++c) {
-      lo[c] = std::min(lo[c], p[c]);
-      hi[c] = std::max(hi[c], p[c]);
+    const double a = determinant(v, rays.right, rays.up) / det;
+    const double b = determinant(rays.forward, v, rays.up) / det;
+    const double c = determinant(rays.forward, rays.right, v) / det;
+    if (!rays.parallel && !(a > 0.0)) projected = false;
+    const double scale = rays.parallel ? 1.0 : 1.0 / a;
+    const double p[2] = {b * scale, c * scale};
+    for (int k = 0; k < 2; ++k) {
+      lo[k] = std::min(lo[k], p[k]);
+      hi[k] = std::max(hi[k], p[k]);
     }
   }
-  if (inFront) {
+  if (projected && std::isfinite(lo[0] + lo[1] + hi[0] + hi[1])) {
     // primaryRay's pixel centres: sx = (2 (x + 1/2) / width - 1) halfWidth, sy likewise with y
     // downwards; two pixels of margin for rounding.
     auto column = [&](double sx) { return (sx / rays.halfWidth + 1.0) * 0.5 * rays.width - 0.5; };
     auto row = [&](double sy) { return (1.0 - sy / rays.halfHeight) * 0.5 * rays.height - 0.5; };
-    x0 = static_cast<int>(std::max(0.0, std::floor(column(lo[0])) - 2.0));
-    x1 = static_cast<int>(std::min(rays.width - 1.0, std::ceil(column(hi[0])) + 2.0));
-    y0 = static_cast<int>(std::max(0.0, std::floor(row(hi[1])) - 2.0));
-    y1 = static_cast<int>(std::min(rays.height - 1.0, std::ceil(row(lo[1])) + 2.0));
+    x0 = static_cast<int>(std::clamp(std::floor(column(lo[0])) - 2.0, 0.0, double(rays.width)));
+    x1 = static_cast<int>(std::clamp(std::ceil(column(hi[0])) + 2.0, -1.0, rays.width - 1.0));
+    y0 = static_cast<int>(std::clamp(std::floor(row(hi[1])) - 2.0, 0.0, double(rays.height)));
+    y1 = static_cast<int>(std::clamp(std::ceil(row(lo[1])) + 2.0, -1.0, rays.height - 1.0));
   }
   const double boxLo[3] = {region.min[0], region.min[1], region.min[2]};
   const double boxHi[3] = {region.max[0], region.max[1], region.max[2]};
