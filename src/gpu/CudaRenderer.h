@@ -25,7 +25,7 @@ class CudaRenderer final : public DeviceRenderer {
   Image renderTrilinear(const PaddedGrid& grid, const RenderSettings& settings,
                         RenderStats* stats) override;
 
-  void forgetModel();
+  void forgetModel() override;
   const CudaDeviceStatus& device() const { return status_; }
   // GPU time of the last frame's ray kernel alone (no transfers), seconds.
   double lastKernelSeconds() const { return lastKernelSeconds_; }

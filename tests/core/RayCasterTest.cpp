@@ -6,11 +6,15 @@
 #include <cmath>
 
 #include "MarschnerLobbScene.h"
+#include "TestSupport.h"
 #include "core/analytic/BuiltinFunction.h"
+#include "core/encode/PieceEncoder.h"
 #include "core/encode/StructuredEncoder.h"
 #include "core/field/AnalyticField.h"
 #include "core/field/ModelField.h"
 #include "core/image/ImageMetrics.h"
+#include "core/model/BlockModelFile.h"
+#include "core/render/DeviceRenderer.h"
 #include "core/render/PieceCompositor.h"
 #include "core/render/RayCaster.h"
 #include "core/render/ReconstructionMethod.h"
@@ -398,6 +402,53 @@ TEST(RayCaster, GridPiecesCompositedInOneOrderAsTheyAreRendered) {
   std::vector<DomainBox> twice = boxes;
   twice[1] = twice[0];
   EXPECT_TRUE(gridVisibilityOrder(mlSettings(40), twice).empty());
+}
+
+// A device that renders on the CPU and records what it was asked to do.
+class RecordingDevice final : public DeviceRenderer {
+ public:
+  std::string description() const override { return "recording"; }
+  Image renderModel(const ModelField& field, const RenderSettings& settings,
+                    RenderStats* stats) override {
+    calls.push_back("render");
+    return renderVolume(field, settings, stats);
+  }
+  void forgetModel() override { calls.push_back("forget"); }
+  Image renderTrilinear(const PaddedGrid&, const RenderSettings&, RenderStats*) override {
+    throw Error("not recorded");
+  }
+  std::vector<std::string> calls;
+};
+
+TEST(RayCaster, BlocksReadOneAtATimeAreEachUploadedAgain) {
+  // Blocks read one at a time may lie where the block before lay: a device must not take one
+  // for the model it kept. The image equals the one from the blocks in memory.
+  const StructuredGrid grid = sampleBuiltinSpec("builtin:marschner-lobb:12x10x9");
+  EncodeOptions o;
+  o.degree = {2, 2, 2};
+  const std::vector<ModelBlock> blocks = encodeStructuredBlocks(grid, {2, 1, 2}, 1, o);
+  const auto path = test::scratchDir() / "streamed.mfa";
+  saveBlockModels(blocks, {2, 1, 2}, path);
+  const BlockModelStream stream{path, readBlockIndex(path)};
+  RenderSettings s = mlSettings(32);
+  s.earlyTerminationOpacity = 2.0;
+  RecordingDevice device;
+  MethodSpec spec;
+  spec.method = ReconstructionMethod::Mfa;
+  spec.device = &device;
+  SceneData streamed;
+  streamed.model = &blocks.front().model;
+  streamed.streamedBlocks = &stream;
+  const Image a = renderMethod(streamed, spec, s);
+  EXPECT_EQ(device.calls, (std::vector<std::string>{"forget", "render", "forget", "render",
+                                                    "forget", "render", "forget", "render"}));
+  device.calls.clear();
+  SceneData held;
+  held.model = &blocks.front().model;
+  held.blocks = &blocks;
+  const Image b = renderMethod(held, spec, s);
+  EXPECT_EQ(device.calls.size(), 4u);  // blocks in memory: no need to forget
+  EXPECT_EQ(a.rgba, b.rgba);
 }
 
 TEST(RayCaster, MethodsNeedTheirData) {

@@ -25,6 +25,10 @@ class DeviceRenderer {
   // the same model. Throws mfadvr::Error (also when the model does not fit in device memory).
   virtual Image renderModel(const ModelField& field, const RenderSettings& settings,
                             RenderStats* stats) = 0;
+  // Drops the model kept on the device, so that the next renderModel() uploads its model: a
+  // kept model is recognized by its arrays' addresses, which a model read after another was
+  // freed may reuse (blocks read one at a time).
+  virtual void forgetModel() {}
   // As renderVolume(GridField<TrilinearFilter>): trilinear reconstruction of a padded grid.
   virtual Image renderTrilinear(const PaddedGrid& grid, const RenderSettings& settings,
                                 RenderStats* stats) = 0;

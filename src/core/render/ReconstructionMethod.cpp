@@ -154,7 +154,10 @@ Image renderMethod(const SceneData& scene, const MethodSpec& spec, const RenderS
           if (stream) read.emplace(loadBlock(stream->path, stream->index, i));
           const ModelField field(stream ? *read : (*scene.blocks)[i].model,
                                  !stream && scene.emptySpace ? &scene.emptySpace[i] : nullptr);
-          if (spec.device) return spec.device->renderModel(field, piece, pieceStats);
+          if (spec.device) {
+            if (stream) spec.device->forgetModel();  // this block may lie where the last one did
+            return spec.device->renderModel(field, piece, pieceStats);
+          }
           if (spec.gradient == GradientMode::CentralDifference)
             return renderVolume(CentralDifferenceField(field, scene.differenceStep), piece,
                                 pieceStats);
