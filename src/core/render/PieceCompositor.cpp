@@ -6,6 +6,8 @@
 #include <cstdint>
 #include <utility>
 
+#include <Eigen/LU>
+
 #include "core/render/Camera.h"
 #include "core/render/kernel/CameraRays.h"
 #include "core/util/Error.h"
@@ -96,11 +98,6 @@ std::vector<size_t> gridVisibilityOrder(const RenderSettings& settings,
 
 namespace {
 
-double determinant(const double a[3], const double b[3], const double c[3]) {
-  return a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) +
-         a[2] * (b[0] * c[1] - b[1] * c[0]);
-}
-
 // Whether a ray of `rays` that does not end at once (ends: none, or > 0) crosses `region` before
 // its end. Only the pixels onto which the region's corners project are tested, when the region
 // lies in front of a perspective camera (or the camera is parallel).
@@ -110,16 +107,18 @@ bool anyRayCrosses(const CameraRays& rays, const std::vector<float>& ends,
   // A point p is position + a forward + b right + c up (the rays' vectors need not be
   // orthogonal or unit: a host's frustum may be skewed). Perspective: p is on the ray of image
   // coordinates (b / a, c / a), in front when a > 0; parallel: (b, c).
-  const double det = determinant(rays.forward, rays.right, rays.up);
+  Eigen::Matrix3d basis;
+  basis << rays.forward[0], rays.right[0], rays.up[0], rays.forward[1], rays.right[1], rays.up[1],
+      rays.forward[2], rays.right[2], rays.up[2];
+  const Eigen::FullPivLU<Eigen::Matrix3d> lu(basis);
   double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
-  bool projected = det != 0.0 && std::isfinite(det);
+  bool projected = lu.isInvertible();
   for (int corner = 0; corner < 8 && projected; ++corner) {
-    double v[3];
-    for (int a = 0; a < 3; ++a)
-      v[a] = ((corner >> a) & 1 ? region.max[a] : region.min[a]) - rays.position[a];
-    const double a = determinant(v, rays.right, rays.up) / det;
-    const double b = determinant(rays.forward, v, rays.up) / det;
-    const double c = determinant(rays.forward, rays.right, v) / det;
+    Vec3d v;
+    for (int k = 0; k < 3; ++k)
+      v[k] = ((corner >> k) & 1 ? region.max[k] : region.min[k]) - rays.position[k];
+    const Vec3d abc = lu.solve(v);
+    const double a = abc[0], b = abc[1], c = abc[2];
     if (!rays.parallel && !(a > 0.0)) projected = false;
     const double scale = rays.parallel ? 1.0 : 1.0 / a;
     const double p[2] = {b * scale, c * scale};
