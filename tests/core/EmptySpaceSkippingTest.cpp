@@ -80,6 +80,7 @@ RenderSettings settingsFor(const Model& m, const TransferFunction& tf, bool shad
 // Every cell's bounds, x fastest, from one scanner going through the planes in order.
 struct CellBounds {
   std::vector<float> lo, hi;
+  double rounding = 0.0;  // Bezier bounds: their relative rounding bound
 };
 CellBounds allCellBounds(const TensorBSpline& spline) {
   const SpanRanges& r = *spline.spanRanges();
@@ -88,6 +89,18 @@ CellBounds allCellBounds(const TensorBSpline& spline) {
   b.lo.resize(static_cast<size_t>(r.cellCount()));
   b.hi.resize(b.lo.size());
   SpanRangeScanner scan(spline.view());
+  for (int z = 0; z < r.cells[2]; ++z) scan.plane(z, &b.lo[z * plane], &b.hi[z * plane]);
+  return b;
+}
+
+CellBounds allBezierBounds(const TensorBSpline& spline) {
+  const SpanRanges& r = *spline.spanRanges();
+  const std::int64_t plane = std::int64_t(r.cells[0]) * r.cells[1];
+  CellBounds b;
+  b.lo.resize(static_cast<size_t>(r.cellCount()));
+  b.hi.resize(b.lo.size());
+  BezierRangeScanner scan(spline.view());
+  b.rounding = scan.relativeRounding();
   for (int z = 0; z < r.cells[2]; ++z) scan.plane(z, &b.lo[z * plane], &b.hi[z * plane]);
   return b;
 }
@@ -247,6 +260,7 @@ TEST(EmptySpaceFlags, NoCellEmptyWhenTheWholeRangeIsVisible) {
   const Model& m = marschnerLobb();
   const SpanRanges& r = *m.spline().spanRanges();
   const CellBounds b = allCellBounds(m.spline());
+  const CellBounds bezier = allBezierBounds(m.spline());
   EXPECT_LE(r.lowest, r.highest);
   std::vector<TransferFunction> tfs = testTransferFunctions();
   // Transparent only below the model's values: nothing can be skipped.
@@ -255,12 +269,17 @@ TEST(EmptySpaceFlags, NoCellEmptyWhenTheWholeRangeIsVisible) {
   for (const TransferFunction& tf : tfs) {
     const TransferFunctionTable table(tf, OpacityCorrection(0.5));
     const EmptySpaceFlags f = buildEmptySpaceFlags(m.spline().view(), r, table);
-    std::int64_t empty = 0;
+    std::int64_t empty = 0, emptyByControlPoints = 0;
     for (std::int64_t i = 0; i < r.cellCount(); ++i) {
-      const float lo = b.lo[static_cast<size_t>(i)], hi = b.hi[static_cast<size_t>(i)];
+      const size_t q = static_cast<size_t>(i);
+      const float lo = b.lo[q], hi = b.hi[q];
       const float pad = skippingMargin(r, lo, hi);
-      empty += table.transparentOver(lo - pad, hi + pad) ? 1 : 0;
+      emptyByControlPoints += table.transparentOver(lo - pad, hi + pad) ? 1 : 0;
+      float l, h;
+      ASSERT_TRUE(skippingRange(r, bezier.rounding, lo, hi, bezier.lo[q], bezier.hi[q], l, h));
+      empty += table.transparentOver(l, h) ? 1 : 0;
     }
+    EXPECT_GE(empty, emptyByControlPoints);
     EXPECT_EQ(f.emptyCells, empty);
     if (f.cells.empty()) {
       ++shortcuts;

@@ -27,18 +27,21 @@ EmptySpaceFlags buildEmptySpaceFlags(const SplineView& spline, const SpanRanges&
   std::atomic<std::int64_t> empties{0};
   tbb::parallel_for(std::int64_t(0), (Z + slab - 1) / slab, [&](std::int64_t task) {
     SpanRangeScanner scan(spline);
+    BezierRangeScanner bezier(spline);
+    const double bezierRounding = bezier.relativeRounding();
     std::vector<float> lo(static_cast<size_t>(plane)), hi(lo.size());
+    std::vector<float> bezierLo(lo.size()), bezierHi(lo.size());
     std::int64_t count = 0;
     for (std::int64_t z = task * slab; z < std::min(Z, (task + 1) * slab); ++z) {
       scan.plane(z, lo.data(), hi.data());
+      bezier.plane(z, bezierLo.data(), bezierHi.data());
       std::uint8_t* f = flags.data() + z * plane;
       for (std::int64_t q = 0; q < plane; ++q) {
-        const float l = lo[static_cast<size_t>(q)], h = hi[static_cast<size_t>(q)];
-        bool empty = false;
-        if (std::isfinite(l) && std::isfinite(h)) {  // else a control point is not finite
-          const float pad = skippingMargin(r, l, h);
-          empty = table.transparentOver(l - pad, h + pad);
-        }
+        const size_t i = static_cast<size_t>(q);
+        float l, h;
+        const bool empty =
+            skippingRange(r, bezierRounding, lo[i], hi[i], bezierLo[i], bezierHi[i], l, h) &&
+            table.transparentOver(l, h);
         f[q] = empty ? 1 : 0;
         count += empty;
       }

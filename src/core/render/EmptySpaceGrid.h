@@ -3,7 +3,8 @@
 // makes every value the spline can take there transparent.
 //
 // A cell's values lie within its control points' range (SpanRangeScanner: the B-spline
-// convex-hull property), widened by a bound on the kernel's float rounding. The table classifies a
+// convex-hull property) and within the tighter range of its Bezier coefficients
+// (BezierRangeScanner), widened by bounds on the float rounding of both. The table classifies a
 // value by interpolating two neighbouring entries, and which entries a value touches is monotone in
 // the value, so a range whose touched entries all have opacity 0 yields opacity exactly 0 for every
 // sample in the cell: skipping such cells leaves the image bit-identical.
@@ -20,6 +21,7 @@
 
 #include "core/render/TransferFunctionTable.h"
 #include "core/render/kernel/SplineRaySampler.h"  // EmptyLevelView
+#include "core/spline/BezierRangeScanner.h"
 #include "core/spline/TensorBSpline.h"
 
 namespace mfadvr {
@@ -44,6 +46,31 @@ struct EmptySpaceFlags {
 // give exactly 0 and no margin.
 inline float skippingMargin(const SpanRanges& r, float lo, float hi) {
   return static_cast<float>(r.relativeRounding) * std::max(std::abs(lo), std::abs(hi)) * 2.0f;
+}
+
+// The range of values a transfer function must make transparent for a cell to be skipped:
+// the cell's control-point range [lo, hi] (SpanRangeScanner) narrowed to its Bezier range
+// [bezierLo, bezierHi] (BezierRangeScanner, whose float error is at most bezierRounding times
+// the largest |control point|), then widened by the kernel's rounding margin, which is
+// relative to the control points since the kernel sums them. False when a control point of
+// the cell is not finite: such a cell is never skipped.
+inline bool skippingRange(const SpanRanges& r, double bezierRounding, float lo, float hi,
+                          float bezierLo, float bezierHi, float& outLo, float& outHi) {
+  if (!(std::isfinite(lo) && std::isfinite(hi))) return false;
+  const float pad = skippingMargin(r, lo, hi);
+  const float magnitude = std::max(std::abs(lo), std::abs(hi));
+  float l = lo, h = hi;
+  if (magnitude <= kBezierMagnitudeLimit) {
+    // 2^-22 more covers the rounding of the subtraction and addition below.
+    const float slack = static_cast<float>((bezierRounding + 0x1p-22) * magnitude);
+    const float bl = bezierLo - slack, bh = bezierHi + slack;
+    if (bl > l) l = bl;  // comparisons with NaN keep the control points' range
+    if (bh < h) h = bh;
+    if (!(l <= h)) l = lo, h = hi;
+  }
+  outLo = l - pad;
+  outHi = h + pad;
+  return true;
 }
 
 // `ranges`: spline's (SpanRanges::compute). The cells' bounds are computed here, a slab of cells
