@@ -12,8 +12,8 @@
 // gradient, asked for only when the sample is visible, reuses the value's z contraction.
 //
 // Exact empty-space skipping (Skip): `empty` flags, per knot-span cell, that no value the spline
-// can take in the cell is visible (EmptySpaceGrid.h: by the B-spline convex-hull property a
-// cell's values lie within its control points' range, widened by the kernel's rounding). A
+// can take in the cell is visible (EmptySpaceGrid.h: a cell's values lie within the range of
+// its control points and of its Bezier coefficients, widened by the rounding bounds). A
 // sample in such a cell is not evaluated, and the ray jumps to where it leaves the largest
 // aligned empty block around it (a pyramid of flags over blocks of 2, 4, 8, ... cells per axis):
 // crossing empty space costs about one step per block, not per cell.
