@@ -160,6 +160,73 @@ TEST(BezierRangeScanner, BoundsEveryComputedValueAndIsNarrowerThanTheControlPoin
   }
 }
 
+// The centre values are the spline at each cell's centre; a plane asked for some cells only
+// gives those cells the ranges of the full computation and leaves the others as they were.
+TEST(BezierRangeScanner, CentresAndCellsAskedFor) {
+  const int degree[3] = {2, 3, 1}, count[3] = {21, 10, 8};
+  const std::array<KnotVector, 3> knots = {unevenKnots(degree[0], count[0], 21, false),
+                                           unevenKnots(degree[1], count[1], 22, true),
+                                           KnotVector::clampedUniform(degree[2], count[2])};
+  std::mt19937 rng(4);
+  std::uniform_real_distribution<float> uni(-1.0f, 1.0f);
+  std::vector<float> ctrl(static_cast<size_t>(count[0] * count[1] * count[2]));
+  for (float& c : ctrl) c = uni(rng);
+  const TensorBSpline spline(knots, ctrl);
+  const SplineView v = spline.view();
+  int cells[3];
+  for (int a = 0; a < 3; ++a) cells[a] = count[a] - degree[a];
+  const int plane = cells[0] * cells[1];
+  const Ranges all = allRanges(spline);
+  BezierRangeScanner scan(v);
+  std::vector<float> centre(static_cast<size_t>(plane));
+  std::vector<std::uint8_t> need(static_cast<size_t>(plane));
+  int asked = 0, untouched = 0, checkedCentres = 0;
+  for (int z = 0; z < cells[2]; ++z) {
+    scan.centres(z, centre.data());
+    for (int y = 0; y < cells[1]; ++y)
+      for (int x = 0; x < cells[0]; ++x) {
+        const int c[3] = {x, y, z};
+        double u[3];
+        bool spanEmpty = false;
+        for (int a = 0; a < 3; ++a) {
+          const double* U = knots[a].data();
+          const int s = c[a] + degree[a];
+          spanEmpty |= !(U[s + 1] > U[s]);
+          u[a] = 0.5 * (U[s] + U[s + 1]);
+        }
+        if (spanEmpty) continue;  // no point lies in the cell: its centre is not asked for
+        ++checkedCentres;
+        EXPECT_NEAR(centre[static_cast<size_t>(x + cells[0] * y)], splineValue<0>(v, u), 1e-5f)
+            << x << " " << y << " " << z;
+      }
+    for (int q = 0; q < plane; ++q) need[static_cast<size_t>(q)] = (q * 7 + z) % 23 == 0;
+    std::vector<float> lo(static_cast<size_t>(plane), 42.0f), hi(lo.size(), 42.0f);
+    scan.plane(z, lo.data(), hi.data(), need.data());
+    for (int q = 0; q < plane; ++q) {
+      const size_t i = static_cast<size_t>(q), cell = static_cast<size_t>(z * plane + q);
+      if (need[i]) {
+        ++asked;
+        EXPECT_EQ(lo[i], all.bezierLo[cell]);
+        EXPECT_EQ(hi[i], all.bezierHi[cell]);
+      } else {
+        // A block of 16 cells of a row with no cell asked for is not computed.
+        const int x = q % cells[0], start = q - x + x / 16 * 16;
+        bool blockAsked = false;
+        for (int b = start; b < std::min(start + 16, q - x + cells[0]); ++b)
+          blockAsked |= need[static_cast<size_t>(b)] != 0;
+        if (!blockAsked) {
+          ++untouched;
+          EXPECT_EQ(lo[i], 42.0f);
+          EXPECT_EQ(hi[i], 42.0f);
+        }
+      }
+    }
+  }
+  EXPECT_GT(asked, 5);
+  EXPECT_GT(untouched, 100);
+  EXPECT_GT(checkedCentres, 500);
+}
+
 // What skipping classifies: the control points' range narrowed to the Bezier range (widened by
 // its rounding) and widened by the kernel's margin; nothing for a cell with a NaN.
 TEST(BezierRangeScanner, SkippingRangeNarrowsTheControlPointRange) {

@@ -240,6 +240,12 @@ TEST(TransferFunctionTable, MayBeTransparentOverFindsEveryTransparentRange) {
       if (table.transparentOver(lo, hi)) {
         EXPECT_TRUE(table.mayBeTransparentOver(lo, hi));
       }
+      // rangeOpacity is both answers in one lookup.
+      using O = TransferFunctionTable::RangeOpacity;
+      const O both = table.transparentOver(lo, hi)        ? O::Transparent
+                     : table.mayBeTransparentOver(lo, hi) ? O::Mixed
+                                                          : O::Visible;
+      EXPECT_EQ(table.rangeOpacity(lo, hi), both) << lo << ".." << hi;
       bool zeroInside = false;
       for (int i = 0; i <= 256; ++i)
         zeroInside |= table.classify(lo + (hi - lo) * static_cast<float>(i) / 256.0f).alpha == 0;
@@ -252,6 +258,10 @@ TEST(TransferFunctionTable, MayBeTransparentOverFindsEveryTransparentRange) {
   EXPECT_FALSE(step.mayBeTransparentOver(0.6f, 0.9f));  // entirely above the step
   EXPECT_TRUE(step.mayBeTransparentOver(0.4f, 0.9f));
   EXPECT_TRUE(step.mayBeTransparentOver(NAN, 0.9f));
+  EXPECT_EQ(step.rangeOpacity(0.6f, 0.9f), TransferFunctionTable::RangeOpacity::Visible);
+  EXPECT_EQ(step.rangeOpacity(0.4f, 0.9f), TransferFunctionTable::RangeOpacity::Mixed);
+  EXPECT_EQ(step.rangeOpacity(0.1f, 0.3f), TransferFunctionTable::RangeOpacity::Transparent);
+  EXPECT_EQ(step.rangeOpacity(NAN, 0.9f), TransferFunctionTable::RangeOpacity::Mixed);
 }
 
 // Flags built with the whole-range shortcut equal the per-cell pass: for transfer functions

@@ -28,16 +28,6 @@ TransferFunctionTable::TransferFunctionTable(const TransferFunction& tf,
     visibleBefore_[i + 1] = visibleBefore_[i] + (entries_[i].alpha != 0.0f ? 1 : 0);
 }
 
-bool TransferFunctionTable::touchedEntries(float lo, float hi, int& first, int& last) const {
-  const TransferFunctionView v = view();
-  int i1;
-  float t;
-  // locate() is monotone in the value, so [lo, hi] touches entries first .. i1 + 1 only.
-  if (!v.locate(lo, first, t) || !v.locate(hi, i1, t)) return false;
-  last = std::min(i1 + 1, kEntries - 1);
-  return true;
-}
-
 bool TransferFunctionTable::transparentOver(float lo, float hi) const {
   int first, last;
   if (!touchedEntries(lo, hi, first, last)) return false;

@@ -8,6 +8,7 @@
 // except within one entry of a point that does not fall on an entry (there the error is at most
 // the slope change times 1/4095 of the span); a jump (a step at an isovalue) becomes a ramp one
 // entry wide. Outside the span the end values hold, as in the TF itself. NaN maps to transparent.
+#include <algorithm>
 #include <vector>
 
 #include "core/render/OpacityCorrection.h"
@@ -43,10 +44,29 @@ class TransferFunctionTable {
   // True when some value in [lo, hi] may classify to opacity exactly 0: [lo, hi] touches a
   // transparent entry (NaN ends: true). O(1).
   bool mayBeTransparentOver(float lo, float hi) const;
+  // Both at once: every value of [lo, hi] transparent, some may be, or none is. Inline: the
+  // empty-space flags' build asks it once per cell.
+  enum class RangeOpacity { Transparent, Mixed, Visible };
+  RangeOpacity rangeOpacity(float lo, float hi) const {
+    int first, last;
+    if (!touchedEntries(lo, hi, first, last)) return RangeOpacity::Mixed;
+    const int visible = visibleBefore_[last + 1] - visibleBefore_[first];
+    return visible == 0                 ? RangeOpacity::Transparent
+           : visible < last + 1 - first ? RangeOpacity::Mixed
+                                        : RangeOpacity::Visible;
+  }
 
  private:
   // The entries first .. last that values in [lo, hi] interpolate between; false for a NaN end.
-  bool touchedEntries(float lo, float hi, int& first, int& last) const;
+  bool touchedEntries(float lo, float hi, int& first, int& last) const {
+    const TransferFunctionView v = view();
+    int i1;
+    float t;
+    // locate() is monotone in the value, so [lo, hi] touches entries first .. i1 + 1 only.
+    if (!v.locate(lo, first, t) || !v.locate(hi, i1, t)) return false;
+    last = std::min(i1 + 1, kEntries - 1);
+    return true;
+  }
 
   float lo_ = 0.0f, scale_ = 0.0f;
   std::vector<TfEntry> entries_;

@@ -90,14 +90,23 @@ inline CellVector loadCells(const float* p) {
   return v;
 }
 
+// Any of need[0 .. n-1] non-zero (need null: every cell is needed).
+bool anyNeeded(const std::uint8_t* need, std::int64_t n) {
+  return !need || std::any_of(need, need + n, [](std::uint8_t b) { return b != 0; });
+}
+
 template <int W>
 void blockRanges(const float* rows, int count, std::int64_t rowStride, const float* weights,
-                 std::int64_t weightStride, std::int64_t cells, float* lo, float* hi) {
+                 std::int64_t weightStride, std::int64_t cells, const std::uint8_t* need, float* lo,
+                 float* hi) {
   for (std::int64_t c0 = 0; c0 < cells; c0 += kCellBlock) {
+    const std::int64_t n = std::min<std::int64_t>(kCellBlock, cells - c0);
+    if (!anyNeeded(need ? need + c0 : nullptr, n)) continue;
     CellVector w[W][W];
     for (int j = 0; j < W; ++j)
       for (int i = 0; i < W; ++i) w[j][i] = loadCells(weights + (j * W + i) * weightStride + c0);
-    CellVector least = loadCells(rows + c0), greatest = least;  // replaced below
+    const CellVector none = {};
+    CellVector least = none + INFINITY, greatest = none - INFINITY;
     for (int r = 0; r < count; ++r) {
       const float* src = rows + r * rowStride + c0;
       CellVector x[W];
@@ -105,7 +114,6 @@ void blockRanges(const float* rows, int count, std::int64_t rowStride, const flo
       for (int j = 0; j < W; ++j) {
         CellVector b = w[j][0] * x[0];
         for (int i = 1; i < W; ++i) b += w[j][i] * x[i];
-        if (r == 0 && j == 0) least = greatest = b;
         least = b < least ? b : least;
         greatest = b > greatest ? b : greatest;
       }
@@ -113,7 +121,6 @@ void blockRanges(const float* rows, int count, std::int64_t rowStride, const flo
     float l[kCellBlock], g[kCellBlock];
     std::memcpy(l, &least, sizeof l);
     std::memcpy(g, &greatest, sizeof g);
-    const std::int64_t n = std::min<std::int64_t>(kCellBlock, cells - c0);
     std::copy_n(l, n, lo + c0);
     std::copy_n(g, n, hi + c0);
   }
@@ -122,9 +129,10 @@ void blockRanges(const float* rows, int count, std::int64_t rowStride, const flo
 template <int... W>
 void blockRangesFor(int w, std::integer_sequence<int, W...>, const float* rows, int count,
                     std::int64_t rowStride, const float* weights, std::int64_t weightStride,
-                    std::int64_t cells, float* lo, float* hi) {
-  ((w == W + 1 ? blockRanges<W + 1>(rows, count, rowStride, weights, weightStride, cells, lo, hi)
-               : void()),
+                    std::int64_t cells, const std::uint8_t* need, float* lo, float* hi) {
+  ((w == W + 1
+        ? blockRanges<W + 1>(rows, count, rowStride, weights, weightStride, cells, need, lo, hi)
+        : void()),
    ...);
 }
 
@@ -138,6 +146,17 @@ BezierRangeScanner::BezierRangeScanner(const SplineView& v) : v_(v) {
     // x: whole blocks of cells (blockRanges reads a block's weights at once).
     stride_[a] = a == 0 ? (cells_[a] + kCellBlock - 1) / kCellBlock * kCellBlock : cells_[a];
     weights_[a] = axisWeights(v.axis[a], stride_[a]);
+    // The centre of a span in Bernstein form: B_j(1/2) = C(p, j) / 2^p.
+    const int w = p_[a] + 1;
+    centreWeights_[a].assign(static_cast<size_t>(w * stride_[a]), 0.0f);
+    for (int i = 0; i < w; ++i)
+      for (std::int64_t c = 0; c < cells_[a]; ++c) {
+        double sum = 0.0;
+        for (int j = 0; j < w; ++j)
+          sum += weights_[a][static_cast<size_t>((j * w + i) * stride_[a] + c)] *
+                 binomial(p_[a], j) / std::ldexp(1.0, p_[a]);
+        centreWeights_[a][static_cast<size_t>(i * stride_[a] + c)] = static_cast<float>(sum);
+      }
   }
   rowStride_ = stride_[0] + p_[0] + 1;  // >= n_[0], and room for a last block's reads
   planeZ_.resize(static_cast<size_t>((p_[2] + 1) * n_[0] * n_[1]));
@@ -167,7 +186,36 @@ double BezierRangeScanner::relativeRounding() const {
   return 2.0 * error;  // a factor 2 for safety
 }
 
-void BezierRangeScanner::plane(std::int64_t z, float* lo, float* hi) {
+void BezierRangeScanner::centres(std::int64_t z, float* value, const std::uint8_t* need) {
+  const int w0 = p_[0] + 1, w1 = p_[1] + 1, w2 = p_[2] + 1;
+  const std::int64_t N0 = n_[0], N1 = n_[1], X = cells_[0], Y = cells_[1];
+  const std::int64_t controlPlane = N0 * N1;
+  constexpr auto widths = std::make_integer_sequence<int, kMaxDegree + 1>();
+  const float* src[kMaxDegree + 1];
+  float weight[kMaxDegree + 1];
+  for (int k = 0; k < w2; ++k) {
+    src[k] = v_.ctrl + (z + k) * controlPlane;
+    weight[k] = centreWeights_[2][static_cast<size_t>(k * stride_[2] + z)];
+  }
+  float* planeZ = planeZ_.data();
+  combineRowsFor(w2, widths, src, weight, controlPlane, planeZ);
+  float* row = rowYZ_.data();
+  for (std::int64_t cy = 0; cy < Y; ++cy) {
+    if (!anyNeeded(need ? need + cy * X : nullptr, X)) continue;
+    for (int k = 0; k < w1; ++k) {
+      src[k] = planeZ + (cy + k) * N0;
+      weight[k] = centreWeights_[1][static_cast<size_t>(k * stride_[1] + cy)];
+    }
+    combineRowsFor(w1, widths, src, weight, N0, row);
+    float* out = value + cy * X;
+    const float* wx = centreWeights_[0].data();
+    for (std::int64_t c = 0; c < X; ++c) out[c] = wx[c] * row[c];
+    for (int i = 1; i < w0; ++i)
+      for (std::int64_t c = 0; c < X; ++c) out[c] += wx[i * stride_[0] + c] * row[c + i];
+  }
+}
+
+void BezierRangeScanner::plane(std::int64_t z, float* lo, float* hi, const std::uint8_t* need) {
   const int w0 = p_[0] + 1, w1 = p_[1] + 1, w2 = p_[2] + 1;
   const std::int64_t N0 = n_[0], N1 = n_[1], X = cells_[0], Y = cells_[1], Z = cells_[2];
   const std::int64_t controlPlane = N0 * N1;
@@ -182,6 +230,8 @@ void BezierRangeScanner::plane(std::int64_t z, float* lo, float* hi) {
     combineRowsFor(w2, widths, src, weight, controlPlane, planeZ_.data() + j2 * controlPlane);
   }
   for (std::int64_t cy = 0; cy < Y; ++cy) {
+    const std::uint8_t* rowNeed = need ? need + cy * X : nullptr;
+    if (!anyNeeded(rowNeed, X)) continue;
     // y: the cell row's (p1+1)(p2+1) rows over the control points of x.
     for (int j1 = 0; j1 < w1; ++j1) {
       for (int k = 0; k < w1; ++k)
@@ -193,7 +243,7 @@ void BezierRangeScanner::plane(std::int64_t z, float* lo, float* hi) {
     }
     // x: each cell's coefficients and their least and greatest.
     blockRangesFor(w0, widths, rowYZ_.data(), w1 * w2, rowStride_, weights_[0].data(), stride_[0],
-                   X, lo + cy * X, hi + cy * X);
+                   X, rowNeed, lo + cy * X, hi + cy * X);
   }
 }
 
