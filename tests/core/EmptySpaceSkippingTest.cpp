@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <random>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -77,30 +78,21 @@ RenderSettings settingsFor(const Model& m, const TransferFunction& tf, bool shad
   return s;
 }
 
-// Every cell's bounds, x fastest, from one scanner going through the planes in order.
+// Every cell's bounds, x fastest, from one scanner going through the planes in order: the
+// control points' ranges (SpanRangeScanner) or the Bezier ranges (BezierRangeScanner).
 struct CellBounds {
   std::vector<float> lo, hi;
   double rounding = 0.0;  // Bezier bounds: their relative rounding bound
 };
+template <class Scanner = SpanRangeScanner>
 CellBounds allCellBounds(const TensorBSpline& spline) {
   const SpanRanges& r = *spline.spanRanges();
   const std::int64_t plane = std::int64_t(r.cells[0]) * r.cells[1];
   CellBounds b;
   b.lo.resize(static_cast<size_t>(r.cellCount()));
   b.hi.resize(b.lo.size());
-  SpanRangeScanner scan(spline.view());
-  for (int z = 0; z < r.cells[2]; ++z) scan.plane(z, &b.lo[z * plane], &b.hi[z * plane]);
-  return b;
-}
-
-CellBounds allBezierBounds(const TensorBSpline& spline) {
-  const SpanRanges& r = *spline.spanRanges();
-  const std::int64_t plane = std::int64_t(r.cells[0]) * r.cells[1];
-  CellBounds b;
-  b.lo.resize(static_cast<size_t>(r.cellCount()));
-  b.hi.resize(b.lo.size());
-  BezierRangeScanner scan(spline.view());
-  b.rounding = scan.relativeRounding();
+  Scanner scan(spline.view());
+  if constexpr (std::is_same_v<Scanner, BezierRangeScanner>) b.rounding = scan.relativeRounding();
   for (int z = 0; z < r.cells[2]; ++z) scan.plane(z, &b.lo[z * plane], &b.hi[z * plane]);
   return b;
 }
@@ -270,7 +262,7 @@ TEST(EmptySpaceFlags, NoCellEmptyWhenTheWholeRangeIsVisible) {
   const Model& m = marschnerLobb();
   const SpanRanges& r = *m.spline().spanRanges();
   const CellBounds b = allCellBounds(m.spline());
-  const CellBounds bezier = allBezierBounds(m.spline());
+  const CellBounds bezier = allCellBounds<BezierRangeScanner>(m.spline());
   EXPECT_LE(r.lowest, r.highest);
   std::vector<TransferFunction> tfs = testTransferFunctions();
   // Transparent only below the model's values: nothing can be skipped.
