@@ -97,10 +97,10 @@ bool anyNeeded(const std::uint8_t* need, std::int64_t n) {
 
 template <int W>
 void blockRanges(const float* rows, int count, std::int64_t rowStride, const float* weights,
-                 std::int64_t weightStride, std::int64_t cells, const std::uint8_t* need, float* lo,
-                 float* hi) {
-  for (std::int64_t c0 = 0; c0 < cells; c0 += kCellBlock) {
-    const std::int64_t n = std::min<std::int64_t>(kCellBlock, cells - c0);
+                 std::int64_t weightStride, std::int64_t begin, std::int64_t end,
+                 const std::uint8_t* need, float* lo, float* hi) {
+  for (std::int64_t c0 = begin; c0 < end; c0 += kCellBlock) {
+    const std::int64_t n = std::min<std::int64_t>(kCellBlock, end - c0);
     if (!anyNeeded(need ? need + c0 : nullptr, n)) continue;
     CellVector w[W][W];
     for (int j = 0; j < W; ++j)
@@ -129,10 +129,11 @@ void blockRanges(const float* rows, int count, std::int64_t rowStride, const flo
 template <int... W>
 void blockRangesFor(int w, std::integer_sequence<int, W...>, const float* rows, int count,
                     std::int64_t rowStride, const float* weights, std::int64_t weightStride,
-                    std::int64_t cells, const std::uint8_t* need, float* lo, float* hi) {
-  ((w == W + 1
-        ? blockRanges<W + 1>(rows, count, rowStride, weights, weightStride, cells, need, lo, hi)
-        : void()),
+                    std::int64_t begin, std::int64_t end, const std::uint8_t* need, float* lo,
+                    float* hi) {
+  ((w == W + 1 ? blockRanges<W + 1>(rows, count, rowStride, weights, weightStride, begin, end, need,
+                                    lo, hi)
+               : void()),
    ...);
 }
 
@@ -222,28 +223,53 @@ void BezierRangeScanner::plane(std::int64_t z, float* lo, float* hi, const std::
   constexpr auto widths = std::make_integer_sequence<int, kMaxDegree + 1>();
   const float* src[kMaxDegree + 1];
   float weight[kMaxDegree + 1];
-  // z: the p2+1 Bezier planes of this cell plane, over the whole control grid of x and y.
-  for (int k = 0; k < w2; ++k) src[k] = v_.ctrl + (z + k) * controlPlane;
-  for (int j2 = 0; j2 < w2; ++j2) {
-    for (int k = 0; k < w2; ++k)
-      weight[k] = weights_[2][static_cast<size_t>((j2 * w2 + k) * Z + z)];
-    combineRowsFor(w2, widths, src, weight, controlPlane, planeZ_.data() + j2 * controlPlane);
-  }
+  // Work in proportion to the cells asked for: the z transform of a control row only when a
+  // cell row that needs it is asked for, the y transform of a row only over the columns of the
+  // runs of 16-cell blocks that hold asked-for cells, the x transform per such block.
+  rowDone_.assign(static_cast<size_t>(N1), 0);
   for (std::int64_t cy = 0; cy < Y; ++cy) {
     const std::uint8_t* rowNeed = need ? need + cy * X : nullptr;
     if (!anyNeeded(rowNeed, X)) continue;
-    // y: the cell row's (p1+1)(p2+1) rows over the control points of x.
-    for (int j1 = 0; j1 < w1; ++j1) {
-      for (int k = 0; k < w1; ++k)
-        weight[k] = weights_[1][static_cast<size_t>((j1 * w1 + k) * Y + cy)];
+    // z: control rows cy .. cy + p1 of the p2+1 Bezier planes of this cell plane.
+    for (std::int64_t j = cy; j < cy + w1; ++j) {
+      if (rowDone_[static_cast<size_t>(j)]) continue;
+      rowDone_[static_cast<size_t>(j)] = 1;
+      for (int k = 0; k < w2; ++k) src[k] = v_.ctrl + (z + k) * controlPlane + j * N0;
       for (int j2 = 0; j2 < w2; ++j2) {
-        for (int k = 0; k < w1; ++k) src[k] = planeZ_.data() + j2 * controlPlane + (cy + k) * N0;
-        combineRowsFor(w1, widths, src, weight, N0, rowYZ_.data() + (j1 * w2 + j2) * rowStride_);
+        for (int k = 0; k < w2; ++k)
+          weight[k] = weights_[2][static_cast<size_t>((j2 * w2 + k) * Z + z)];
+        combineRowsFor(w2, widths, src, weight, N0, planeZ_.data() + j2 * controlPlane + j * N0);
       }
     }
-    // x: each cell's coefficients and their least and greatest.
-    blockRangesFor(w0, widths, rowYZ_.data(), w1 * w2, rowStride_, weights_[0].data(), stride_[0],
-                   X, rowNeed, lo + cy * X, hi + cy * X);
+    for (std::int64_t begin = 0; begin < X;) {
+      // The next run of blocks with an asked-for cell: [begin, end).
+      const auto asked = [&](std::int64_t c0) {
+        return anyNeeded(rowNeed ? rowNeed + c0 : nullptr,
+                         std::min<std::int64_t>(kCellBlock, X - c0));
+      };
+      while (begin < X && !asked(begin)) begin += kCellBlock;
+      if (begin >= X) break;
+      std::int64_t end = begin;
+      while (end < X && asked(end)) end += kCellBlock;
+      end = std::min(end, X);
+      // y: the (p1+1)(p2+1) rows over the control columns the run's cells read (the lanes of
+      // a last block past the row's end read further, and are not stored).
+      const std::int64_t first = begin, count = std::min(end + w0 - 1, N0) - first;
+      for (int j1 = 0; j1 < w1; ++j1) {
+        for (int k = 0; k < w1; ++k)
+          weight[k] = weights_[1][static_cast<size_t>((j1 * w1 + k) * Y + cy)];
+        for (int j2 = 0; j2 < w2; ++j2) {
+          for (int k = 0; k < w1; ++k)
+            src[k] = planeZ_.data() + j2 * controlPlane + (cy + k) * N0 + first;
+          combineRowsFor(w1, widths, src, weight, count,
+                         rowYZ_.data() + (j1 * w2 + j2) * rowStride_ + first);
+        }
+      }
+      // x: each cell's coefficients and their least and greatest.
+      blockRangesFor(w0, widths, rowYZ_.data(), w1 * w2, rowStride_, weights_[0].data(), stride_[0],
+                     begin, end, rowNeed, lo + cy * X, hi + cy * X);
+      begin = end;
+    }
   }
 }
 

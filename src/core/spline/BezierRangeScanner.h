@@ -64,6 +64,7 @@ class BezierRangeScanner {
   std::vector<float> planeZ_;  // (p2+1) planes of N0 x N1: the z transform of the control points
   std::vector<float> rowYZ_;   // (p1+1)(p2+1) rows of rowStride_: a cell row's y and z transforms
   std::int64_t rowStride_ = 0;
+  std::vector<char> rowDone_;  // plane(): control rows whose z transform is in planeZ_
 };
 
 }  // namespace mfadvr
