@@ -154,8 +154,7 @@ BezierRangeScanner::BezierRangeScanner(const SplineView& v) : v_(v) {
       for (std::int64_t c = 0; c < cells_[a]; ++c) {
         double sum = 0.0;
         for (int j = 0; j < w; ++j)
-          sum += weights_[a][static_cast<size_t>((j * w + i) * stride_[a] + c)] *
-                 binomial(p_[a], j) / std::ldexp(1.0, p_[a]);
+          sum += weight(a, j, i, c) * binomial(p_[a], j) / std::ldexp(1.0, p_[a]);
         centreWeights_[a][static_cast<size_t>(i * stride_[a] + c)] = static_cast<float>(sum);
       }
   }
@@ -177,8 +176,7 @@ double BezierRangeScanner::relativeRounding() const {
     for (int j = 0; j < w; ++j)
       for (std::int64_t c = 0; c < cells_[a]; ++c) {
         double sum = 0.0;
-        for (int i = 0; i < w; ++i)
-          sum += std::abs(weights_[a][static_cast<size_t>((j * w + i) * stride_[a] + c)]);
+        for (int i = 0; i < w; ++i) sum += std::abs(weight(a, j, i, c));
         rowSum = std::max(rowSum, sum);
       }
     error = error * rowSum + (w + 1) * u * rowSum * magnitude;
@@ -193,21 +191,21 @@ void BezierRangeScanner::centres(std::int64_t z, float* value, const std::uint8_
   const std::int64_t controlPlane = N0 * N1;
   constexpr auto widths = std::make_integer_sequence<int, kMaxDegree + 1>();
   const float* src[kMaxDegree + 1];
-  float weight[kMaxDegree + 1];
+  float factor[kMaxDegree + 1];
   for (int k = 0; k < w2; ++k) {
     src[k] = v_.ctrl + (z + k) * controlPlane;
-    weight[k] = centreWeights_[2][static_cast<size_t>(k * stride_[2] + z)];
+    factor[k] = centreWeight(2, k, z);
   }
   float* planeZ = planeZ_.data();
-  combineRowsFor(w2, widths, src, weight, controlPlane, planeZ);
+  combineRowsFor(w2, widths, src, factor, controlPlane, planeZ);
   float* row = rowYZ_.data();
   for (std::int64_t cy = 0; cy < Y; ++cy) {
     if (!anyNeeded(need ? need + cy * X : nullptr, X)) continue;
     for (int k = 0; k < w1; ++k) {
       src[k] = planeZ + (cy + k) * N0;
-      weight[k] = centreWeights_[1][static_cast<size_t>(k * stride_[1] + cy)];
+      factor[k] = centreWeight(1, k, cy);
     }
-    combineRowsFor(w1, widths, src, weight, N0, row);
+    combineRowsFor(w1, widths, src, factor, N0, row);
     float* out = value + cy * X;
     const float* wx = centreWeights_[0].data();
     for (std::int64_t c = 0; c < X; ++c) out[c] = wx[c] * row[c];
@@ -218,14 +216,17 @@ void BezierRangeScanner::centres(std::int64_t z, float* value, const std::uint8_
 
 void BezierRangeScanner::plane(std::int64_t z, float* lo, float* hi, const std::uint8_t* need) {
   const int w0 = p_[0] + 1, w1 = p_[1] + 1, w2 = p_[2] + 1;
-  const std::int64_t N0 = n_[0], N1 = n_[1], X = cells_[0], Y = cells_[1], Z = cells_[2];
+  const std::int64_t N0 = n_[0], N1 = n_[1], X = cells_[0], Y = cells_[1];
   const std::int64_t controlPlane = N0 * N1;
   constexpr auto widths = std::make_integer_sequence<int, kMaxDegree + 1>();
   const float* src[kMaxDegree + 1];
-  float weight[kMaxDegree + 1];
+  float factor[kMaxDegree + 1];
   // Work in proportion to the cells asked for: the z transform of a control row only when a
   // cell row that needs it is asked for, the y transform of a row only over the columns of the
   // runs of 16-cell blocks that hold asked-for cells, the x transform per such block.
+  float zWeight[kMaxDegree + 1][kMaxDegree + 1];  // [j2][k]: this plane's z transform
+  for (int j2 = 0; j2 < w2; ++j2)
+    for (int k = 0; k < w2; ++k) zWeight[j2][k] = weight(2, j2, k, z);
   rowDone_.assign(static_cast<size_t>(N1), 0);
   for (std::int64_t cy = 0; cy < Y; ++cy) {
     const std::uint8_t* rowNeed = need ? need + cy * X : nullptr;
@@ -235,11 +236,9 @@ void BezierRangeScanner::plane(std::int64_t z, float* lo, float* hi, const std::
       if (rowDone_[static_cast<size_t>(j)]) continue;
       rowDone_[static_cast<size_t>(j)] = 1;
       for (int k = 0; k < w2; ++k) src[k] = v_.ctrl + (z + k) * controlPlane + j * N0;
-      for (int j2 = 0; j2 < w2; ++j2) {
-        for (int k = 0; k < w2; ++k)
-          weight[k] = weights_[2][static_cast<size_t>((j2 * w2 + k) * Z + z)];
-        combineRowsFor(w2, widths, src, weight, N0, planeZ_.data() + j2 * controlPlane + j * N0);
-      }
+      for (int j2 = 0; j2 < w2; ++j2)
+        combineRowsFor(w2, widths, src, zWeight[j2], N0,
+                       planeZ_.data() + j2 * controlPlane + j * N0);
     }
     for (std::int64_t begin = 0; begin < X;) {
       // The next run of blocks with an asked-for cell: [begin, end).
@@ -256,12 +255,11 @@ void BezierRangeScanner::plane(std::int64_t z, float* lo, float* hi, const std::
       // a last block past the row's end read further, and are not stored).
       const std::int64_t first = begin, count = std::min(end + w0 - 1, N0) - first;
       for (int j1 = 0; j1 < w1; ++j1) {
-        for (int k = 0; k < w1; ++k)
-          weight[k] = weights_[1][static_cast<size_t>((j1 * w1 + k) * Y + cy)];
+        for (int k = 0; k < w1; ++k) factor[k] = weight(1, j1, k, cy);
         for (int j2 = 0; j2 < w2; ++j2) {
           for (int k = 0; k < w1; ++k)
             src[k] = planeZ_.data() + j2 * controlPlane + (cy + k) * N0 + first;
-          combineRowsFor(w1, widths, src, weight, count,
+          combineRowsFor(w1, widths, src, factor, count,
                          rowYZ_.data() + (j1 * w2 + j2) * rowStride_ + first);
         }
       }

@@ -61,6 +61,12 @@ class BezierRangeScanner {
   std::int64_t stride_[3];
   std::vector<float> weights_[3];
   std::vector<float> centreWeights_[3];  // the basis at each span's centre: [i * stride_ + c]
+  float weight(int axis, int j, int i, std::int64_t c) const {
+    return weights_[axis][static_cast<size_t>((j * (p_[axis] + 1) + i) * stride_[axis] + c)];
+  }
+  float centreWeight(int axis, int i, std::int64_t c) const {
+    return centreWeights_[axis][static_cast<size_t>(i * stride_[axis] + c)];
+  }
   std::vector<float> planeZ_;  // (p2+1) planes of N0 x N1: the z transform of the control points
   std::vector<float> rowYZ_;   // (p1+1)(p2+1) rows of rowStride_: a cell row's y and z transforms
   std::int64_t rowStride_ = 0;
