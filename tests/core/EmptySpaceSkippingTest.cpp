@@ -16,6 +16,7 @@
 #include "core/image/ImageMetrics.h"
 #include "core/model/BlockModelFile.h"
 #include "core/render/EmptySpaceGrid.h"
+#include "core/render/ModelRenderSetup.h"
 #include "core/render/RayCaster.h"
 #include "core/render/ReconstructionMethod.h"
 #include "core/render/kernel/SplineRaySampler.h"
@@ -271,18 +272,29 @@ TEST(EmptySpaceFlags, NoCellEmptyWhenTheWholeRangeIsVisible) {
   for (const TransferFunction& tf : tfs) {
     const TransferFunctionTable table(tf, OpacityCorrection(0.5));
     const EmptySpaceFlags f = buildEmptySpaceFlags(m.spline().view(), r, table);
+    const EmptySpaceFlags byControlPoints =
+        buildEmptySpaceFlags(m.spline().view(), r, table, /*bezierRanges=*/false);
     std::int64_t empty = 0, emptyByControlPoints = 0;
     for (std::int64_t i = 0; i < r.cellCount(); ++i) {
       const size_t q = static_cast<size_t>(i);
       const float lo = b.lo[q], hi = b.hi[q];
       const float pad = skippingMargin(r, lo, hi);
-      emptyByControlPoints += table.transparentOver(lo - pad, hi + pad) ? 1 : 0;
+      const bool cpEmpty = table.transparentOver(lo - pad, hi + pad);
+      emptyByControlPoints += cpEmpty ? 1 : 0;
+      if (!byControlPoints.cells.empty()) {
+        ASSERT_EQ(byControlPoints.cells[q] != 0, cpEmpty) << "cell " << i;
+        if (cpEmpty) {
+          ASSERT_NE(f.cells[q], 0) << "cell " << i;
+        }
+      }
       float l, h;
       ASSERT_TRUE(skippingRange(r, bezier.rounding, lo, hi, bezier.lo[q], bezier.hi[q], l, h));
       empty += table.transparentOver(l, h) ? 1 : 0;
     }
     EXPECT_GE(empty, emptyByControlPoints);
     EXPECT_EQ(f.emptyCells, empty);
+    EXPECT_EQ(byControlPoints.emptyCells, emptyByControlPoints);
+    EXPECT_EQ(byControlPoints.cells.empty(), f.cells.empty());
     if (f.cells.empty()) {
       ++shortcuts;
       EXPECT_EQ(empty, 0);
@@ -291,21 +303,37 @@ TEST(EmptySpaceFlags, NoCellEmptyWhenTheWholeRangeIsVisible) {
   EXPECT_GE(shortcuts, 1);
 }
 
+// Skipping with flags from a cache (Bezier ranges) and flags made for the frame (Bezier ranges
+// or, for a frame of few samples per cell, the control points alone: bezierRangesPayOff) gives
+// the image of no skipping; the thumbnail frames take the control-point flags.
 void expectIdenticalWithAndWithoutSkipping(const Model& m) {
-  int skippedSomewhere = 0;
+  int skippedSomewhere = 0, controlPointFrames = 0;
   for (const TransferFunction& tf : testTransferFunctions())
-    for (bool shade : {false, true}) {
-      RenderSettings s = settingsFor(m, tf, shade);
-      RenderStats on, off;
-      const Image a = renderVolume(ModelField(m), s, &on);
-      s.skipEmptySpace = false;
-      const Image b = renderVolume(ModelField(m), s, &off);
-      EXPECT_EQ(a.rgba, b.rgba) << "shade " << shade;
-      EXPECT_EQ(off.skipped, 0);
-      EXPECT_LE(on.samples, off.samples);
-      if (on.skipped > 0) ++skippedSomewhere;
-    }
-  EXPECT_GE(skippedSomewhere, 6);  // the test has to exercise the skipping
+    for (bool shade : {false, true})
+      for (const int width : {64, 16}) {
+        RenderSettings s = settingsFor(m, tf, shade);
+        s.width = width;
+        s.height = width * 3 / 4;
+        const bool bezier = bezierRangesPayOff(m, s);
+        controlPointFrames += bezier ? 0 : 1;
+        RenderStats on, cached, off;
+        const Image a = renderVolume(ModelField(m), s, &on);
+        EmptySpaceCache cache;
+        const Image c = renderVolume(ModelField(m, &cache), s, &cached);
+        s.skipEmptySpace = false;
+        const Image b = renderVolume(ModelField(m), s, &off);
+        EXPECT_EQ(a.rgba, b.rgba) << "shade " << shade << " width " << width;
+        EXPECT_EQ(c.rgba, b.rgba) << "shade " << shade << " width " << width;
+        EXPECT_EQ(off.skipped, 0);
+        EXPECT_LE(on.samples, off.samples);
+        EXPECT_LE(cached.samples, on.samples);
+        if (bezier) {
+          EXPECT_EQ(cached.samples, on.samples);
+        }
+        if (on.skipped > 0) ++skippedSomewhere;
+      }
+  EXPECT_GE(skippedSomewhere, 12);  // the test has to exercise the skipping
+  EXPECT_GE(controlPointFrames, 10);
 }
 
 TEST(EmptySpaceSkipping, ImagesAreBitIdenticalOnAnUnmaskedModel) {
@@ -314,6 +342,27 @@ TEST(EmptySpaceSkipping, ImagesAreBitIdenticalOnAnUnmaskedModel) {
 
 TEST(EmptySpaceSkipping, ImagesAreBitIdenticalOnAMaskedModel) {
   expectIdenticalWithAndWithoutSkipping(maskedMarschnerLobb());
+}
+
+// Flags made for one frame get Bezier ranges when the frame's rays take enough samples per
+// cell: not for a thumbnail, yes for a large image; never for a region no ray crosses, nor
+// when every ray has ended.
+TEST(EmptySpaceSkipping, BezierRangesForFramesWithManySamplesPerCell) {
+  const Model& m = marschnerLobb();
+  RenderSettings s = settingsFor(m, testTransferFunctions()[0], false);
+  s.width = s.height = 8;
+  EXPECT_FALSE(bezierRangesPayOff(m, s));
+  s.width = s.height = 2000;
+  EXPECT_TRUE(bezierRangesPayOff(m, s));
+  RenderSettings coarse = s;
+  coarse.sampleDistance *= 1e6;
+  EXPECT_FALSE(bezierRangesPayOff(m, coarse));
+  RenderSettings ended = s;
+  ended.rayEnd.assign(static_cast<size_t>(s.width) * s.height, 0.0f);
+  EXPECT_FALSE(bezierRangesPayOff(m, ended));
+  RenderSettings away = s;
+  away.clipBox = DomainBox{m.domain().max + Vec3d::Ones(), m.domain().max + 2.0 * Vec3d::Ones()};
+  EXPECT_FALSE(bezierRangesPayOff(m, away));
 }
 
 TEST(EmptySpaceSkipping, SkipsMostOfASparseScene) {

@@ -404,6 +404,59 @@ TEST(RayCaster, GridPiecesCompositedInOneOrderAsTheyAreRendered) {
   EXPECT_TRUE(gridVisibilityOrder(mlSettings(40), twice).empty());
 }
 
+// The pixels a region projects onto hold every pixel whose ray crosses the region, from
+// cameras outside (perspective, parallel, a skewed host frustum) and inside it; a small region
+// in front covers few of the image's pixels; rays that end at once are not counted.
+TEST(RayCaster, ProjectedPixelsHoldEveryRayThatCrossesTheRegion) {
+  const DomainBox whole{Vec3d(-1, -1, -1), Vec3d(1, 1, 1)};
+  const DomainBox small{Vec3d(0.1, -0.2, 0.3), Vec3d(0.4, 0.1, 0.5)};
+  for (int view = 0; view < 4; ++view) {
+    RenderSettings s;
+    s.width = 60;
+    s.height = 40;
+    s.camera.resetToBounds(whole.min, whole.max);
+    s.camera.azimuth(30.0 + 40.0 * view);
+    s.camera.elevation(20.0);
+    if (view == 1) s.camera.parallelProjection = true;
+    if (view == 3) s.camera.position = Vec3d(0.2, -0.1, -0.5);  // inside, behind the small box
+    CameraRays rays = s.primaryRays();
+    if (view == 2)
+      for (int a = 0; a < 3; ++a) {
+        rays.right[a] = 1.3 * rays.right[a] + 0.2 * rays.up[a];
+        rays.up[a] = 0.8 * rays.up[a] + 0.1 * rays.forward[a];
+      }
+    for (const bool isSmall : {false, true}) {
+      const DomainBox& box = isSmall ? small : whole;
+      const PixelRect r = projectedPixels(rays, box);
+      const double lo[3] = {box.min[0], box.min[1], box.min[2]};
+      const double hi[3] = {box.max[0], box.max[1], box.max[2]};
+      std::int64_t crossing = 0;
+      for (int y = 0; y < rays.height; ++y)
+        for (int x = 0; x < rays.width; ++x) {
+          double o[3], d[3], tEnter, tExit;
+          primaryRay(rays, x, y, o, d);
+          if (!intersectBox(o, d, lo, hi, tEnter, tExit) || !(tExit > std::max(tEnter, 0.0)))
+            continue;
+          ++crossing;
+          EXPECT_TRUE(x >= r.x0 && x <= r.x1 && y >= r.y0 && y <= r.y1)
+              << "view " << view << " pixel " << x << "," << y;
+        }
+      EXPECT_GE(r.count(), crossing);
+      EXPECT_EQ(raysStillGoing(rays, {}, box), r.count());
+      std::vector<float> ends(static_cast<size_t>(rays.width) * rays.height, 0.0f);
+      EXPECT_EQ(raysStillGoing(rays, ends, box), 0);
+      ends[static_cast<size_t>(r.y0) * rays.width + r.x0] = INFINITY;
+      if (r.count() > 0) {
+        EXPECT_EQ(raysStillGoing(rays, ends, box), 1);
+      }
+      if (isSmall && view != 3) {
+        EXPECT_GT(crossing, 0) << "view " << view;
+        EXPECT_LT(r.count(), std::int64_t(rays.width) * rays.height / 4) << "view " << view;
+      }
+    }
+  }
+}
+
 // A device that renders on the CPU and records what it was asked to do.
 class RecordingDevice final : public DeviceRenderer {
  public:

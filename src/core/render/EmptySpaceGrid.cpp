@@ -11,7 +11,7 @@
 namespace mfadvr {
 
 EmptySpaceFlags buildEmptySpaceFlags(const SplineView& spline, const SpanRanges& r,
-                                     const TransferFunctionTable& table) {
+                                     const TransferFunctionTable& table, bool bezierRanges) {
   const std::int64_t n = r.cellCount();
   EmptySpaceFlags out;
   // A cell's widened range lies within the whole spline's, widened by at least as much, and
@@ -62,6 +62,10 @@ EmptySpaceFlags buildEmptySpaceFlags(const SplineView& spline, const SpanRanges&
         }
         f[q] = state;
         undecided = undecided || state == 2;
+      }
+      if (undecided && !bezierRanges) {
+        for (std::int64_t q = 0; q < plane; ++q) f[q] = f[q] == 1;
+        undecided = false;
       }
       if (undecided) {
         // A visible value at the cell's centre settles it (the centre is computed in float,

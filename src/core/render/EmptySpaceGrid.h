@@ -74,9 +74,16 @@ inline bool skippingRange(const SpanRanges& r, double bezierRounding, float lo, 
 }
 
 // `ranges`: spline's (SpanRanges::compute). The cells' bounds are computed here, a slab of cells
-// per task, and not kept.
+// per task, and not kept. Without `bezierRanges` a cell is classified by its control points
+// alone: fewer empty cells, a faster build (for flags that serve few samples per cell).
 EmptySpaceFlags buildEmptySpaceFlags(const SplineView& spline, const SpanRanges& ranges,
-                                     const TransferFunctionTable& table);
+                                     const TransferFunctionTable& table, bool bezierRanges = true);
+
+// Flags made for one render serve its samples once: below this many samples per cell (of the
+// rays over the model, at the render's step), the Bezier ranges cost more than the samples
+// they save, and the cells are classified by their control points only. Measured on streamed
+// frames of 1024^3 and 2048^3 models (docs/benchmarks.md, "Bezier ranges").
+inline constexpr double kBezierRangesMinSamplesPerCell = 3.0;
 
 class EmptySpaceCache {
  public:

@@ -2,6 +2,7 @@
 
 #include <chrono>
 
+#include "core/render/PieceCompositor.h"
 #include "core/render/RayCaster.h"
 
 namespace mfadvr {
@@ -28,9 +29,13 @@ ModelRenderSetup::ModelRenderSetup(const ModelField& field, const RenderSettings
   // The flags' (re)build is part of the frame: its time is added to the ray casting's.
   const auto start = std::chrono::steady_clock::now();
   if (settings.skipEmptySpace) {
-    EmptySpaceCache local;
-    EmptySpaceCache& cache = field.emptySpaceCache() ? *field.emptySpaceCache() : local;
-    flags_ = cache.flags(model.spline(), table_);
+    if (EmptySpaceCache* cache = field.emptySpaceCache()) {
+      flags_ = cache->flags(model.spline(), table_);
+    } else {
+      const std::shared_ptr<const SpanRanges> ranges = model.spline().spanRanges();
+      flags_ = std::make_shared<const EmptySpaceFlags>(
+          buildEmptySpaceFlags(view_.spline, *ranges, table_, bezierRangesPayOff(model, settings)));
+    }
     // Nothing to skip: the loop without the per-sample test.
     if (flags_->emptyCells > 0) {
       view_.empty = flags_->cells.data();
@@ -40,6 +45,21 @@ ModelRenderSetup::ModelRenderSetup(const ModelField& field, const RenderSettings
     }
   }
   setupSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// The samples the rays over the model's region would take if none were skipped, a ray's path
+// taken as half the region's diagonal, per knot-span cell.
+bool bezierRangesPayOff(const Model& model, const RenderSettings& s) {
+  DomainBox region = model.domain();
+  if (s.clipBox) {
+    region.min = region.min.cwiseMax(s.clipBox->min);
+    region.max = region.max.cwiseMin(s.clipBox->max);
+    if ((region.max - region.min).minCoeff() < 0.0) return false;
+  }
+  const double rays = static_cast<double>(raysStillGoing(s.primaryRays(), s.rayEnd, region));
+  const double samples = rays * 0.5 * region.extent().norm() / s.sampleDistance;
+  return samples >= kBezierRangesMinSamplesPerCell *
+                        static_cast<double>(model.spline().spanRanges()->cellCount());
 }
 
 }  // namespace mfadvr

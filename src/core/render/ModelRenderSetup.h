@@ -1,9 +1,10 @@
 #pragma once
 // Everything a render of the MFA model needs besides the driver that walks the pixels: the
 // transfer-function table, the plain ray parameters and model view, and the empty-space flags
-// (built for this frame, or taken from the field's cache when the transfer function did not
-// change). The CPU driver (ModelRenderer.cpp) and the CUDA driver (src/gpu) both start from it,
-// so that the two render exactly the same scene.
+// (taken from the field's cache, rebuilt only when the transfer function's zero set changed;
+// or, with no cache, built for this frame, with Bezier ranges only where they pay off). The CPU
+// driver (ModelRenderer.cpp) and the CUDA driver (src/gpu) both start from it, so that the two
+// render exactly the same scene.
 #include <memory>
 
 #include "core/field/ModelField.h"
@@ -43,5 +44,11 @@ class ModelRenderSetup {
   std::shared_ptr<const EmptySpaceFlags> flags_;
   double setupSeconds_ = 0.0;
 };
+
+// Whether flags built for one render of `model` with `settings` (no cache: a streamed block)
+// are worth the Bezier ranges' cost: the rays over the model's region (clipped to
+// settings.clipBox, less those that end at once) would take at least
+// kBezierRangesMinSamplesPerCell samples per cell if none were skipped.
+bool bezierRangesPayOff(const Model& model, const RenderSettings& settings);
 
 }  // namespace mfadvr

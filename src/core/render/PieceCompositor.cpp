@@ -96,14 +96,8 @@ std::vector<size_t> gridVisibilityOrder(const RenderSettings& settings,
   return order;
 }
 
-namespace {
-
-// Whether a ray of `rays` that does not end at once (ends: none, or > 0) crosses `region` before
-// its end. Only the pixels onto which the region's corners project are tested, when the region
-// lies in front of a perspective camera (or the camera is parallel).
-bool anyRayCrosses(const CameraRays& rays, const std::vector<float>& ends,
-                   const DomainBox& region) {
-  int x0 = 0, x1 = rays.width - 1, y0 = 0, y1 = rays.height - 1;
+PixelRect projectedPixels(const CameraRays& rays, const DomainBox& region) {
+  PixelRect r{0, rays.width - 1, 0, rays.height - 1};
   // A point p is position + a forward + b right + c up (the rays' vectors need not be
   // orthogonal or unit: a host's frustum may be skewed). Perspective: p is on the ray of image
   // coordinates (b / a, c / a), in front when a > 0; parallel: (b, c).
@@ -132,15 +126,35 @@ bool anyRayCrosses(const CameraRays& rays, const std::vector<float>& ends,
     // downwards; two pixels of margin for rounding.
     auto column = [&](double sx) { return (sx / rays.halfWidth + 1.0) * 0.5 * rays.width - 0.5; };
     auto row = [&](double sy) { return (1.0 - sy / rays.halfHeight) * 0.5 * rays.height - 0.5; };
-    x0 = static_cast<int>(std::clamp(std::floor(column(lo[0])) - 2.0, 0.0, double(rays.width)));
-    x1 = static_cast<int>(std::clamp(std::ceil(column(hi[0])) + 2.0, -1.0, rays.width - 1.0));
-    y0 = static_cast<int>(std::clamp(std::floor(row(hi[1])) - 2.0, 0.0, double(rays.height)));
-    y1 = static_cast<int>(std::clamp(std::ceil(row(lo[1])) + 2.0, -1.0, rays.height - 1.0));
+    r.x0 = static_cast<int>(std::clamp(std::floor(column(lo[0])) - 2.0, 0.0, double(rays.width)));
+    r.x1 = static_cast<int>(std::clamp(std::ceil(column(hi[0])) + 2.0, -1.0, rays.width - 1.0));
+    r.y0 = static_cast<int>(std::clamp(std::floor(row(hi[1])) - 2.0, 0.0, double(rays.height)));
+    r.y1 = static_cast<int>(std::clamp(std::ceil(row(lo[1])) + 2.0, -1.0, rays.height - 1.0));
   }
+  return r;
+}
+
+std::int64_t raysStillGoing(const CameraRays& rays, const std::vector<float>& ends,
+                            const DomainBox& region) {
+  const PixelRect r = projectedPixels(rays, region);
+  if (ends.empty()) return r.count();
+  std::int64_t n = 0;
+  for (int y = r.y0; y <= r.y1; ++y)
+    for (int x = r.x0; x <= r.x1; ++x) n += ends[static_cast<size_t>(y) * rays.width + x] > 0.0f;
+  return n;
+}
+
+namespace {
+
+// Whether a ray of `rays` that does not end at once (ends: none, or > 0) crosses `region` before
+// its end. Only the pixels onto which the region's corners project are tested.
+bool anyRayCrosses(const CameraRays& rays, const std::vector<float>& ends,
+                   const DomainBox& region) {
+  const PixelRect r = projectedPixels(rays, region);
   const double boxLo[3] = {region.min[0], region.min[1], region.min[2]};
   const double boxHi[3] = {region.max[0], region.max[1], region.max[2]};
-  for (int y = y0; y <= y1; ++y)
-    for (int x = x0; x <= x1; ++x) {
+  for (int y = r.y0; y <= r.y1; ++y)
+    for (int x = r.x0; x <= r.x1; ++x) {
       const double end = ends.empty() ? INFINITY : ends[static_cast<size_t>(y) * rays.width + x];
       if (!(end > 0.0)) continue;
       double o[3], d[3], tEnter, tExit;

@@ -3,6 +3,7 @@
 // in ParaView) does across ranks: per pixel, the premultiplied images of the pieces are blended
 // front to back in the order in which the pixel's ray enters the pieces' regions. Regions must
 // not overlap (the pieces of PieceEncoder.h, the blocks of a multi-block model file).
+#include <cstdint>
 #include <functional>
 #include <vector>
 
@@ -25,6 +26,21 @@ Image compositeInVisibilityOrder(const RenderSettings& settings,
 // cells by it orders the cells of every ray. Empty when the regions are not such cells.
 std::vector<size_t> gridVisibilityOrder(const RenderSettings& settings,
                                         const std::vector<DomainBox>& regions);
+
+// The pixels (inclusive bounds, two pixels of margin) onto which `region` projects under `rays`;
+// the whole image when some of it lies behind a perspective camera. Empty: x1 < x0 or y1 < y0.
+struct PixelRect {
+  int x0, x1, y0, y1;
+  std::int64_t count() const {
+    return x1 < x0 || y1 < y0 ? 0 : std::int64_t(x1 - x0 + 1) * (y1 - y0 + 1);
+  }
+};
+PixelRect projectedPixels(const CameraRays& rays, const DomainBox& region);
+
+// The rays over `region`'s projection that have not ended at once (ends: none, or > 0 per
+// pixel, RenderSettings::rayEnd): at least every ray that can sample the region.
+std::int64_t raysStillGoing(const CameraRays& rays, const std::vector<float>& ends,
+                            const DomainBox& region);
 
 // Renders the pieces of a partitioned volume here, as the ranks of a parallel renderer would:
 // renderPiece(i, pieceSettings, pieceStats) renders piece i with `settings` clipped to
