@@ -58,14 +58,11 @@ EmptySpaceFlags buildEmptySpaceFlags(const SplineView& spline, const SpanRanges&
           const float pad = skippingMargin(r, l, h);
           using O = TransferFunctionTable::RangeOpacity;
           const O o = table.rangeOpacity(l - pad, h + pad);
-          state = o == O::Transparent ? 1 : o == O::Mixed ? 2 : 0;
+          // Without Bezier ranges an undecided cell stays visible.
+          state = o == O::Transparent ? 1 : o == O::Mixed && bezierRanges ? 2 : 0;
         }
         f[q] = state;
         undecided = undecided || state == 2;
-      }
-      if (undecided && !bezierRanges) {
-        for (std::int64_t q = 0; q < plane; ++q) f[q] = f[q] == 1;
-        undecided = false;
       }
       if (undecided) {
         // A visible value at the cell's centre settles it (the centre is computed in float,
