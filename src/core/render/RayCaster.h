@@ -15,7 +15,9 @@
 //
 // Pixels are computed independently, so the image is bit-identical for any thread count. Where
 // the sampler takes them, rows of a tile go eight rays at a time (kernel/RayPacketIntegrator.h),
-// with the same result per pixel as one ray at a time.
+// with the same result per pixel as one ray at a time; with empty-space skipping, groups of
+// kMarchGroup rays make their way in through empty space together (kernel/InterleavedMarch.h),
+// also with the same result per pixel.
 #include <functional>
 
 #include "core/field/Field.h"
@@ -24,6 +26,7 @@
 #include "core/render/FieldRaySampler.h"
 #include "core/render/RenderSettings.h"
 #include "core/render/TransferFunctionTable.h"
+#include "core/render/kernel/InterleavedMarch.h"
 #include "core/render/kernel/RayIntegrator.h"
 #include "core/render/kernel/RayPacketIntegrator.h"
 #include "core/render/kernel/RayParams.h"
@@ -60,6 +63,21 @@ void castRays(const RenderSettings& settings, const RayParams& params, const Mak
             }
           }
 #endif
+          if constexpr (!Masked && marchesRaysApart<decltype(sampler)>()) {
+            // The way in through empty space, kMarchGroup rays at a time.
+            constexpr int G = kMarchGroup;
+            for (; x + G <= x1; x += G) {
+              RaySegment segment[G];
+              const RaySegment* rays[G];
+              for (int g = 0; g < G; ++g)
+                rays[g] = raySegment(params, x + g, y, segment[g]) ? &segment[g] : nullptr;
+              RayStart start[G];
+              marchIn<G>(params, sampler, rays, start, counters);
+              for (int g = 0; g < G; ++g)
+                integrateSegment<Masked, Shade>(params, sampler, rays[g], start[g],
+                                                image.pixel(x + g, y), counters);
+            }
+          }
           for (; x < x1; ++x)
             integrateRay<Masked, Shade>(params, sampler, x, y, image.pixel(x, y), counters);
         }

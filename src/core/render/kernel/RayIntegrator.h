@@ -1,7 +1,8 @@
 #pragma once
 // The per-ray integration of the ray caster (paper section 3.1, Algorithm 1), one plain function
 // over RayParams and a sampler, for host and device. The CPU driver (RayCaster.h) calls it per
-// pixel from its tiles; a GPU driver calls it per thread.
+// pixel from its tiles (integrateSegment from where a march ahead stopped, with skipping); a
+// GPU driver calls it per thread.
 //
 // A ray from the camera through the pixel centre is clipped to the box (and to its ray end);
 // the clipped segment is cut into steps of the sample distance (the last one shorter when the
@@ -117,16 +118,48 @@ MFADVR_HD MFADVR_INLINE void overBackground(const RayParams& rp, float red, floa
   out[3] = alpha;
 }
 
+// The sample of step k of `ray`: the step's midpoint p and its length. False when the ray has
+// no step k (its length would not be above zero). Samplers clamp their own lookups, so a sample
+// a rounding error outside the box is fine.
+MFADVR_HD MFADVR_INLINE bool stepSample(const RaySegment& ray, std::int64_t k, double dt,
+                                        double p[3], double& length) {
+  const double t = rayStep(static_cast<double>(k), ray.t0, ray.tEnter, ray.tExit, dt, length);
+  if (!(length > 0.0)) return false;
+  const double m = t + 0.5 * length;
+  for (int a = 0; a < 3; ++a) p[a] = ray.o[a] + m * ray.d[a];
+  return true;
+}
+
+// The ray's sample k - 1 lay in an empty region that the ray leaves at tLeave (the sampler's
+// emptyAt): samples j >= k with midpoints t0 + (j + 1/2) dt <= tLeave lie in it too. Returns
+// the first step after the last of them (steps: none left).
+MFADVR_HD MFADVR_INLINE std::int64_t stepAfterEmpty(std::int64_t k, double tLeave, double t0,
+                                                    double dt, std::int64_t steps) {
+  const double last = floor((tLeave - t0) / dt - 0.5);
+  if (!(last >= static_cast<double>(k))) return k;
+  return last < static_cast<double>(steps - 1) ? static_cast<std::int64_t>(last) + 1 : steps;
+}
+
+// Where the walk of a ray's steps begins: at step k, `skipped` samples already passed over as
+// empty (by a march that went ahead of the integration, InterleavedMarch.h); {0, 0}: the
+// whole ray.
+struct RayStart {
+  std::int64_t k = 0;
+  std::int64_t skipped = 0;
+};
+
+// Integrates the segment (raySegment; null: the ray misses the box) from `start` into out.
 template <bool Masked, bool Shade, class Sampler>
-MFADVR_HD MFADVR_INLINE void integrateRay(const RayParams& rp, Sampler& sampler, int x, int y,
-                                          float out[4], RayCounters& counters) {
+MFADVR_HD MFADVR_INLINE void integrateSegment(const RayParams& rp, Sampler& sampler,
+                                              const RaySegment* segment, RayStart start,
+                                              float out[4], RayCounters& counters) {
   float red = 0.0f, green = 0.0f, blue = 0.0f, alpha = 0.0f;
-  RaySegment ray;
-  if (raySegment(rp, x, y, ray)) {
+  if (segment) {
+    const RaySegment& ray = *segment;
     ++counters.hits;
     const double* o = ray.o;
     const double* d = ray.d;
-    const double tEnter = ray.tEnter, tExit = ray.tExit, t0 = ray.t0;
+    const double t0 = ray.t0;
     const std::int64_t steps = ray.steps;
     const double dt = rp.sampleDistance;
     RayShading rayShading;
@@ -139,7 +172,8 @@ MFADVR_HD MFADVR_INLINE void integrateRay(const RayParams& rp, Sampler& sampler,
 #endif
     sampler.beginRay(o, d);
     constexpr int K = Sampler::kBatch;
-    std::int64_t k = 0;
+    std::int64_t k = start.k;
+    std::int64_t carried = start.skipped;  // passed over before step k
     bool done = false;
     while (!done && k < steps) {
       double lengths[K];
@@ -147,21 +181,18 @@ MFADVR_HD MFADVR_INLINE void integrateRay(const RayParams& rp, Sampler& sampler,
       // last lane unless the ray stops first), so that the counters do not depend on the batch
       // size.
       std::int64_t skippedBefore[K];
-      std::int64_t skipped = 0;
+      std::int64_t skipped = carried;
+      carried = 0;
       int n = 0;
 #if MFADVR_EMPTY_SPACE_PROFILE
       const std::int64_t marchStart = cycleCount();
 #endif
       while (n < K && k < steps) {
-        double length;
-        const double t = rayStep(static_cast<double>(k), t0, tEnter, tExit, dt, length);
-        if (!(length > 0.0)) {
+        double length, p[3];
+        if (!stepSample(ray, k, dt, p, length)) {
           done = true;
           break;
         }
-        // Samplers clamp their own lookups, so a sample a rounding error outside the box is fine.
-        const double m = t + 0.5 * length;
-        const double p[3] = {o[0] + m * d[0], o[1] + m * d[1], o[2] + m * d[2]};
         ++k;
         if constexpr (Masked) {
           if (!sampler.inside(p)) continue;
@@ -169,13 +200,7 @@ MFADVR_HD MFADVR_INLINE void integrateRay(const RayParams& rp, Sampler& sampler,
         if constexpr (Sampler::kSkipsEmptySpace) {
           double tLeave;
           if (sampler.emptyAt(p, tLeave)) {
-            // Samples j >= k with midpoints t0 + (j + 1/2) dt <= tLeave lie in the same empty
-            // region: go on after the last of them.
-            const double last = floor((tLeave - t0) / dt - 0.5);
-            std::int64_t next = k;
-            if (last >= static_cast<double>(k))
-              next = last < static_cast<double>(steps - 1) ? static_cast<std::int64_t>(last) + 1
-                                                           : steps;
+            const std::int64_t next = stepAfterEmpty(k, tLeave, t0, dt, steps);
             skipped += 1 + (next - k);
             k = next;
 #if MFADVR_EMPTY_SPACE_PROFILE
@@ -233,11 +258,20 @@ MFADVR_HD MFADVR_INLINE void integrateRay(const RayParams& rp, Sampler& sampler,
       if (n > 0) counters.cycles.transparent += evaluateCycles * transparent / n;
 #endif
     }
+    counters.skipped += carried;  // a ray that the march ahead took to its end
 #if MFADVR_EMPTY_SPACE_PROFILE
     counters.cycles.ray += cycleCount() - rayStart;
 #endif
   }
   overBackground(rp, red, green, blue, alpha, out);
+}
+
+template <bool Masked, bool Shade, class Sampler>
+MFADVR_HD MFADVR_INLINE void integrateRay(const RayParams& rp, Sampler& sampler, int x, int y,
+                                          float out[4], RayCounters& counters) {
+  RaySegment ray;
+  const bool hits = raySegment(rp, x, y, ray);
+  integrateSegment<Masked, Shade>(rp, sampler, hits ? &ray : nullptr, RayStart{}, out, counters);
 }
 
 }  // namespace mfadvr

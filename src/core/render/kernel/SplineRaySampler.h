@@ -90,14 +90,22 @@ class SplineRaySampler {
     }
   }
 
-  MFADVR_HD MFADVR_INLINE void beginRay(const double o[3], const double d[3]) {
-    if constexpr (Skip) {
-      for (int a = 0; a < 3; ++a) {
-        uo_[a] = (o[a] - m_.boxMin[a]) * m_.inverseExtent[a];
-        ud_[a] = d[a] * m_.inverseExtent[a];
-        invUd_[a] = ud_[a] != 0.0 ? 1.0 / ud_[a] : 0.0;
-      }
+  // A ray in parameter space, for emptyAlong(): its origin, direction and the direction's
+  // inverse (0 where the direction is) per axis.
+  struct RayMarch {
+    double uo[3] = {0.0, 0.0, 0.0}, ud[3] = {0.0, 0.0, 0.0}, invUd[3] = {0.0, 0.0, 0.0};
+  };
+
+  MFADVR_HD MFADVR_INLINE void beginMarch(const double o[3], const double d[3], RayMarch& r) const {
+    for (int a = 0; a < 3; ++a) {
+      r.uo[a] = (o[a] - m_.boxMin[a]) * m_.inverseExtent[a];
+      r.ud[a] = d[a] * m_.inverseExtent[a];
+      r.invUd[a] = r.ud[a] != 0.0 ? 1.0 / r.ud[a] : 0.0;
     }
+  }
+
+  MFADVR_HD MFADVR_INLINE void beginRay(const double o[3], const double d[3]) {
+    if constexpr (Skip) beginMarch(o, d, march_);
   }
 
   MFADVR_HD MFADVR_INLINE bool inside(const double p[3]) const {
@@ -107,20 +115,29 @@ class SplineRaySampler {
   }
 
   MFADVR_HD MFADVR_INLINE bool emptyAt(const double p[3], double& tLeave) {
+    located_ = true;
+    return emptyAlong(march_, p, tLeave, loc_);
+  }
+
+  using PointLocation = AxisLocation[3];  // a point's span and local coordinate per axis
+
+  // emptyAt() for the ray r (beginMarch), with no state of the sampler's own: several rays can
+  // be marched at once (InterleavedMarch.h). loc: p's location.
+  MFADVR_HD MFADVR_INLINE bool emptyAlong(const RayMarch& r, const double p[3], double& tLeave,
+                                          AxisLocation loc[3]) const {
     double u[3];
     toParameter(p, u);
-    locatePoint<P>(m_.spline, u, loc_);
-    located_ = true;
+    locatePoint<P>(m_.spline, u, loc);
     const std::int64_t cell =
-        (loc_[0].span - p_[0]) +
-        cells_[0] * ((loc_[1].span - p_[1]) + std::int64_t(cells_[1]) * (loc_[2].span - p_[2]));
+        (loc[0].span - p_[0]) +
+        cells_[0] * ((loc[1].span - p_[1]) + std::int64_t(cells_[1]) * (loc[2].span - p_[2]));
     if (!m_.empty[cell]) return false;
     // The region to leave: the largest aligned block of the pyramid around the cell that is all
     // empty (one flag per level, going up while it is set), else the cell. Its faces are knots;
     // they are pulled in by far more than the rounding of a sample's parameter, so every sample
     // before tLeave is found in this same empty region.
     int c[3];  // the cell
-    for (int a = 0; a < 3; ++a) c[a] = loc_[a].span - p_[a];
+    for (int a = 0; a < 3; ++a) c[a] = loc[a].span - p_[a];
     int level = 0;
     while (level < m_.emptyLevels) {
       const EmptyLevelView& L = m_.emptyLevel[level];
@@ -141,10 +158,10 @@ class SplineRaySampler {
     for (int a = 0; a < 3; ++a) {
       const double* U = m_.spline.axis[a].knots;
       double ta = INFINITY;
-      if (ud_[a] > 0.0)
-        ta = (U[hi[a]] - kInset - uo_[a]) * invUd_[a];
-      else if (ud_[a] < 0.0)
-        ta = (U[lo[a]] + kInset - uo_[a]) * invUd_[a];
+      if (r.ud[a] > 0.0)
+        ta = (U[hi[a]] - kInset - r.uo[a]) * r.invUd[a];
+      else if (r.ud[a] < 0.0)
+        ta = (U[lo[a]] + kInset - r.uo[a]) * r.invUd[a];
       if (ta < tLeave) tLeave = ta;
     }
     return true;
@@ -285,7 +302,7 @@ class SplineRaySampler {
   int cached_[3] = {-1, -1, -1};
   bool located_ = false;
   AxisLocation loc_[3];
-  double uo_[3] = {0.0, 0.0, 0.0}, ud_[3] = {0.0, 0.0, 0.0}, invUd_[3] = {0.0, 0.0, 0.0};
+  RayMarch march_;
   static constexpr int kOrder = Shade ? 1 : 0;
   AxisLocation locs_[kBatch][3];  // each lane's location, unless kLaneLocations
   // kLocateLanes: each lane's point; kLaneLocations: its spans and local coordinates, axis by
