@@ -2,9 +2,10 @@
 // never what a ray computes: with empty-space skipping the renderer marches each group of
 // kMarchGroup pixels of a row in together, and must give the image of integrateRay called pixel
 // by pixel bit for bit, with the same counters (samples, skipped samples, terminated rays, rays
-// that hit), for every degree (and mixed degrees), shaded and unshaded, perspective and parallel
-// cameras, steps from the box or aligned to the camera, ray ends, widths that leave pixels
-// outside any group, and transfer functions that hide most of the volume, some of it, or all.
+// that hit), for every degree (and mixed degrees), with and without a domain mask, shaded and
+// unshaded, perspective and parallel cameras, steps from the box or aligned to the camera, ray
+// ends, widths that leave pixels outside any group, and transfer functions that hide most of
+// the volume, some of it, or all.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -46,10 +47,14 @@ TEST(InterleavedMarch, GroupsRenderTheImageAndCountersOfOneRayAtATime) {
   int renders = 0;
   std::int64_t skipped = 0, terminated = 0, samples = 0;
   const std::vector<TransferFunction> tfs = transferFunctions();
-  for (int degree : {0, 1, 2, 3})  // 0: the mixed-degree model
+  // 0: the mixed-degree model; 4: a degree-3 model with a domain mask (samples outside it are
+  // passed over uncounted, during the march too).
+  for (int degree : {0, 1, 2, 3, 4})
     for (std::size_t f = 0; f < tfs.size(); ++f)
       for (bool shade : {false, true}) {
-        const Model& m = degree == 0 ? mixedDegreeModel() : mlModel(degree);
+        const Model& m = degree == 0   ? mixedDegreeModel()
+                         : degree == 4 ? maskedModel()
+                                       : mlModel(degree);
         RenderSettings s = settingsFor(m.domain().min, m.domain().max, tfs[f], shade);
         ASSERT_TRUE(s.skipEmptySpace);
         // Vary what a group must get right, one variation per render.
@@ -78,7 +83,7 @@ TEST(InterleavedMarch, GroupsRenderTheImageAndCountersOfOneRayAtATime) {
         samples += rayStats.samples;
         ++renders;
       }
-  EXPECT_EQ(renders, 48);
+  EXPECT_EQ(renders, 60);
   // The scenes exercise the march (skipped samples), rays that end on a visible sample and rays
   // that reach their end (the all-transparent transfer function).
   EXPECT_GT(skipped, 0);
@@ -110,7 +115,7 @@ TEST(InterleavedMarch, EachRayStopsAtItsFirstSampleOutsideEmptyCells) {
       for (int g = 0; g < G; ++g)
         rays[g] = raySegment(rp, x + g, y, segment[g]) ? &segment[g] : nullptr;
       RayStart start[G];
-      marchIn<G>(rp, sampler, rays, start, counters);
+      marchIn<G, false>(rp, sampler, rays, start, counters);
       for (int g = 0; g < G; ++g) {
         if (!rays[g]) {
           EXPECT_EQ(start[g].k, 0);

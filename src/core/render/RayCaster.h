@@ -63,7 +63,7 @@ void castRays(const RenderSettings& settings, const RayParams& params, const Mak
             }
           }
 #endif
-          if constexpr (!Masked && marchesRaysApart<decltype(sampler)>()) {
+          if constexpr (marchesRaysApart<decltype(sampler)>()) {
             // The way in through empty space, kMarchGroup rays at a time.
             constexpr int G = kMarchGroup;
             for (; x + G <= x1; x += G) {
@@ -72,7 +72,7 @@ void castRays(const RenderSettings& settings, const RayParams& params, const Mak
               for (int g = 0; g < G; ++g)
                 rays[g] = raySegment(params, x + g, y, segment[g]) ? &segment[g] : nullptr;
               RayStart start[G];
-              marchIn<G>(params, sampler, rays, start, counters);
+              marchIn<G, Masked>(params, sampler, rays, start, counters);
               for (int g = 0; g < G; ++g)
                 integrateSegment<Masked, Shade>(params, sampler, rays[g], start[g],
                                                 image.pixel(x + g, y), counters);

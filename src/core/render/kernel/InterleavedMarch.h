@@ -28,7 +28,9 @@ constexpr bool marchesRaysApart() {
 // For each of the G rays (null: misses the box), where its integration starts: its first step
 // whose sample is not in an empty cell, and the samples skipped before it. counters: only the
 // profiling build's (its time counts as the rays' and as marching, its jumps as jumps).
-template <int G, class Sampler>
+// Masked: samples outside the sampler's domain mask are passed over uncounted, as
+// integrateSegment does.
+template <int G, bool Masked, class Sampler>
 MFADVR_INLINE void marchIn(const RayParams& rp, const Sampler& sampler,
                            const RaySegment* const rays[G], RayStart start[G],
                            [[maybe_unused]] RayCounters& counters) {
@@ -54,18 +56,20 @@ MFADVR_INLINE void marchIn(const RayParams& rp, const Sampler& sampler,
       RayStart& s = start[g];
       double length, p[3], tLeave;
       typename Sampler::PointLocation loc;
-      if (!stepSample(ray, s.k, dt, p, length) || !sampler.emptyAlong(march[g], p, tLeave, loc)) {
-        going[g] = false;  // the integration takes this step
-        --active;
-        continue;
-      }
-      const std::int64_t next = stepAfterEmpty(s.k + 1, tLeave, ray.t0, dt, ray.steps);
-      s.skipped += next - s.k;
-      s.k = next;
+      bool stop = !stepSample(ray, s.k, dt, p, length);  // no step k: the integration ends there
+      if (Masked && !stop && !sampler.inside(p)) {
+        ++s.k;
+      } else if (!stop && sampler.emptyAlong(march[g], p, tLeave, loc)) {
+        const std::int64_t next = stepAfterEmpty(s.k + 1, tLeave, ray.t0, dt, ray.steps);
+        s.skipped += next - s.k;
+        s.k = next;
 #if MFADVR_EMPTY_SPACE_PROFILE
-      ++counters.cycles.jumps;
+        ++counters.cycles.jumps;
 #endif
-      if (s.k >= ray.steps) {
+      } else {
+        stop = true;  // the integration takes this step
+      }
+      if (stop || s.k >= ray.steps) {
         going[g] = false;
         --active;
       }
