@@ -1,9 +1,15 @@
 #pragma once
 // Two renders of one frame that must agree exactly: the same image bit for bit and the same
-// counters (used where two paths of the renderer are claimed to compute the same thing).
+// counters (used where two paths of the renderer are claimed to compute the same thing), and
+// the reference render those paths are held to.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "core/image/Image.h"
+#include "core/render/ModelKernelSwitch.h"
+#include "core/render/ModelRenderSetup.h"
+#include "core/render/RayCaster.h"
 #include "core/render/RenderSettings.h"
 
 namespace mfadvr::test {
@@ -15,6 +21,44 @@ inline void expectSameFrame(const Image& a, const RenderStats& aStats, const Ima
   EXPECT_EQ(aStats.skipped, bStats.skipped) << "render " << render;
   EXPECT_EQ(aStats.terminated, bStats.terminated) << "render " << render;
   EXPECT_EQ(aStats.raysHit, bStats.raysHit) << "render " << render;
+}
+
+// Variation `variant` (0..3) of a small frame, for two paths that must agree: 0 an image `oddWidth`
+// wide (other variations 48), 1 steps aligned to the camera, 2 a parallel projection, 3 ray ends
+// on every third pixel (some before the box).
+inline void varyFrame(RenderSettings& s, int variant, int oddWidth) {
+  s.width = variant == 0 ? oddWidth : 48;
+  s.height = 36;
+  if (variant == 1) s.alignSamplesToCamera = true;
+  if (variant == 2) {
+    s.camera.parallelProjection = true;
+    s.camera.parallelScale = 1.2;
+    s.camera.validate();
+  }
+  if (variant == 3) {
+    s.rayEnd.assign(std::size_t(s.width) * s.height, INFINITY);
+    for (std::size_t i = 0; i < s.rayEnd.size(); i += 3) s.rayEnd[i] = i % 2 ? 2.5f : 0.1f;
+  }
+}
+
+// The frame one ray at a time (integrateRay per pixel), with the sampler renderModelView would
+// use: what the renderer's faster paths (ray packets, the interleaved march) must reproduce.
+inline Image renderRayByRay(const RenderSettings& s, const ModelRenderSetup& setup,
+                            RenderStats& stats) {
+  Image image(s.width, s.height);
+  RayCounters counters;
+  const ModelView& view = setup.view();
+  modelKernelSwitch(view, s.shade, [&]<int P, bool Masked, bool Shade, bool Skip>() {
+    SplineRaySampler<P, Skip, Shade> sampler(view);
+    for (int y = 0; y < s.height; ++y)
+      for (int x = 0; x < s.width; ++x)
+        integrateRay<Masked, Shade>(setup.params(), sampler, x, y, image.pixel(x, y), counters);
+  });
+  stats.samples = counters.samples;
+  stats.skipped = counters.skipped;
+  stats.terminated = counters.terminated;
+  stats.raysHit = counters.hits;
+  return image;
 }
 
 }  // namespace mfadvr::test

@@ -22,24 +22,6 @@ namespace {
 
 using namespace test;
 
-// The frame one ray at a time, with the sampler renderModelView would use.
-Image renderRayByRay(const RenderSettings& s, const ModelRenderSetup& setup, RenderStats& stats) {
-  Image image(s.width, s.height);
-  RayCounters counters;
-  const ModelView& view = setup.view();
-  modelKernelSwitch(view, s.shade, [&]<int P, bool Masked, bool Shade, bool Skip>() {
-    SplineRaySampler<P, Skip, Shade> sampler(view);
-    for (int y = 0; y < s.height; ++y)
-      for (int x = 0; x < s.width; ++x)
-        integrateRay<Masked, Shade>(setup.params(), sampler, x, y, image.pixel(x, y), counters);
-  });
-  stats.samples = counters.samples;
-  stats.skipped = counters.skipped;
-  stats.terminated = counters.terminated;
-  stats.raysHit = counters.hits;
-  return image;
-}
-
 TEST(InterleavedMarch, GroupsRenderTheImageAndCountersOfOneRayAtATime) {
   static_assert(marchesRaysApart<SplineRaySampler<3, true, true> >());
   static_assert(marchesRaysApart<SplineRaySampler<0, true, false> >());
@@ -57,20 +39,9 @@ TEST(InterleavedMarch, GroupsRenderTheImageAndCountersOfOneRayAtATime) {
                                        : mlModel(degree);
         RenderSettings s = settingsFor(m.domain().min, m.domain().max, tfs[f], shade);
         ASSERT_TRUE(s.skipEmptySpace);
-        // Vary what a group must get right, one variation per render.
-        const int variant = renders % 4;
-        s.width = variant == 0 ? 63 : 48;  // 63: a tile's last pixels go one at a time
-        s.height = 36;
-        if (variant == 1) s.alignSamplesToCamera = true;
-        if (variant == 2) {
-          s.camera.parallelProjection = true;
-          s.camera.parallelScale = 1.2;
-          s.camera.validate();
-        }
-        if (variant == 3) {  // ray ends on every third pixel, some before the box
-          s.rayEnd.assign(std::size_t(s.width) * s.height, INFINITY);
-          for (std::size_t i = 0; i < s.rayEnd.size(); i += 3) s.rayEnd[i] = i % 2 ? 2.5f : 0.1f;
-        }
+        // Vary what a group must get right, one variation per render (63: a width whose tiles'
+        // last pixels go one at a time).
+        varyFrame(s, renders % 4, 63);
         if (f == 0) s.sampleDistance = 0.037;  // steps that do not divide the segments
         const ModelField field(m);
         const ModelRenderSetup setup(field, s);
