@@ -91,7 +91,7 @@ class SplineRaySampler {
   }
 
   // A ray in parameter space, for emptyAlong(): its origin, direction and the direction's
-  // inverse (0 where the direction is) per axis.
+  // inverse (0 where the direction is 0) per axis.
   struct RayMarch {
     double uo[3] = {0.0, 0.0, 0.0}, ud[3] = {0.0, 0.0, 0.0}, invUd[3] = {0.0, 0.0, 0.0};
   };
