@@ -27,7 +27,7 @@ TEST(RayPacket, PacketsRenderTheImageAndCountersOfOneRayAtATime) {
   static_assert(takesRayPackets<SplineRaySampler<1, false, false> >());
   static_assert(takesRayPackets<SplineRaySampler<2, false, true> >());
   static_assert(takesRayPackets<SplineRaySampler<3, false, true> >());
-  // Skipping and masks take one ray at a time.
+  // Skipping and masks take no packets (skipping marches rays in groups, InterleavedMarchTest).
   static_assert(!takesRayPackets<SplineRaySampler<2, true, false> >());
   int renders = 0;
   std::int64_t terminated = 0, samples = 0;
