@@ -1,6 +1,10 @@
 // The MFA model's render path: the shared per-ray integration over SplineRaySampler, with the
 // spline's degree, the domain mask, shading and empty-space skipping chosen once per render
 // (ModelKernelSwitch.h).
+#include <chrono>
+#include <optional>
+
+#include "core/render/EntryBounds.h"
 #include "core/render/ModelKernelSwitch.h"
 #include "core/render/ModelRenderSetup.h"
 #include "core/render/RayCaster.h"
@@ -11,10 +15,19 @@ namespace mfadvr {
 Image renderModelView(const RenderSettings& settings, const RayParams& params,
                       const ModelView& view, RenderStats* stats) {
   Image image(settings.width, settings.height);
+  // Where the rays may begin their march through empty space: a pass over the coarse blocks,
+  // timed as part of the frame. A masked model's march counts the steps outside its mask apart.
+  const auto start = std::chrono::steady_clock::now();
+  std::optional<EntryBounds> entry;
+  if (view.empty && !view.mask.nodes) entry.emplace(params.camera, view);
+  const double entrySeconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   modelKernelSwitch(view, settings.shade, [&]<int P, bool Masked, bool Shade, bool Skip>() {
     castRays<Masked, Shade>(
-        settings, params, [&] { return SplineRaySampler<P, Skip, Shade>(view); }, image, stats);
+        settings, params, [&] { return SplineRaySampler<P, Skip, Shade>(view); }, image, stats,
+        entry ? entry->view() : EntryBoundsView{});
   });
+  if (stats) stats->seconds += entrySeconds;
   return image;
 }
 

@@ -26,6 +26,7 @@
 #include "core/render/FieldRaySampler.h"
 #include "core/render/RenderSettings.h"
 #include "core/render/TransferFunctionTable.h"
+#include "core/render/kernel/EntryBoundsView.h"
 #include "core/render/kernel/InterleavedMarch.h"
 #include "core/render/kernel/RayIntegrator.h"
 #include "core/render/kernel/RayPacketIntegrator.h"
@@ -42,10 +43,11 @@ RayParams compileRayParams(const RenderSettings& settings, const TransferFunctio
 using TileFunction = std::function<void(int, int, int, int, RayCounters&)>;
 void forEachTile(const RenderSettings& settings, const TileFunction& tile, RenderStats* stats);
 
-// Casts every pixel's ray with samplers from make() (one per tile).
+// Casts every pixel's ray with samplers from make() (one per tile). entry: where the rays of a
+// sampler that skips empty space may begin their march (EntryBounds.h; not for Masked).
 template <bool Masked, bool Shade, class MakeSampler>
 void castRays(const RenderSettings& settings, const RayParams& params, const MakeSampler& make,
-              Image& image, RenderStats* stats) {
+              Image& image, RenderStats* stats, EntryBoundsView entry = {}) {
   forEachTile(
       settings,
       [&](int x0, int y0, int x1, int y1, RayCounters& counters) {
@@ -69,17 +71,27 @@ void castRays(const RenderSettings& settings, const RayParams& params, const Mak
             for (; x + G <= x1; x += G) {
               RaySegment segment[G];
               const RaySegment* rays[G];
-              for (int g = 0; g < G; ++g)
-                rays[g] = raySegment(params, x + g, y, segment[g]) ? &segment[g] : nullptr;
               RayStart start[G];
+              for (int g = 0; g < G; ++g) {
+                rays[g] = raySegment(params, x + g, y, segment[g]) ? &segment[g] : nullptr;
+                if (!Masked && rays[g])
+                  start[g] = entryStart(entry, x + g, y, segment[g], params.sampleDistance);
+              }
               marchIn<G, Masked>(params, sampler, rays, start, counters);
               for (int g = 0; g < G; ++g)
                 integrateSegment<Masked, Shade>(params, sampler, rays[g], start[g],
                                                 image.pixel(x + g, y), counters);
             }
           }
-          for (; x < x1; ++x)
-            integrateRay<Masked, Shade>(params, sampler, x, y, image.pixel(x, y), counters);
+          for (; x < x1; ++x) {
+            RaySegment ray;
+            const bool hits = raySegment(params, x, y, ray);
+            RayStart start;
+            if (!Masked && hits && decltype(sampler)::kSkipsEmptySpace)
+              start = entryStart(entry, x, y, ray, params.sampleDistance);
+            integrateSegment<Masked, Shade>(params, sampler, hits ? &ray : nullptr, start,
+                                            image.pixel(x, y), counters);
+          }
         }
       },
       stats);

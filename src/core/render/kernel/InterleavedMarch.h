@@ -26,8 +26,9 @@ constexpr bool marchesRaysApart() {
 }
 
 // For each of the G rays (null: misses the box), where its integration starts: its first step
-// whose sample is not in an empty cell, and the samples skipped before it. counters: only the
-// profiling build's (its time counts as the rays' and as marching, its jumps as jumps).
+// from start[g] on (in: where its march begins, every step before it empty; RayStart{}: the
+// whole ray) whose sample is not in an empty cell, and the samples skipped before it. counters:
+// only the profiling build's (its time counts as the rays' and as marching, its jumps as jumps).
 // Masked: samples outside the sampler's domain mask are passed over uncounted, as
 // integrateSegment does.
 template <int G, bool Masked, class Sampler>
@@ -42,8 +43,7 @@ MFADVR_INLINE void marchIn(const RayParams& rp, const Sampler& sampler,
   bool going[G];
   int active = 0;
   for (int g = 0; g < G; ++g) {
-    start[g] = RayStart{};
-    going[g] = rays[g] && rays[g]->steps > 0;
+    going[g] = rays[g] && start[g].k < rays[g]->steps;
     if (going[g]) {
       sampler.beginMarch(rays[g]->o, rays[g]->d, march[g]);
       ++active;
