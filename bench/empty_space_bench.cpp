@@ -1,6 +1,6 @@
 // The per-transfer-function cost of empty-space skipping on a 256^3 model (253^3 knot-span
 // cells at p = 3): the flags' build (every cell's control-point range computed and classified,
-// then the pyramid).
+// then the pyramid), and the per-frame entry bounds over them.
 //
 //   build/release/bench/mfadvr_bench --benchmark_filter=EmptySpace --benchmark_repetitions=5
 //       --benchmark_report_aggregates_only=true   (one command line)
@@ -11,7 +11,9 @@
 #include <vector>
 
 #include "core/model/Model.h"
+#include "core/render/Camera.h"
 #include "core/render/EmptySpaceGrid.h"
+#include "core/render/EntryBounds.h"
 #include "core/render/TransferFunctionTable.h"
 
 namespace mfadvr {
@@ -60,6 +62,40 @@ void BM_EmptySpaceFlagsBuild(benchmark::State& state) {
       benchmark::Counter(double(ranges.cellCount()), benchmark::Counter::kIsIterationInvariantRate);
 }
 BENCHMARK(BM_EmptySpaceFlagsBuild)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// The per-frame entry bounds (EntryBounds.h) of the same model at 1000x1000, the camera framing
+// the box (zoom 1) or close to it (zoom 4: the blocks' projections cover many tiles).
+void BM_EmptySpaceEntryBounds(benchmark::State& state) {
+  static const EmptySpaceFlags flags =
+      buildEmptySpaceFlags(blobs().view(), *blobs().spanRanges(), stepTable());
+  ModelView view{};
+  view.spline = blobs().view();
+  for (int a = 0; a < 3; ++a) {
+    view.boxMin[a] = 0.0;
+    view.inverseExtent[a] = 1.0;
+  }
+  view.empty = flags.cells.data();
+  view.emptyPyramid = flags.pyramid.data();
+  view.emptyLevels = flags.levels;
+  for (int l = 0; l < flags.levels; ++l) view.emptyLevel[l] = flags.level[l];
+  Camera camera;
+  camera.resetToBounds(Vec3d::Zero(), Vec3d::Ones());
+  camera.azimuth(30.0);
+  camera.elevation(20.0);
+  camera.zoom(static_cast<double>(state.range(0)));
+  const CameraRays rays = RayGenerator(camera, 1000, 1000).rays();
+  int level = 0;
+  std::int64_t blocks = 0;
+  for (auto _ : state) {
+    const EntryBounds bounds(rays, view);
+    level = bounds.level();
+    blocks = bounds.occupiedBlocks();
+    benchmark::DoNotOptimize(bounds.view().distance);
+  }
+  state.counters["level"] = level;
+  state.counters["occupied_blocks"] = double(blocks);
+}
+BENCHMARK(BM_EmptySpaceEntryBounds)->Arg(1)->Arg(4)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
 }  // namespace mfadvr

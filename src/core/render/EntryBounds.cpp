@@ -4,6 +4,9 @@
 #include <cmath>
 #include <limits>
 
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
 namespace mfadvr {
 
 namespace {
@@ -25,9 +28,10 @@ LevelBlocks levelBlocks(const ModelView& v, const int cells[3], int level) {
   return {v.emptyPyramid + L.offset, {L.count[0], L.count[1], L.count[2]}};
 }
 
-// Image-plane coordinates of a point: rel = q - position written as w0 forward + w1 right + w2
-// up (the camera's vectors need be neither unit nor orthogonal: a host's frustum), through the
-// inverse of the matrix [forward right up]. False when the vectors are degenerate.
+// Image-plane coordinates of a point: q - position written as w0 forward + w1 right + w2 up
+// (the camera's vectors need be neither unit nor orthogonal: a host's frustum) is w = inverse
+// (q - position), the inverse of the matrix [forward right up]; not valid when the vectors are
+// degenerate.
 struct ImagePlane {
   double inverse[3][3];  // rows
   bool valid = false;
@@ -36,60 +40,65 @@ struct ImagePlane {
     const double* f = c.forward;
     const double* r = c.right;
     const double* u = c.up;
-    const double cols[3][3] = {
+    const double rows[3][3] = {
+        // cross products over the determinant
         {r[1] * u[2] - r[2] * u[1], r[2] * u[0] - r[0] * u[2], r[0] * u[1] - r[1] * u[0]},
         {u[1] * f[2] - u[2] * f[1], u[2] * f[0] - u[0] * f[2], u[0] * f[1] - u[1] * f[0]},
         {f[1] * r[2] - f[2] * r[1], f[2] * r[0] - f[0] * r[2], f[0] * r[1] - f[1] * r[0]}};
-    const double det = f[0] * cols[0][0] + f[1] * cols[0][1] + f[2] * cols[0][2];
+    const double det = f[0] * rows[0][0] + f[1] * rows[0][1] + f[2] * rows[0][2];
     valid = std::isfinite(det) && std::abs(det) > 1e-300;
     for (int i = 0; i < 3; ++i)
-      for (int a = 0; a < 3; ++a) inverse[i][a] = valid ? cols[i][a] / det : 0.0;
-  }
-  void apply(const double q[3], double w[3]) const {
-    for (int i = 0; i < 3; ++i)
-      w[i] = inverse[i][0] * q[0] + inverse[i][1] * q[1] + inverse[i][2] * q[2];
+      for (int a = 0; a < 3; ++a) inverse[i][a] = valid ? rows[i][a] / det : 0.0;
   }
 };
 
-// The footprints of level `level`'s occupied blocks; returns the tiles they cover in all.
+// The footprints of level `level`'s occupied blocks, one list per plane of blocks (z); returns
+// the tiles they cover in all.
 std::int64_t footprints(const CameraRays& cam, const ModelView& v, const int cells[3], int level,
-                        int tilesX, int tilesY, std::vector<BlockFootprint>& out) {
-  out.clear();
+                        int tilesX, int tilesY, std::vector<std::vector<BlockFootprint>>& planes) {
   const LevelBlocks blocks = levelBlocks(v, cells, level);
-  // Each block's physical extent per axis.
-  std::vector<double> lo[3], hi[3];
+  const ImagePlane plane(cam);
+  // Per axis a, block b and side s (0: low, 1: high face): the block face's coordinate, less the
+  // camera's, and that offset's part of each image-plane coordinate (a corner's w is the sum of
+  // its three faces' parts).
+  std::vector<double> face[3], part[3];
   for (int a = 0; a < 3; ++a) {
     const KnotAxisView& axis = v.spline.axis[a];
     const int p = axis.degree, n = blocks.count[a];
-    lo[a].resize(n);
-    hi[a].resize(n);
-    for (int b = 0; b < n; ++b) {
-      const int c0 = b << level;
-      const int c1 = std::min((b + 1) << level, cells[a]);
-      lo[a][b] = v.boxMin[a] + axis.knots[p + c0] / v.inverseExtent[a];
-      hi[a][b] = v.boxMin[a] + axis.knots[p + c1] / v.inverseExtent[a];
-    }
+    face[a].resize(2 * std::size_t(n));
+    part[a].resize(6 * std::size_t(n));
+    for (int b = 0; b < n; ++b)
+      for (int side = 0; side < 2; ++side) {
+        const int c = std::min((b + side) << level, cells[a]);
+        const double q = v.boxMin[a] + axis.knots[p + c] / v.inverseExtent[a] - cam.position[a];
+        face[a][2 * b + side] = q;
+        for (int i = 0; i < 3; ++i) part[a][(2 * b + side) * 3 + i] = plane.inverse[i][a] * q;
+      }
   }
+  // Pixel coordinates whose centres have image-plane coordinates (sx, sy).
   const double W = cam.width, H = cam.height;
-  const ImagePlane plane(cam);
-  std::int64_t covered = 0;
-  std::int64_t index = 0;
-  for (int bz = 0; bz < blocks.count[2]; ++bz)
+  const double xScale = 0.5 * W / cam.halfWidth, yScale = -0.5 * H / cam.halfHeight;
+  const double xOffset = 0.5 * W - 0.5, yOffset = 0.5 * H - 0.5;
+  planes.assign(static_cast<std::size_t>(blocks.count[2]), {});
+  std::vector<std::int64_t> planeCover(planes.size(), 0);
+  tbb::parallel_for(0, blocks.count[2], [&](int bz) {
+    std::vector<BlockFootprint>& list = planes[static_cast<std::size_t>(bz)];
+    std::int64_t& cover = planeCover[static_cast<std::size_t>(bz)];
+    std::int64_t index = std::int64_t(bz) * blocks.count[1] * blocks.count[0];
     for (int by = 0; by < blocks.count[1]; ++by)
       for (int bx = 0; bx < blocks.count[0]; ++bx, ++index) {
         if (blocks.flags[index]) continue;  // all empty
-        const double boxLo[3] = {lo[0][bx], lo[1][by], lo[2][bz]};
-        const double boxHi[3] = {hi[0][bx], hi[1][by], hi[2][bz]};
+        const int at[3] = {bx, by, bz};
         BlockFootprint f{0, 0, tilesX - 1, tilesY - 1, 0.0};
         double xMin = INFINITY, xMax = -INFINITY, yMin = INFINITY, yMax = -INFINITY;
         bool behind = false;  // a corner not in front of a perspective camera
         double nearest = INFINITY;
         for (int c = 0; c < 8; ++c) {
-          const double q[3] = {(c & 1 ? boxHi : boxLo)[0] - cam.position[0],
-                               (c & 2 ? boxHi : boxLo)[1] - cam.position[1],
-                               (c & 4 ? boxHi : boxLo)[2] - cam.position[2]};
-          double w[3];
-          plane.apply(q, w);
+          double w[3] = {0.0, 0.0, 0.0};
+          for (int a = 0; a < 3; ++a) {
+            const double* t = &part[a][(2 * at[a] + ((c >> a) & 1)) * 3];
+            for (int i = 0; i < 3; ++i) w[i] += t[i];
+          }
           double sx = w[1], sy = w[2];
           if (cam.parallel) {
             nearest = std::min(nearest, w[0]);  // the ray distance along the (unnormalized) d
@@ -101,21 +110,19 @@ std::int64_t footprints(const CameraRays& cam, const ModelView& v, const int cel
             sx /= w[0];
             sy /= w[0];
           }
-          // Pixel coordinates whose centres have these image-plane coordinates.
-          const double px = (sx / cam.halfWidth + 1.0) * 0.5 * W - 0.5;
-          const double py = (1.0 - sy / cam.halfHeight) * 0.5 * H - 0.5;
+          const double px = sx * xScale + xOffset, py = sy * yScale + yOffset;
           xMin = std::min(xMin, px), xMax = std::max(xMax, px);
           yMin = std::min(yMin, py), yMax = std::max(yMax, py);
         }
         if (!cam.parallel) {
           // The distance from the camera to the box (a perspective ray's direction is unit).
-          double s = 0.0;
+          double sum = 0.0;
           for (int a = 0; a < 3; ++a) {
-            const double e =
-                std::max({boxLo[a] - cam.position[a], 0.0, cam.position[a] - boxHi[a]});
-            s += e * e;
+            const double lo = face[a][2 * at[a]], hi = face[a][2 * at[a] + 1];
+            const double e = lo > 0.0 ? lo : (hi < 0.0 ? -hi : 0.0);
+            sum += e * e;
           }
-          nearest = std::sqrt(s);
+          nearest = std::sqrt(sum);
         }
         f.distance = nearest;
         if (!behind) {
@@ -129,9 +136,12 @@ std::int64_t footprints(const CameraRays& cam, const ModelView& v, const int cel
           f.tx1 = static_cast<int>(std::min(x1, W - 1.0)) / kEntryTile;
           f.ty1 = static_cast<int>(std::min(y1, H - 1.0)) / kEntryTile;
         }
-        covered += std::int64_t(f.tx1 - f.tx0 + 1) * (f.ty1 - f.ty0 + 1);
-        out.push_back(f);
+        cover += std::int64_t(f.tx1 - f.tx0 + 1) * (f.ty1 - f.ty0 + 1);
+        list.push_back(f);
       }
+  });
+  std::int64_t covered = 0;
+  for (std::int64_t c : planeCover) covered += c;
   return covered;
 }
 
@@ -159,16 +169,27 @@ EntryBounds::EntryBounds(const CameraRays& camera, const ModelView& view, int bl
   constexpr std::int64_t kCoverPerPixel = 16, kCoverAtLeast = 1 << 16;
   const std::int64_t budget =
       std::max(kCoverPerPixel * camera.width * camera.height, kCoverAtLeast);
-  std::vector<BlockFootprint> blocks;
-  std::int64_t covered = footprints(camera, view, cells, level_, tilesX_, tilesY, blocks);
+  std::vector<std::vector<BlockFootprint>> planes;
+  std::int64_t covered = footprints(camera, view, cells, level_, tilesX_, tilesY, planes);
   while (covered > budget && level_ < view.emptyLevels)
-    covered = footprints(camera, view, cells, ++level_, tilesX_, tilesY, blocks);
-  occupied_ = static_cast<std::int64_t>(blocks.size());
-  for (const BlockFootprint& f : blocks)
-    for (int ty = f.ty0; ty <= f.ty1; ++ty) {
-      double* row = distance_.data() + std::int64_t(ty) * tilesX_;
-      for (int tx = f.tx0; tx <= f.tx1; ++tx) row[tx] = std::min(row[tx], f.distance);
-    }
+    covered = footprints(camera, view, cells, ++level_, tilesX_, tilesY, planes);
+  // Each thread takes the least distances of its planes' footprints in a copy of its own; the
+  // copies' least is the bound.
+  tbb::enumerable_thread_specific<std::vector<double>> local(
+      [&] { return std::vector<double>(distance_.size(), INFINITY); });
+  tbb::parallel_for(std::size_t(0), planes.size(), [&](std::size_t z) {
+    double* d = local.local().data();
+    for (const BlockFootprint& f : planes[z])
+      for (int ty = f.ty0; ty <= f.ty1; ++ty) {
+        double* row = d + std::int64_t(ty) * tilesX_;
+        for (int tx = f.tx0; tx <= f.tx1; ++tx) row[tx] = std::min(row[tx], f.distance);
+      }
+  });
+  occupied_ = 0;
+  for (const auto& list : planes) occupied_ += static_cast<std::int64_t>(list.size());
+  for (const std::vector<double>& copy : local)
+    for (std::size_t i = 0; i < distance_.size(); ++i)
+      distance_[i] = std::min(distance_[i], copy[i]);
 }
 
 }  // namespace mfadvr

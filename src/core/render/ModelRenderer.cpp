@@ -4,6 +4,8 @@
 #include <chrono>
 #include <optional>
 
+#include <tbb/task_arena.h>
+
 #include "core/render/EntryBounds.h"
 #include "core/render/ModelKernelSwitch.h"
 #include "core/render/ModelRenderSetup.h"
@@ -19,7 +21,13 @@ Image renderModelView(const RenderSettings& settings, const RayParams& params,
   // timed as part of the frame. A masked model's march counts the steps outside its mask apart.
   const auto start = std::chrono::steady_clock::now();
   std::optional<EntryBounds> entry;
-  if (view.empty && !view.mask.nodes) entry.emplace(params.camera, view);
+  if (view.empty && !view.mask.nodes) {
+    auto build = [&] { entry.emplace(params.camera, view); };
+    if (settings.threads > 0)
+      tbb::task_arena(settings.threads).execute(build);
+    else
+      build();
+  }
   const double entrySeconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   modelKernelSwitch(view, settings.shade, [&]<int P, bool Masked, bool Shade, bool Skip>() {
