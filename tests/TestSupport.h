@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "core/mask/DomainMask.h"
+#include "core/render/kernel/CameraRays.h"
 #include "core/util/Error.h"
 
 namespace mfadvr::test {
@@ -17,6 +18,17 @@ namespace mfadvr::test {
 // A copy of `s` as a vector, for comparisons (spans have no ==).
 inline std::vector<float> values(std::span<const float> s) {
   return {s.begin(), s.end()};
+}
+
+// The rays `r` as a host's skewed frustum may give them: right, up and forward neither unit nor
+// orthogonal.
+inline CameraRays skewedRays(CameraRays r) {
+  for (int a = 0; a < 3; ++a) {
+    r.right[a] = 1.3 * r.right[a] + 0.2 * r.up[a];
+    r.up[a] = 0.8 * r.up[a] + 0.1 * r.forward[a];
+    r.forward[a] = 1.7 * r.forward[a] + 0.05 * r.right[a];
+  }
+  return r;
 }
 
 inline std::filesystem::path dataDir() {

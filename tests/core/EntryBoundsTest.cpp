@@ -56,15 +56,7 @@ void placeCamera(RenderSettings& s, int camera, const Vec3d& lo, const Vec3d& hi
       break;
   }
   s.camera.validate();
-  if (camera >= 6) {  // right, up and forward neither unit nor orthogonal
-    CameraRays r = s.primaryRays();
-    for (int a = 0; a < 3; ++a) {
-      r.right[a] = 1.3 * r.right[a] + 0.2 * r.up[a];
-      r.up[a] = 0.8 * r.up[a] + 0.1 * r.forward[a];
-      r.forward[a] = 1.7 * r.forward[a] + 0.05 * r.right[a];
-    }
-    s.rays = r;
-  }
+  if (camera >= 6) s.rays = skewedRays(s.primaryRays());  // not unit, not orthogonal
 }
 
 // A sparse scene: the built-in CT head phantom's bone and vessels (above 250 HU), air around

@@ -364,15 +364,7 @@ TEST(RayCaster, GridPiecesCompositedInOneOrderAsTheyAreRendered) {
         Vec3d(lo[0] - 3.0 * (hi[0] - lo[0]), 0.5 * (lo[1] + hi[1]), 0.5 * (lo[2] + hi[2]));
     s.camera.focalPoint = 0.5 * (lo + hi);
     if (setup == 1) s.camera.azimuth(-25.0);  // oblique: the pieces half hide each other
-    if (setup == 2) {
-      CameraRays r = s.primaryRays();
-      for (int a = 0; a < 3; ++a) {
-        r.right[a] = 1.3 * r.right[a] + 0.2 * r.up[a];
-        r.up[a] = 0.8 * r.up[a] + 0.1 * r.forward[a];
-        r.forward[a] = 1.7 * r.forward[a] + 0.05 * r.right[a];
-      }
-      s.rays = r;
-    }
+    if (setup == 2) s.rays = test::skewedRays(s.primaryRays());
     std::vector<Image> images;
     for (const DomainBox& box : boxes) {
       RenderSettings piece = s;
