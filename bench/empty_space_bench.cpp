@@ -74,10 +74,7 @@ void BM_EmptySpaceEntryBounds(benchmark::State& state) {
     view.boxMin[a] = 0.0;
     view.inverseExtent[a] = 1.0;
   }
-  view.empty = flags.cells.data();
-  view.emptyPyramid = flags.pyramid.data();
-  view.emptyLevels = flags.levels;
-  for (int l = 0; l < flags.levels; ++l) view.emptyLevel[l] = flags.level[l];
+  flags.attachTo(view);
   Camera camera;
   camera.resetToBounds(Vec3d::Zero(), Vec3d::Ones());
   camera.azimuth(30.0);

@@ -61,4 +61,15 @@ inline Image renderRayByRay(const RenderSettings& s, const ModelRenderSetup& set
   return image;
 }
 
+// renderModelView's frame of `setup` against renderRayByRay's, image and counters; returns the
+// ray-by-ray counters.
+inline RenderStats expectFrameOfRayByRay(const RenderSettings& s, const ModelRenderSetup& setup,
+                                         int render) {
+  RenderStats frameStats, rayStats;
+  const Image frame = renderModelView(s, setup.params(), setup.view(), &frameStats);
+  const Image rays = renderRayByRay(s, setup, rayStats);
+  expectSameFrame(frame, frameStats, rays, rayStats, render);
+  return rayStats;
+}
+
 }  // namespace mfadvr::test

@@ -39,6 +39,14 @@ struct EmptySpaceFlags {
   int levels = 0;
   EmptyLevelView level[kMaxEmptyLevels];
   std::int64_t emptyCells = 0;
+
+  // Points `view`'s skipping information at these flags (which must outlive its use).
+  void attachTo(ModelView& view) const {
+    view.empty = cells.data();
+    view.emptyPyramid = pyramid.data();
+    view.emptyLevels = levels;
+    for (int l = 0; l < levels; ++l) view.emptyLevel[l] = level[l];
+  }
 };
 
 // How far a range [lo, hi] of computed values is widened before the table is asked: twice the

@@ -54,10 +54,10 @@ struct ImagePlane {
 
 // The footprints of level `level`'s occupied blocks, one list per plane of blocks (z); returns
 // the tiles they cover in all.
-std::int64_t footprints(const CameraRays& cam, const ModelView& v, const int cells[3], int level,
-                        int tilesX, int tilesY, std::vector<std::vector<BlockFootprint>>& planes) {
+std::int64_t footprints(const CameraRays& cam, const ImagePlane& plane, const ModelView& v,
+                        const int cells[3], int level, int tilesX, int tilesY,
+                        std::vector<std::vector<BlockFootprint>>& planes) {
   const LevelBlocks blocks = levelBlocks(v, cells, level);
-  const ImagePlane plane(cam);
   // Per axis a, block b and side s (0: low, 1: high face): the block face's coordinate, less the
   // camera's, and that offset's part of each image-plane coordinate (a corner's w is the sum of
   // its three faces' parts).
@@ -151,7 +151,8 @@ EntryBounds::EntryBounds(const CameraRays& camera, const ModelView& view, int bl
   tilesX_ = (camera.width + kEntryTile - 1) / kEntryTile;
   const int tilesY = (camera.height + kEntryTile - 1) / kEntryTile;
   const std::int64_t tiles = std::int64_t(tilesX_) * tilesY;
-  if (!ImagePlane(camera).valid) {  // no image plane to project onto: rays start at step 0
+  const ImagePlane plane(camera);
+  if (!plane.valid) {  // no image plane to project onto: rays start at step 0
     distance_.assign(static_cast<std::size_t>(tiles), 0.0);
     return;
   }
@@ -170,9 +171,9 @@ EntryBounds::EntryBounds(const CameraRays& camera, const ModelView& view, int bl
   const std::int64_t budget =
       std::max(kCoverPerPixel * camera.width * camera.height, kCoverAtLeast);
   std::vector<std::vector<BlockFootprint>> planes;
-  std::int64_t covered = footprints(camera, view, cells, level_, tilesX_, tilesY, planes);
+  std::int64_t covered = footprints(camera, plane, view, cells, level_, tilesX_, tilesY, planes);
   while (covered > budget && level_ < view.emptyLevels)
-    covered = footprints(camera, view, cells, ++level_, tilesX_, tilesY, planes);
+    covered = footprints(camera, plane, view, cells, ++level_, tilesX_, tilesY, planes);
   // Each thread takes the least distances of its planes' footprints in a copy of its own; the
   // copies' least is the bound.
   tbb::enumerable_thread_specific<std::vector<double>> local(

@@ -37,12 +37,7 @@ ModelRenderSetup::ModelRenderSetup(const ModelField& field, const RenderSettings
           buildEmptySpaceFlags(view_.spline, *ranges, table_, bezierRangesPayOff(model, settings)));
     }
     // Nothing to skip: the loop without the per-sample test.
-    if (flags_->emptyCells > 0) {
-      view_.empty = flags_->cells.data();
-      view_.emptyPyramid = flags_->pyramid.data();
-      view_.emptyLevels = flags_->levels;
-      for (int l = 0; l < flags_->levels; ++l) view_.emptyLevel[l] = flags_->level[l];
-    }
+    if (flags_->emptyCells > 0) flags_->attachTo(view_);
   }
   setupSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
