@@ -1,6 +1,6 @@
 // The per-transfer-function cost of empty-space skipping on a 256^3 model (253^3 knot-span
 // cells at p = 3): the flags' build (every cell's control-point range computed and classified,
-// then the pyramid), and the per-frame entry bounds over them.
+// then the pyramid), and the per-frame depth bounds over them.
 //
 //   build/release/bench/mfadvr_bench --benchmark_filter=EmptySpace --benchmark_repetitions=5
 //       --benchmark_report_aggregates_only=true   (one command line)
@@ -12,8 +12,8 @@
 
 #include "core/model/Model.h"
 #include "core/render/Camera.h"
+#include "core/render/DepthBounds.h"
 #include "core/render/EmptySpaceGrid.h"
-#include "core/render/EntryBounds.h"
 #include "core/render/TransferFunctionTable.h"
 
 namespace mfadvr {
@@ -63,9 +63,9 @@ void BM_EmptySpaceFlagsBuild(benchmark::State& state) {
 }
 BENCHMARK(BM_EmptySpaceFlagsBuild)->Unit(benchmark::kMillisecond)->UseRealTime();
 
-// The per-frame entry bounds (EntryBounds.h) of the same model at 1000x1000, the camera framing
+// The per-frame depth bounds (DepthBounds.h) of the same model at 1000x1000, the camera framing
 // the box (zoom 1) or close to it (zoom 4: the blocks' projections cover many tiles).
-void BM_EmptySpaceEntryBounds(benchmark::State& state) {
+void BM_EmptySpaceDepthBounds(benchmark::State& state) {
   static const EmptySpaceFlags flags =
       buildEmptySpaceFlags(blobs().view(), *blobs().spanRanges(), stepTable());
   ModelView view{};
@@ -84,15 +84,15 @@ void BM_EmptySpaceEntryBounds(benchmark::State& state) {
   int level = 0;
   std::int64_t blocks = 0;
   for (auto _ : state) {
-    const EntryBounds bounds(rays, view);
+    const DepthBounds bounds(rays, view);
     level = bounds.level();
     blocks = bounds.occupiedBlocks();
-    benchmark::DoNotOptimize(bounds.view().distance);
+    benchmark::DoNotOptimize(bounds.view().nearest);
   }
   state.counters["level"] = level;
   state.counters["occupied_blocks"] = double(blocks);
 }
-BENCHMARK(BM_EmptySpaceEntryBounds)->Arg(1)->Arg(4)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_EmptySpaceDepthBounds)->Arg(1)->Arg(4)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
 }  // namespace mfadvr

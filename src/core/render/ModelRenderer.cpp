@@ -6,7 +6,7 @@
 
 #include <tbb/task_arena.h>
 
-#include "core/render/EntryBounds.h"
+#include "core/render/DepthBounds.h"
 #include "core/render/ModelKernelSwitch.h"
 #include "core/render/ModelRenderSetup.h"
 #include "core/render/RayCaster.h"
@@ -20,22 +20,22 @@ Image renderModelView(const RenderSettings& settings, const RayParams& params,
   // Where the rays may begin their march through empty space: a pass over the coarse blocks,
   // timed as part of the frame. A masked model's march counts the steps outside its mask apart.
   const auto start = std::chrono::steady_clock::now();
-  std::optional<EntryBounds> entry;
+  std::optional<DepthBounds> depth;
   if (view.empty && !view.mask.nodes) {
-    auto build = [&] { entry.emplace(params.camera, view); };
+    auto build = [&] { depth.emplace(params.camera, view); };
     if (settings.threads > 0)
       tbb::task_arena(settings.threads).execute(build);
     else
       build();
   }
-  const double entrySeconds =
+  const double boundsSeconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   modelKernelSwitch(view, settings.shade, [&]<int P, bool Masked, bool Shade, bool Skip>() {
     castRays<Masked, Shade>(
         settings, params, [&] { return SplineRaySampler<P, Skip, Shade>(view); }, image, stats,
-        entry ? entry->view() : EntryBoundsView{});
+        depth ? depth->view() : DepthBoundsView{});
   });
-  if (stats) stats->seconds += entrySeconds;
+  if (stats) stats->seconds += boundsSeconds;
   return image;
 }
 

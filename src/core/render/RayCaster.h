@@ -26,7 +26,7 @@
 #include "core/render/FieldRaySampler.h"
 #include "core/render/RenderSettings.h"
 #include "core/render/TransferFunctionTable.h"
-#include "core/render/kernel/EntryBoundsView.h"
+#include "core/render/kernel/DepthBoundsView.h"
 #include "core/render/kernel/InterleavedMarch.h"
 #include "core/render/kernel/RayIntegrator.h"
 #include "core/render/kernel/RayPacketIntegrator.h"
@@ -43,11 +43,12 @@ RayParams compileRayParams(const RenderSettings& settings, const TransferFunctio
 using TileFunction = std::function<void(int, int, int, int, RayCounters&)>;
 void forEachTile(const RenderSettings& settings, const TileFunction& tile, RenderStats* stats);
 
-// Casts every pixel's ray with samplers from make() (one per tile). entry: where the rays of a
-// sampler that skips empty space may begin their march (EntryBounds.h; not for Masked).
+// Casts every pixel's ray with samplers from make() (one per tile). depth: where the rays of a
+// sampler that skips empty space may begin and end their march (DepthBounds.h; not for
+// Masked).
 template <bool Masked, bool Shade, class MakeSampler>
 void castRays(const RenderSettings& settings, const RayParams& params, const MakeSampler& make,
-              Image& image, RenderStats* stats, EntryBoundsView entry = {}) {
+              Image& image, RenderStats* stats, DepthBoundsView depth = {}) {
   forEachTile(
       settings,
       [&](int x0, int y0, int x1, int y1, RayCounters& counters) {
@@ -75,7 +76,7 @@ void castRays(const RenderSettings& settings, const RayParams& params, const Mak
               for (int g = 0; g < G; ++g) {
                 rays[g] = raySegment(params, x + g, y, segment[g]) ? &segment[g] : nullptr;
                 if (!Masked && rays[g])
-                  start[g] = entryStart(entry, x + g, y, segment[g], params.sampleDistance);
+                  start[g] = boundSteps(depth, x + g, y, segment[g], params.sampleDistance);
               }
               marchIn<G, Masked>(params, sampler, rays, start, counters);
               for (int g = 0; g < G; ++g)
@@ -88,7 +89,7 @@ void castRays(const RenderSettings& settings, const RayParams& params, const Mak
             const bool hits = raySegment(params, x, y, ray);
             RayStart start;
             if (!Masked && hits && decltype(sampler)::kSkipsEmptySpace)
-              start = entryStart(entry, x, y, ray, params.sampleDistance);
+              start = boundSteps(depth, x, y, ray, params.sampleDistance);
             integrateSegment<Masked, Shade>(params, sampler, hits ? &ray : nullptr, start,
                                             image.pixel(x, y), counters);
           }

@@ -142,10 +142,12 @@ MFADVR_HD MFADVR_INLINE std::int64_t stepAfterEmpty(std::int64_t k, double tLeav
 
 // Where the walk of a ray's steps begins: at step k, `skipped` samples already passed over as
 // empty (by a march that went ahead of the integration, InterleavedMarch.h); {0, 0}: the
-// whole ray.
+// whole ray. tail: samples after the ray's last step (its steps cut short, DepthBoundsView.h),
+// all empty: counted as skipped unless the ray terminates first.
 struct RayStart {
   std::int64_t k = 0;
   std::int64_t skipped = 0;
+  std::int64_t tail = 0;
 };
 
 // Integrates the segment (raySegment; null: the ray misses the box) from `start` into out.
@@ -174,7 +176,7 @@ MFADVR_HD MFADVR_INLINE void integrateSegment(const RayParams& rp, Sampler& samp
     constexpr int K = Sampler::kBatch;
     std::int64_t k = start.k;
     std::int64_t carried = start.skipped;  // passed over before step k
-    bool done = false;
+    bool done = false, terminated = false;
     while (!done && k < steps) {
       double lengths[K];
       // Samples skipped before each lane, counted as the lanes are used (and those after the
@@ -250,7 +252,7 @@ MFADVR_HD MFADVR_INLINE void integrateSegment(const RayParams& rp, Sampler& samp
         compositeSample(red, green, blue, alpha, a, c);
         if (alpha >= rp.stopOpacity) {
           ++counters.terminated;
-          stopped = done = true;
+          stopped = done = terminated = true;
         }
       }
       if (!stopped) counters.skipped += skipped;
@@ -259,6 +261,7 @@ MFADVR_HD MFADVR_INLINE void integrateSegment(const RayParams& rp, Sampler& samp
 #endif
     }
     counters.skipped += carried;  // a ray that the march ahead took to its end
+    if (!terminated) counters.skipped += start.tail;
 #if MFADVR_EMPTY_SPACE_PROFILE
     counters.cycles.ray += cycleCount() - rayStart;
 #endif

@@ -1,4 +1,4 @@
-#include "core/render/EntryBounds.h"
+#include "core/render/DepthBounds.h"
 
 #include <algorithm>
 #include <cmath>
@@ -11,10 +11,11 @@ namespace mfadvr {
 
 namespace {
 
-// An occupied block's projection: the tiles it may cover and its least distance.
+// An occupied block's projection: the tiles it may cover and its distances.
 struct BlockFootprint {
   int tx0, ty0, tx1, ty1;  // tiles [tx0, tx1] x [ty0, ty1]
-  double distance;
+  double nearest;          // the least distance of a point of the block from the camera
+  double farthest;         // the greatest
 };
 
 struct LevelBlocks {
@@ -89,10 +90,10 @@ std::int64_t footprints(const CameraRays& cam, const ImagePlane& plane, const Mo
       for (int bx = 0; bx < blocks.count[0]; ++bx, ++index) {
         if (blocks.flags[index]) continue;  // all empty
         const int at[3] = {bx, by, bz};
-        BlockFootprint f{0, 0, tilesX - 1, tilesY - 1, 0.0};
+        BlockFootprint f{0, 0, tilesX - 1, tilesY - 1, 0.0, 0.0};
         double xMin = INFINITY, xMax = -INFINITY, yMin = INFINITY, yMax = -INFINITY;
         bool behind = false;  // a corner not in front of a perspective camera
-        double nearest = INFINITY;
+        double nearest = INFINITY, farthest = -INFINITY;
         for (int c = 0; c < 8; ++c) {
           double w[3] = {0.0, 0.0, 0.0};
           for (int a = 0; a < 3; ++a) {
@@ -102,6 +103,7 @@ std::int64_t footprints(const CameraRays& cam, const ImagePlane& plane, const Mo
           double sx = w[1], sy = w[2];
           if (cam.parallel) {
             nearest = std::min(nearest, w[0]);  // the ray distance along the (unnormalized) d
+            farthest = std::max(farthest, w[0]);
           } else {
             if (!(w[0] > 1e-9 * (std::abs(w[1]) + std::abs(w[2])))) {
               behind = true;
@@ -115,26 +117,31 @@ std::int64_t footprints(const CameraRays& cam, const ImagePlane& plane, const Mo
           yMin = std::min(yMin, py), yMax = std::max(yMax, py);
         }
         if (!cam.parallel) {
-          // The distance from the camera to the box (a perspective ray's direction is unit).
-          double sum = 0.0;
+          // The distances from the camera to the box's nearest and farthest points (a
+          // perspective ray's direction is unit).
+          double sum = 0.0, farSum = 0.0;
           for (int a = 0; a < 3; ++a) {
             const double lo = face[a][2 * at[a]], hi = face[a][2 * at[a] + 1];
             const double e = lo > 0.0 ? lo : (hi < 0.0 ? -hi : 0.0);
+            const double m = std::max(std::abs(lo), std::abs(hi));
             sum += e * e;
+            farSum += m * m;
           }
           nearest = std::sqrt(sum);
+          farthest = std::sqrt(farSum);
         }
-        f.distance = nearest;
+        f.nearest = nearest;
+        f.farthest = farthest;
         if (!behind) {
           // Pixels whose centres lie within the projection, one more on each side for the
           // rounding of the projection.
           const double x0 = std::ceil(xMin) - 1.0, x1 = std::floor(xMax) + 1.0;
           const double y0 = std::ceil(yMin) - 1.0, y1 = std::floor(yMax) + 1.0;
           if (!(x1 >= 0.0 && y1 >= 0.0 && x0 < W && y0 < H)) continue;  // off the image
-          f.tx0 = static_cast<int>(std::max(x0, 0.0)) / kEntryTile;
-          f.ty0 = static_cast<int>(std::max(y0, 0.0)) / kEntryTile;
-          f.tx1 = static_cast<int>(std::min(x1, W - 1.0)) / kEntryTile;
-          f.ty1 = static_cast<int>(std::min(y1, H - 1.0)) / kEntryTile;
+          f.tx0 = static_cast<int>(std::max(x0, 0.0)) / kDepthTile;
+          f.ty0 = static_cast<int>(std::max(y0, 0.0)) / kDepthTile;
+          f.tx1 = static_cast<int>(std::min(x1, W - 1.0)) / kDepthTile;
+          f.ty1 = static_cast<int>(std::min(y1, H - 1.0)) / kDepthTile;
         }
         cover += std::int64_t(f.tx1 - f.tx0 + 1) * (f.ty1 - f.ty0 + 1);
         list.push_back(f);
@@ -147,16 +154,18 @@ std::int64_t footprints(const CameraRays& cam, const ImagePlane& plane, const Mo
 
 }  // namespace
 
-EntryBounds::EntryBounds(const CameraRays& camera, const ModelView& view, int blocksPerAxis) {
-  tilesX_ = (camera.width + kEntryTile - 1) / kEntryTile;
-  const int tilesY = (camera.height + kEntryTile - 1) / kEntryTile;
+DepthBounds::DepthBounds(const CameraRays& camera, const ModelView& view, int blocksPerAxis) {
+  tilesX_ = (camera.width + kDepthTile - 1) / kDepthTile;
+  const int tilesY = (camera.height + kDepthTile - 1) / kDepthTile;
   const std::int64_t tiles = std::int64_t(tilesX_) * tilesY;
   const ImagePlane plane(camera);
   if (!plane.valid) {  // no image plane to project onto: rays start at step 0
-    distance_.assign(static_cast<std::size_t>(tiles), 0.0);
+    nearest_.assign(static_cast<std::size_t>(tiles), 0.0);
+    farthest_.assign(static_cast<std::size_t>(tiles), std::numeric_limits<double>::infinity());
     return;
   }
-  distance_.assign(static_cast<std::size_t>(tiles), std::numeric_limits<double>::infinity());
+  nearest_.assign(static_cast<std::size_t>(tiles), std::numeric_limits<double>::infinity());
+  farthest_.assign(static_cast<std::size_t>(tiles), -std::numeric_limits<double>::infinity());
   int cells[3];
   int most = 0;
   for (int a = 0; a < 3; ++a) {
@@ -174,23 +183,34 @@ EntryBounds::EntryBounds(const CameraRays& camera, const ModelView& view, int bl
   std::int64_t covered = footprints(camera, plane, view, cells, level_, tilesX_, tilesY, planes);
   while (covered > budget && level_ < view.emptyLevels)
     covered = footprints(camera, plane, view, cells, ++level_, tilesX_, tilesY, planes);
-  // Each thread takes the least distances of its planes' footprints in a copy of its own; the
-  // copies' least is the bound.
-  tbb::enumerable_thread_specific<std::vector<double>> local(
-      [&] { return std::vector<double>(distance_.size(), INFINITY); });
+  // Each thread takes the least and greatest distances of its planes' footprints in copies of
+  // its own; the copies' least and greatest are the bounds.
+  struct Range {
+    std::vector<double> least, greatest;
+  };
+  tbb::enumerable_thread_specific<Range> local([&] {
+    return Range{std::vector<double>(nearest_.size(), INFINITY),
+                 std::vector<double>(nearest_.size(), -INFINITY)};
+  });
   tbb::parallel_for(std::size_t(0), planes.size(), [&](std::size_t z) {
-    double* d = local.local().data();
+    Range& range = local.local();
     for (const BlockFootprint& f : planes[z])
       for (int ty = f.ty0; ty <= f.ty1; ++ty) {
-        double* row = d + std::int64_t(ty) * tilesX_;
-        for (int tx = f.tx0; tx <= f.tx1; ++tx) row[tx] = std::min(row[tx], f.distance);
+        double* least = range.least.data() + std::int64_t(ty) * tilesX_;
+        double* greatest = range.greatest.data() + std::int64_t(ty) * tilesX_;
+        for (int tx = f.tx0; tx <= f.tx1; ++tx) {
+          least[tx] = std::min(least[tx], f.nearest);
+          greatest[tx] = std::max(greatest[tx], f.farthest);
+        }
       }
   });
   occupied_ = 0;
   for (const auto& list : planes) occupied_ += static_cast<std::int64_t>(list.size());
-  for (const std::vector<double>& copy : local)
-    for (std::size_t i = 0; i < distance_.size(); ++i)
-      distance_[i] = std::min(distance_[i], copy[i]);
+  for (const Range& copy : local)
+    for (std::size_t i = 0; i < nearest_.size(); ++i) {
+      nearest_[i] = std::min(nearest_[i], copy.least[i]);
+      farthest_[i] = std::max(farthest_[i], copy.greatest[i]);
+    }
 }
 
 }  // namespace mfadvr

@@ -1,48 +1,49 @@
 #pragma once
-// Per tile of pixels, how far the rays may go before they can meet a cell that is not empty
-// (kernel/EntryBoundsView.h says how a ray uses it). Built once per frame on the CPU from the
-// camera and the model's empty-space pyramid:
+// Per tile of pixels, the range of ray distances outside which the rays meet no cell that is not
+// empty (kernel/DepthBoundsView.h says how a ray uses it). Built once per frame on the CPU from
+// the camera and the model's empty-space pyramid:
 //
 // every aligned block of the pyramid's level L that is not all empty (an "occupied" block) is
 // projected onto the image (the rays that cross a box are those through the pixels inside its
 // corners' projections when all are in front of the camera; one pixel more on each side for
-// rounding); each tile its projection covers keeps the least distance from the camera to such a
-// box. A sample at a smaller distance lies in no occupied block, so its cell is empty. (A
-// sample whose location rounds across a block's face into an occupied cell lies within a
-// rounding error of that cell's block: the two steps of slack of entryStart cover it.)
+// rounding); each tile its projection covers keeps the least and the greatest distance from the
+// camera to a point of such a box. A sample nearer than the least or farther than the greatest
+// lies in no occupied block, so its cell is empty. (A sample whose location rounds across a
+// block's face into an occupied cell lies within a rounding error of that cell's block: the two
+// steps of slack of boundSteps cover it.)
 //
-// L is the finest level with at most kEntryBlocksPerAxis blocks per axis, coarser while the
+// L is the finest level with at most kDepthBlocksPerAxis blocks per axis, coarser while the
 // projections would cover too many tiles (a camera close to the model), so the build stays a
 // small part of the frame.
 #include <cstdint>
 #include <vector>
 
 #include "core/render/kernel/CameraRays.h"
-#include "core/render/kernel/EntryBoundsView.h"
+#include "core/render/kernel/DepthBoundsView.h"
 #include "core/render/kernel/SplineRaySampler.h"
 
 namespace mfadvr {
 
 // Pixels per tile side.
-inline constexpr int kEntryTile = 4;
+inline constexpr int kDepthTile = 4;
 // The finest level projected has at most this many blocks per axis.
-inline constexpr int kEntryBlocksPerAxis = 64;
+inline constexpr int kDepthBlocksPerAxis = 64;
 
-class EntryBounds {
+class DepthBounds {
  public:
   // `view` must carry empty-space flags (view.empty); a masked model's march counts samples
   // outside the mask apart, so its renders take no bounds. blocksPerAxis: the finest level's
   // most blocks per axis (tests take coarser levels with it).
-  EntryBounds(const CameraRays& camera, const ModelView& view,
-              int blocksPerAxis = kEntryBlocksPerAxis);
+  DepthBounds(const CameraRays& camera, const ModelView& view,
+              int blocksPerAxis = kDepthBlocksPerAxis);
 
-  EntryBoundsView view() const { return {distance_.data(), kEntryTile, tilesX_}; }
+  DepthBoundsView view() const { return {nearest_.data(), farthest_.data(), kDepthTile, tilesX_}; }
   // The pyramid level whose blocks were projected (0: cells), and how many were occupied.
   int level() const { return level_; }
   std::int64_t occupiedBlocks() const { return occupied_; }
 
  private:
-  std::vector<double> distance_;
+  std::vector<double> nearest_, farthest_;
   int tilesX_ = 0;
   int level_ = 0;
   std::int64_t occupied_ = 0;
