@@ -305,8 +305,10 @@ Command addRenderCommand(CLI::App& app) {
 #if MFADVR_EMPTY_SPACE_PROFILE
       j["profile_cycles"] = {{"rays", profile.ray},
                              {"marching", profile.marching},
+                             {"marching_ahead", profile.ahead},
                              {"transparent_samples", profile.transparent},
                              {"jumps", profile.jumps},
+                             {"checks", profile.checks},
                              {"frames", frames == 1 ? 1 : frames - 1}};
 #endif
       std::cout << j.dump(2) << "\n";
@@ -341,6 +343,16 @@ Command addRenderCommand(CLI::App& app) {
                     static_cast<double>(profile.jumps) / measured / 1e6,
                     static_cast<double>(profile.jumps) / measured /
                         static_cast<double>(std::max<std::int64_t>(stats.raysHit, 1)));
+        // A check that finds a cell that is not empty locates a sample that is then evaluated
+        // (without skipping, the evaluation locates it): marching, but not empty space.
+        std::printf(
+            "  %.2f M empty-space checks per frame, %.2f M of them in cells that are not empty; "
+            "the march ahead of the integration %.1f %% of the rays' time; %lld of %lld rays "
+            "that hit the box terminated\n",
+            static_cast<double>(profile.checks) / measured / 1e6,
+            static_cast<double>(profile.checks - profile.jumps) / measured / 1e6,
+            100.0 * profile.ahead / ray, static_cast<long long>(stats.terminated),
+            static_cast<long long>(stats.raysHit));
       }
 #endif
     }

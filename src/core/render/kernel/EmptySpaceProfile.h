@@ -23,14 +23,18 @@ namespace mfadvr {
 struct EmptySpaceCycles {
   std::int64_t ray = 0;          // the whole integration of rays that crossed the box
   std::int64_t marching = 0;     // steps, empty-space checks and jumps between evaluations
+  std::int64_t ahead = 0;        // the part of `marching` in the march ahead (InterleavedMarch.h)
   std::int64_t transparent = 0;  // evaluating samples whose opacity is 0
   std::int64_t jumps = 0;        // empty-space checks that found the sample's cell empty
+  std::int64_t checks = 0;       // empty-space checks in all
 
   EmptySpaceCycles& operator+=(const EmptySpaceCycles& o) {
     ray += o.ray;
     marching += o.marching;
+    ahead += o.ahead;
     transparent += o.transparent;
     jumps += o.jumps;
+    checks += o.checks;
     return *this;
   }
 };
@@ -42,15 +46,19 @@ inline std::int64_t cycleCount() {
 
 // The sum over every frame since the last take (all threads).
 struct EmptySpaceProfile {
-  static inline std::atomic<std::int64_t> ray{0}, marching{0}, transparent{0}, jumps{0};
+  static inline std::atomic<std::int64_t> ray{0}, marching{0}, ahead{0}, transparent{0}, jumps{0},
+      checks{0};
   static void add(const EmptySpaceCycles& c) {
     ray += c.ray;
     marching += c.marching;
+    ahead += c.ahead;
     transparent += c.transparent;
     jumps += c.jumps;
+    checks += c.checks;
   }
   static EmptySpaceCycles take() {
-    return {ray.exchange(0), marching.exchange(0), transparent.exchange(0), jumps.exchange(0)};
+    return {ray.exchange(0),         marching.exchange(0), ahead.exchange(0),
+            transparent.exchange(0), jumps.exchange(0),    checks.exchange(0)};
   }
 };
 #endif

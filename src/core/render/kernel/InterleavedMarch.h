@@ -28,7 +28,8 @@ constexpr bool marchesRaysApart() {
 // For each of the G rays (null: misses the box), where its integration starts: its first step
 // from start[g] on (in: where its march begins, every step before it empty; RayStart{}: the
 // whole ray) whose sample is not in an empty cell, and the samples skipped before it. counters:
-// only the profiling build's (its time counts as the rays' and as marching, its jumps as jumps).
+// only the profiling build's (its time counts as the rays', as marching and as marching ahead,
+// its checks and jumps as such).
 // Masked: samples outside the sampler's domain mask are passed over uncounted, as
 // integrateSegment does.
 template <int G, bool Masked, class Sampler>
@@ -65,8 +66,12 @@ MFADVR_INLINE void marchIn(const RayParams& rp, const Sampler& sampler,
         s.k = next;
 #if MFADVR_EMPTY_SPACE_PROFILE
         ++counters.cycles.jumps;
+        ++counters.cycles.checks;
 #endif
       } else {
+#if MFADVR_EMPTY_SPACE_PROFILE
+        if (!stop) ++counters.cycles.checks;  // a cell that is not empty
+#endif
         stop = true;  // the integration takes this step
       }
       if (stop || s.k >= ray.steps) {
@@ -78,6 +83,7 @@ MFADVR_INLINE void marchIn(const RayParams& rp, const Sampler& sampler,
 #if MFADVR_EMPTY_SPACE_PROFILE
   const std::int64_t cycles = cycleCount() - marchStart;
   counters.cycles.marching += cycles;
+  counters.cycles.ahead += cycles;
   counters.cycles.ray += cycles;
 #endif
 }

@@ -201,6 +201,9 @@ MFADVR_HD MFADVR_INLINE void integrateSegment(const RayParams& rp, Sampler& samp
         }
         if constexpr (Sampler::kSkipsEmptySpace) {
           double tLeave;
+#if MFADVR_EMPTY_SPACE_PROFILE
+          ++counters.cycles.checks;
+#endif
           if (sampler.emptyAt(p, tLeave)) {
             const std::int64_t next = stepAfterEmpty(k, tLeave, t0, dt, steps);
             skipped += 1 + (next - k);
