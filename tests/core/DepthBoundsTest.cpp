@@ -59,15 +59,18 @@ void placeCamera(RenderSettings& s, int camera, const Vec3d& lo, const Vec3d& hi
   if (camera >= 6) s.rays = skewedRays(s.primaryRays());  // not unit, not orthogonal
 }
 
+// A cubic fit of n^3 control points to a built-in function sampled on (n + 4)^3 points.
+Model cubicFit(const char* builtin, int n) {
+  StructuredFitOptions o;
+  o.degree = {3, 3, 3};
+  o.controlCounts = {n, n, n};
+  return fitStructured(sampleBuiltin(*makeBuiltin(builtin), {n + 4, n + 4, n + 4}), o);
+}
+
 // A sparse scene: the built-in CT head phantom's bone and vessels (above 250 HU), air around
 // the head and soft tissue inside it hidden.
 const Model& ctHeadModel() {
-  static const Model m = [] {
-    StructuredFitOptions o;
-    o.degree = {3, 3, 3};
-    o.controlCounts = {36, 36, 36};
-    return fitStructured(sampleBuiltin(*makeBuiltin("ct-head"), {40, 40, 40}), o);
-  }();
+  static const Model m = cubicFit("ct-head", 36);
   return m;
 }
 
@@ -78,12 +81,7 @@ TransferFunction boneAndVessels() {
 // A ball in the middle of the box, with empty space before and behind it: the Gaussian beam's
 // values above 200 (of 255 at the centre).
 const Model& ballModel() {
-  static const Model m = [] {
-    StructuredFitOptions o;
-    o.degree = {3, 3, 3};
-    o.controlCounts = {20, 20, 20};
-    return fitStructured(sampleBuiltin(*makeBuiltin("gaussian-beam"), {24, 24, 24}), o);
-  }();
+  static const Model m = cubicFit("gaussian-beam", 20);
   return m;
 }
 

@@ -17,8 +17,9 @@ namespace mfadvr {
 Image renderModelView(const RenderSettings& settings, const RayParams& params,
                       const ModelView& view, RenderStats* stats) {
   Image image(settings.width, settings.height);
-  // Where the rays may begin their march through empty space: a pass over the coarse blocks,
-  // timed as part of the frame. A masked model's march counts the steps outside its mask apart.
+  // Where the rays may begin and end their march through empty space: a pass over the coarse
+  // blocks, timed as part of the frame. A masked model's march counts the steps outside its mask
+  // apart.
   const auto start = std::chrono::steady_clock::now();
   std::optional<DepthBounds> depth;
   if (view.empty && !view.mask.nodes) {
