@@ -159,7 +159,7 @@ DepthBounds::DepthBounds(const CameraRays& camera, const ModelView& view, int bl
   const int tilesY = (camera.height + kDepthTile - 1) / kDepthTile;
   const std::int64_t tiles = std::int64_t(tilesX_) * tilesY;
   const ImagePlane plane(camera);
-  if (!plane.valid) {  // no image plane to project onto: rays start at step 0
+  if (!plane.valid) {  // no image plane to project onto: rays walk all their steps
     nearest_.assign(static_cast<std::size_t>(tiles), 0.0);
     farthest_.assign(static_cast<std::size_t>(tiles), std::numeric_limits<double>::infinity());
     return;

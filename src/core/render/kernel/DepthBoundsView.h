@@ -20,7 +20,7 @@ namespace mfadvr {
 struct DepthBoundsView {
   // Per tile of `tile` x `tile` pixels, x fastest over tilesX: a ray distance below which no
   // sample of the tile's rays lies in a cell that is not empty (+infinity: none at all). Null:
-  // no bounds, every ray starts at its first step.
+  // no bounds, every ray walks all its steps.
   const double* nearest = nullptr;
   // Per tile: a ray distance beyond which no sample of the tile's rays lies in a cell that is not
   // empty (-infinity: none at all). Null: the rays go to their ends.

@@ -141,7 +141,7 @@ MFADVR_HD MFADVR_INLINE std::int64_t stepAfterEmpty(std::int64_t k, double tLeav
 }
 
 // Where the walk of a ray's steps begins: at step k, `skipped` samples already passed over as
-// empty (by a march that went ahead of the integration, InterleavedMarch.h); {0, 0}: the
+// empty (by a march that went ahead of the integration, InterleavedMarch.h); RayStart{}: the
 // whole ray. tail: samples after the ray's last step (its steps cut short, DepthBoundsView.h),
 // all empty: counted as skipped unless the ray terminates first.
 struct RayStart {
