@@ -438,6 +438,36 @@ TEST(EmptySpaceCache, RebuildsOnlyWhenTheZeroSetChanges) {
   }
   EXPECT_GT(emptyBlocks, 0);              // the test sees empty blocks ...
   EXPECT_LT(emptyBlocks, blocksChecked);  // ... and non-empty ones
+  // Every cell's flag: 0 when the cell is not empty, else 1 + the level of the largest aligned
+  // block around it whose cells are all empty (found from the cells, not from the pyramid).
+  const auto cellEmpty = [&](int i, int j, int k) {
+    return other->cells[i + r.cells[0] * (j + r.cells[1] * k)] != 0;
+  };
+  std::vector<int> levelsSeen(other->levels + 2, 0);
+  for (int k = 0; k < r.cells[2]; ++k)
+    for (int j = 0; j < r.cells[1]; ++j)
+      for (int i = 0; i < r.cells[0]; ++i) {
+        int expected = 0;
+        if (cellEmpty(i, j, k)) {
+          expected = 1;
+          for (int l = 1; l <= other->levels; ++l) {
+            const int side = 1 << l;
+            const int x0 = i / side * side, y0 = j / side * side, z0 = k / side * side;
+            bool all = true;
+            for (int z = z0; all && z < std::min(z0 + side, r.cells[2]); ++z)
+              for (int y = y0; all && y < std::min(y0 + side, r.cells[1]); ++y)
+                for (int x = x0; all && x < std::min(x0 + side, r.cells[0]); ++x)
+                  all = cellEmpty(x, y, z);
+            if (!all) break;
+            expected = l + 1;
+          }
+        }
+        ASSERT_EQ(other->cells[i + r.cells[0] * (j + r.cells[1] * k)], expected)
+            << "cell " << i << " " << j << " " << k;
+        ++levelsSeen[expected];
+      }
+  // The model has cells that are not empty, empty cells alone, and blocks of 2 and 4 cells.
+  for (int v = 0; v <= 3; ++v) EXPECT_GT(levelsSeen[v], 0) << "flag " << v;
 }
 
 // A scene that carries caches keeps each model's flags from one render to the next (the

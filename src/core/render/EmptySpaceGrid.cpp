@@ -125,6 +125,34 @@ EmptySpaceFlags buildEmptySpaceFlags(const SplineView& spline, const SpanRanges&
         }
     });
   }
+  // Each empty cell keeps 1 + the level of the largest aligned all-empty block around it (1: the
+  // cell alone), so that a ray's jump reads one byte instead of a flag per level. From the top
+  // level down, a set block whose parent is not set fills its cells' rows; every cell of a set
+  // block is written once.
+  for (int l = out.levels - 1; l >= 0; --l) {
+    const EmptyLevelView& L = out.level[l];
+    const std::uint8_t* level = out.pyramid.data() + L.offset;
+    const std::uint8_t* parent =
+        l + 1 < out.levels ? out.pyramid.data() + out.level[l + 1].offset : nullptr;
+    const int side = 2 << l;  // cells per axis of a block at this level
+    const auto value = static_cast<std::uint8_t>(l + 2);
+    tbb::parallel_for(0, L.count[2], [&](int k) {
+      for (int j = 0; j < L.count[1]; ++j)
+        for (int i = 0; i < L.count[0]; ++i) {
+          if (!level[i + std::int64_t(L.count[0]) * (j + std::int64_t(L.count[1]) * k)]) continue;
+          if (parent && parent[(i >> 1) +
+                               out.level[l + 1].count[0] *
+                                   ((j >> 1) + std::int64_t(out.level[l + 1].count[1]) * (k >> 1))])
+            continue;
+          const int x0 = i * side, x1 = std::min(x0 + side, r.cells[0]);
+          for (int z = k * side; z < std::min((k + 1) * side, r.cells[2]); ++z)
+            for (int y = j * side; y < std::min((j + 1) * side, r.cells[1]); ++y)
+              std::fill_n(
+                  flags.data() + x0 + std::int64_t(r.cells[0]) * (y + std::int64_t(r.cells[1]) * z),
+                  x1 - x0, value);
+        }
+    });
+  }
   return out;
 }
 

@@ -26,8 +26,9 @@
 
 namespace mfadvr {
 
-// One flag per cell, x fastest over SpanRanges::cells (non-zero: skip), and a pyramid over them
-// for a ray to cross large empty regions in one step: level l (1..levels) has one flag per
+// One flag per cell, x fastest over SpanRanges::cells (non-zero: skip; the value is 1 + the
+// level of the largest all-empty block of the pyramid around the cell, which a ray leaves in one
+// step; ModelView::empty), and a pyramid over them: level l (1..levels) has one flag per
 // aligned block of 2^l cells per axis (clipped at the far faces), set when all of the block's
 // cells are empty; its flags start at pyramid[level[l - 1].offset], x fastest over
 // level[l - 1].count. Levels go up until one block covers the grid (at most kMaxEmptyLevels).

@@ -42,13 +42,16 @@ struct ModelView {
   double boxMin[3];
   double inverseExtent[3];  // physical -> parameter: u = (x - boxMin) * inverseExtent
   MaskView mask;
-  // Per knot-span cell, x fastest over (count - degree) cells per axis: non-zero when the cell
-  // is invisible under the current transfer function. Null: no skipping information.
+  // Per knot-span cell, x fastest over (count - degree) cells per axis: 0 when the cell is
+  // visible under the current transfer function, else 1 + the level of the largest block of the
+  // pyramid around it that is all empty (1: the cell alone), so that a ray crosses a large
+  // empty region in one step, found with one read. Null: no skipping information.
   const std::uint8_t* empty = nullptr;
   // The flags' pyramid: level l = 1..emptyLevels has one flag per block of 2^l x 2^l x 2^l cells
   // (aligned at cell 0, clipped at the far faces; x fastest over emptyLevel[l - 1].count blocks,
   // from emptyPyramid + emptyLevel[l - 1].offset), non-zero when every cell of the block is
-  // empty, so that a ray crosses a large empty region in one step.
+  // empty. The rays read the levels from `empty`; the depth bounds (DepthBounds.h) project
+  // the pyramid's blocks.
   const std::uint8_t* emptyPyramid = nullptr;
   int emptyLevels = 0;
   EmptyLevelView emptyLevel[kMaxEmptyLevels];
@@ -131,22 +134,15 @@ class SplineRaySampler {
     const std::int64_t cell =
         (loc[0].span - p_[0]) +
         cells_[0] * ((loc[1].span - p_[1]) + std::int64_t(cells_[1]) * (loc[2].span - p_[2]));
-    if (!m_.empty[cell]) return false;
+    const int flag = m_.empty[cell];
+    if (!flag) return false;
     // The region to leave: the largest aligned block of the pyramid around the cell that is all
-    // empty (one flag per level, going up while it is set), else the cell. Its faces are knots;
-    // they are pulled in by far more than the rounding of a sample's parameter, so every sample
-    // before tLeave is found in this same empty region.
+    // empty (its level kept in the cell's flag), else the cell. Its faces are knots; they are
+    // pulled in by far more than the rounding of a sample's parameter, so every sample before
+    // tLeave is found in this same empty region.
+    const int level = flag - 1;
     int c[3];  // the cell
     for (int a = 0; a < 3; ++a) c[a] = loc[a].span - p_[a];
-    int level = 0;
-    while (level < m_.emptyLevels) {
-      const EmptyLevelView& L = m_.emptyLevel[level];
-      const int s = level + 1;
-      const std::int64_t block =
-          (c[0] >> s) + L.count[0] * ((c[1] >> s) + std::int64_t(L.count[1]) * (c[2] >> s));
-      if (!m_.emptyPyramid[L.offset + block]) break;
-      level = s;
-    }
     int lo[3], hi[3];  // span range of the region on each axis
     for (int a = 0; a < 3; ++a) {
       lo[a] = p_[a] + ((c[a] >> level) << level);
