@@ -44,6 +44,8 @@ else:
     hidden, rising = 150.0, 200.0
 encoded = pvs.MFAEncode(Input=source)
 encoded.Degree = 2
+# MFADVR_PASS_INPUT_VALUES=1: the output's point values are the input's samples, not the model's.
+encoded.PassInputValues = int(os.environ.get("MFADVR_PASS_INPUT_VALUES", "0"))
 start = time.perf_counter()
 encoded.UpdatePipeline()
 encode = time.perf_counter() - start

@@ -4,6 +4,8 @@
 #   bench/paraview_scale.sh [N=512] [IMAGE=800] [RANKS="1 2"] [RAW]
 # RAW: an N^3 uint8 raw volume (bench/make_large_volume.py N) instead of the float Wavelet.
 # MFADVR_PLUGIN: another build of the plugin (default: the paraview preset's).
+# MFADVR_PASS_INPUT_VALUES=1: the encoder's PassInputValues on (the output holds the input's
+# samples, not the model evaluated on the grid).
 # MPIEXEC_FLAGS: options for mpiexec (default "--bind-to none"; "" for Open MPI's binding).
 # Needs the paraview preset built (scripts/install-deps.sh --paraview first).
 set -euo pipefail

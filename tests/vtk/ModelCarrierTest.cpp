@@ -210,5 +210,66 @@ TEST(ModelCarrier, EncoderPiecesCompositeToTheWholeImage) {
   EXPECT_GT(compareImages(reference, pieces).psnr, 40.0);
 }
 
+// PassInputValues: the carrier's point scalars are the input's samples (the input's own array
+// on one piece, the piece's own points on two), and the models are those of the default carrier.
+TEST(ModelCarrier, EncoderCanPassTheInputSamplesThrough) {
+  vtkSmartPointer<vtkImageData> input = imageOf(mlGrid());
+  vtkDataArray* samples = input->GetPointData()->GetScalars();
+  ASSERT_NE(samples, nullptr);
+  vtkNew<vtkTrivialProducer> producer;
+  producer->SetOutput(input);
+  vtkNew<vtkMFAEncoder> evaluated, passed;
+  for (vtkMFAEncoder* e : {evaluated.Get(), passed.Get()}) {
+    e->SetInputConnection(producer->GetOutputPort());
+    e->OutputImageDataOn();
+  }
+  passed->PassInputValuesOn();
+  // The carried model's control points (its provenance holds the fit's time, which differs).
+  const auto controlPoints = [](vtkImageData* carrier) {
+    auto* bytes =
+        vtkUnsignedCharArray::SafeDownCast(carrier->GetFieldData()->GetAbstractArray("MFAModel0"));
+    if (!bytes) return std::vector<float>();
+    const Model m = parseModel({bytes->GetPointer(0), size_t(bytes->GetNumberOfTuples())});
+    return std::vector<float>(m.spline().controlPoints().begin(), m.spline().controlPoints().end());
+  };
+  const int pieceCounts[] = {1, 2};
+  for (int pieces : pieceCounts)
+    for (int piece = 0; piece < pieces; ++piece) {
+      SCOPED_TRACE("piece " + std::to_string(piece) + " of " + std::to_string(pieces));
+      evaluated->UpdatePiece(piece, pieces, 0);
+      passed->UpdatePiece(piece, pieces, 0);
+      auto* a = vtkImageData::SafeDownCast(evaluated->GetOutputDataObject(0));
+      auto* b = vtkImageData::SafeDownCast(passed->GetOutputDataObject(0));
+      ASSERT_TRUE(a && b);
+      int ea[6], eb[6];
+      a->GetExtent(ea);
+      b->GetExtent(eb);
+      for (int i = 0; i < 6; ++i) EXPECT_EQ(ea[i], eb[i]);
+      const std::vector<float> ctrl = controlPoints(b);
+      EXPECT_FALSE(ctrl.empty());
+      EXPECT_EQ(controlPoints(a), ctrl);
+      vtkDataArray* values = b->GetPointData()->GetScalars();
+      ASSERT_NE(values, nullptr);
+      if (pieces == 1)
+        EXPECT_EQ(values, samples);  // shared, not copied
+      else
+        EXPECT_LT(values->GetNumberOfTuples(), samples->GetNumberOfTuples());
+      ASSERT_EQ(values->GetNumberOfTuples(), b->GetNumberOfPoints());
+      // Every carrier point holds the input's sample there; the evaluated carrier holds the
+      // interpolating model's value, which differs from it by rounding only.
+      vtkDataArray* modelValues = a->GetPointData()->GetScalars();
+      double worst = 0.0;
+      for (int k = eb[4]; k <= eb[5]; ++k)
+        for (int j = eb[2]; j <= eb[3]; ++j)
+          for (int i = eb[0]; i <= eb[1]; ++i) {
+            int ijk[3] = {i, j, k};
+            const vtkIdType at = b->ComputePointId(ijk), in = input->ComputePointId(ijk);
+            ASSERT_EQ(values->GetTuple1(at), samples->GetTuple1(in)) << i << " " << j << " " << k;
+            worst = std::max(worst, std::abs(modelValues->GetTuple1(at) - values->GetTuple1(at)));
+          }
+      EXPECT_LT(worst, 1e-4);
+    }
+}
+
 }  // namespace
 }  // namespace mfadvr::test

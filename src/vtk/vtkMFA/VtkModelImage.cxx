@@ -72,8 +72,8 @@ CarrierGrid carrierSubGrid(const CarrierGrid& whole, const DomainBox& region) {
   return g;
 }
 
-vtkSmartPointer<vtkImageData> imageOfModels(std::vector<CarriedModel> models,
-                                            const int* firstIndex) {
+vtkSmartPointer<vtkImageData> imageOfModels(std::vector<CarriedModel> models, const int* firstIndex,
+                                            const CarrierValues& values) {
   if (models.empty()) throw Error("internal: a carrier needs at least one model");
   DomainBox all = models.front().region;
   for (const auto& m : models) {
@@ -89,11 +89,11 @@ vtkSmartPointer<vtkImageData> imageOfModels(std::vector<CarriedModel> models,
       grid.extent[2 * a + 1] += firstIndex[a];
     }
   }
-  return imageOfModels(std::move(models), grid);
+  return imageOfModels(std::move(models), grid, values);
 }
 
 vtkSmartPointer<vtkImageData> imageOfModels(std::vector<CarriedModel> models,
-                                            const CarrierGrid& grid) {
+                                            const CarrierGrid& grid, const CarrierValues& given) {
   if (models.empty()) throw Error("internal: a carrier needs at least one model");
   DomainBox all = models.front().region;
   vtkNew<vtkDoubleArray> regions;
@@ -125,6 +125,14 @@ vtkSmartPointer<vtkImageData> imageOfModels(std::vector<CarriedModel> models,
   image->SetSpacing(grid.spacing.data());
   int dims[3];
   image->GetDimensions(dims);
+  if (given) {
+    if (vtkSmartPointer<vtkDataArray> samples = given(grid)) {
+      if (samples->GetNumberOfTuples() != static_cast<vtkIdType>(dims[0]) * dims[1] * dims[2])
+        throw Error("internal: the carrier's given values do not match its grid");
+      image->GetPointData()->SetScalars(samples);
+      return image;
+    }
+  }
   const int* first = grid.extent;
   const double spacing[3] = {grid.spacing[0], grid.spacing[1], grid.spacing[2]};
   // Position of point i (of the carrier's own numbering, from 0) along axis a: on the grid, the

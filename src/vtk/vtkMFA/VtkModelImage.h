@@ -14,12 +14,14 @@
 //     NaN outside every region and outside a domain mask): the model resampled on the data
 //     grid, for colour maps, slices and contours of the model in the pipeline.
 // Private to the module.
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "vtkSmartPointer.h"
 
+class vtkDataArray;
 class vtkDataObject;
 class vtkImageData;
 
@@ -56,19 +58,27 @@ CarrierGrid wholeCarrierGrid(const DomainBox& box, const Vec3d& step);
 // least 2 points per axis).
 CarrierGrid carrierSubGrid(const CarrierGrid& whole, const DomainBox& region);
 
+// Point scalars for a carrier's grid in place of the models evaluated there (the encoder's input
+// values, vtkMFAEncoder::PassInputValues): an array of one tuple per point of `grid` (x
+// fastest), or null for the models' values.
+using CarrierValues = std::function<vtkSmartPointer<vtkDataArray>(const CarrierGrid& grid)>;
+
 // The carrier of `models` on `grid` (carrierSubGrid of the whole data's grid for a piece). Each
 // model is written into its byte array and, from there on, used where it lies there (float32
 // control points): a model that the caller moved in is freed before the carrier's values are
-// computed, so that a large model is not held twice.
+// computed, so that a large model is not held twice. `values` (optional) gives the point
+// scalars instead.
 vtkSmartPointer<vtkImageData> imageOfModels(std::vector<CarriedModel> models,
-                                            const CarrierGrid& grid);
+                                            const CarrierGrid& grid,
+                                            const CarrierValues& values = {});
 
 // The carrier on the data's grid over the union of the models' regions. firstIndex (optional):
 // the index of the carrier's first point, for a carrier made from image data, so that its
 // extent lies in the input's index space (a pipeline crops an image to the update extent it
 // asked for, which is in that space); null: the extent starts at 0.
 vtkSmartPointer<vtkImageData> imageOfModels(std::vector<CarriedModel> models,
-                                            const int* firstIndex = nullptr);
+                                            const int* firstIndex = nullptr,
+                                            const CarrierValues& values = {});
 
 // The name of a carrier's point array for `model`: the model's field, "MFA value" when it has
 // none.

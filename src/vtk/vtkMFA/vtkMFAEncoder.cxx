@@ -1,5 +1,6 @@
 #include "vtkMFAEncoder.h"
 
+#include "vtkDataArray.h"
 #include "vtkDataObject.h"
 #include "vtkDataSet.h"
 #include "vtkDataSetAttributes.h"
@@ -11,14 +12,17 @@
 #include "vtkMFAModelData.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
+#include "vtkPointData.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 
 #include <algorithm>
-
+#include <cmath>
 #include <exception>
+#include <functional>
 #include <memory>
 #include <string>
 
+#include "VtkModelImage.h"
 #include "core/encode/Encoder.h"
 #include "core/encode/FitReport.h"
 #include "core/encode/PieceEncoder.h"
@@ -50,6 +54,7 @@ void vtkMFAEncoder::PrintSelf(ostream& os, vtkIndent indent) {
   os << indent << "DomainMask: " << this->DomainMask << "\n";
   os << indent << "MaskResolution: " << this->MaskResolution << "\n";
   os << indent << "GhostLevels: " << this->GhostLevels << "\n";
+  os << indent << "PassInputValues: " << this->PassInputValues << "\n";
 }
 
 int vtkMFAEncoder::FillInputPortInformation(int, vtkInformation* info) {
@@ -95,6 +100,41 @@ bool ownExtent(vtkInformation* in, int ext[6]) {
                        : vtkExtentTranslator::BLOCK_MODE;
   vtkNew<vtkExtentTranslator> translator;
   return translator->PieceToExtentThreadSafe(piece, pieces, 0, whole, ext, mode, 0) != 0;
+}
+
+// The samples of `source` (a point array of `image`) on a carrier's grid: the array itself
+// when the grid is the image's, a copy of the grid's extent when it lies within the image's,
+// null when the grid is not the image's (the carrier then evaluates the model).
+vtkSmartPointer<vtkDataArray> inputValuesOn(vtkImageData* image, vtkDataArray* source,
+                                            const mfadvr::vtkglue::CarrierGrid& g) {
+  const int* ext = image->GetExtent();
+  const double* origin = image->GetOrigin();
+  const double* spacing = image->GetSpacing();
+  bool same = true;
+  for (int a = 0; a < 3; ++a) {
+    const double tolerance = 1e-6 * std::abs(spacing[a]);
+    if (std::abs(g.spacing[a] - spacing[a]) > tolerance ||
+        std::abs(g.origin[a] - origin[a]) > tolerance || g.extent[2 * a] < ext[2 * a] ||
+        g.extent[2 * a + 1] > ext[2 * a + 1])
+      return nullptr;
+    same = same && g.extent[2 * a] == ext[2 * a] && g.extent[2 * a + 1] == ext[2 * a + 1];
+  }
+  if (same) return source;
+  vtkSmartPointer<vtkDataArray> part;
+  part.TakeReference(source->NewInstance());
+  part->SetName(source->GetName());
+  part->SetNumberOfComponents(source->GetNumberOfComponents());
+  const vtkIdType nx = g.extent[1] - g.extent[0] + 1;
+  part->SetNumberOfTuples(nx * (g.extent[3] - g.extent[2] + 1) * (g.extent[5] - g.extent[4] + 1));
+  const vtkIdType inX = ext[1] - ext[0] + 1, inY = ext[3] - ext[2] + 1;
+  vtkIdType to = 0;
+  for (int k = g.extent[4]; k <= g.extent[5]; ++k)
+    for (int j = g.extent[2]; j <= g.extent[3]; ++j, to += nx) {
+      const vtkIdType from =
+          (g.extent[0] - ext[0]) + inX * ((j - ext[2]) + inY * vtkIdType(k - ext[4]));
+      part->InsertTuples(to, nx, from, source);
+    }
+  return part;
 }
 
 }  // namespace
@@ -154,10 +194,25 @@ int vtkMFAEncoder::RequestData(vtkInformation*, vtkInformationVector** inInfo,
     bool hasRegion = false;
     int firstIndex[3] = {0, 0, 0};  // of the carrier's first point, in the input's index space
     bool fromImage = false;
+    std::function<vtkSmartPointer<vtkDataArray>(const mfadvr::vtkglue::CarrierGrid&)> values;
     if (auto* image = vtkImageData::SafeDownCast(input)) {
       mfadvr::StructuredGrid grid = mfadvr::gridFromVtkImage(image, field, source);
       grid.validate();
       fromImage = true;
+      if (this->PassInputValues && this->OutputImageData) {
+        vtkDataArray* samples = grid.fieldAssociation == "point data"
+                                    ? image->GetPointData()->GetArray(grid.fieldName.c_str())
+                                    : nullptr;
+        if (samples && samples->GetNumberOfComponents() == 1) {
+          values = [image, samples](const mfadvr::vtkglue::CarrierGrid& g) {
+            return inputValuesOn(image, samples, g);
+          };
+        } else {
+          vtkWarningMacro(
+              "PassInputValues: the field is not a point array of the image; the "
+              "output carries the model's values");
+        }
+      }
       // Smoothing is the scattered fit's regularization; images have their own weight.
       options.smoothing = this->ImageSmoothing;
       const int* dataExtent = image->GetExtent();
@@ -199,7 +254,7 @@ int vtkMFAEncoder::RequestData(vtkInformation*, vtkInformationVector** inInfo,
                                          << this->LastMaxRelativeError);
     }
     this->SetOutputModel(outInfo, std::make_shared<const mfadvr::Model>(std::move(model)),
-                         hasRegion ? region : nullptr, fromImage ? firstIndex : nullptr);
+                         hasRegion ? region : nullptr, fromImage ? firstIndex : nullptr, values);
   } catch (const std::exception& e) {
     vtkErrorMacro(<< e.what());
     return 0;

@@ -95,6 +95,20 @@ class VTKMFA_EXPORT vtkMFAEncoder : public vtkMFAModelAlgorithm {
 
   //@{
   /**
+   * With OutputImageData and image data whose field is a point array: the carrier's point
+   * scalars are the input's samples (the input's own array, shared without a copy where the
+   * carrier covers the whole input; a piece's own extent copied from it in a parallel pipeline)
+   * instead of the model evaluated on the grid. Saves the evaluation and, on one piece, a float
+   * per sample (docs/paraview.md, "Memory"); slices, contours and colour ranges of the carrier
+   * then show the data, the volume the model. Default off.
+   */
+  vtkSetMacro(PassInputValues, bool);
+  vtkGetMacro(PassInputValues, bool);
+  vtkBooleanMacro(PassInputValues, bool);
+  //@}
+
+  //@{
+  /**
    * Scattered inputs: whether the model gets a domain mask (default on), and the mask's nodes
    * along the longest box axis (0: the default for the kind of input).
    */
@@ -144,6 +158,7 @@ class VTKMFA_EXPORT vtkMFAEncoder : public vtkMFAModelAlgorithm {
   double ImageSmoothing = 0.0;
   bool DomainMask = true;
   int MaskResolution = 0;
+  bool PassInputValues = false;
 
   double LastMaxRelativeError = 0.0;
   double LastRMSRelativeError = 0.0;

@@ -81,7 +81,8 @@ int vtkMFAModelAlgorithm::RequestUpdateExtent(vtkInformation*, vtkInformationVec
 
 void vtkMFAModelAlgorithm::SetOutputModel(vtkInformationVector* outInfo,
                                           std::shared_ptr<const mfadvr::Model> model,
-                                          const double* renderBounds, const int* firstIndex) {
+                                          const double* renderBounds, const int* firstIndex,
+                                          const mfadvr::vtkglue::CarrierValues& values) {
   vtkDataObject* output = outInfo->GetInformationObject(0)->Get(vtkDataObject::DATA_OBJECT());
   if (auto* image = vtkImageData::SafeDownCast(output)) {
     mfadvr::vtkglue::CarriedModel carried{nullptr, model->domain()};
@@ -93,7 +94,7 @@ void vtkMFAModelAlgorithm::SetOutputModel(vtkInformationVector* outInfo,
     carried.model = std::move(model);
     std::vector<mfadvr::vtkglue::CarriedModel> models;
     models.push_back(std::move(carried));
-    image->ShallowCopy(mfadvr::vtkglue::imageOfModels(std::move(models), firstIndex));
+    image->ShallowCopy(mfadvr::vtkglue::imageOfModels(std::move(models), firstIndex, values));
   } else if (auto* data = vtkMFAModelData::SafeDownCast(output)) {
     data->SetModel(std::move(model));
   }

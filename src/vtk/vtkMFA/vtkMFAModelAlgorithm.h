@@ -21,10 +21,16 @@
 #include "vtkMFAModule.h"  // for export macro
 
 #ifndef __VTK_WRAP__
-#include <memory>  // for std::shared_ptr
+#include <functional>         // for std::function
+#include <memory>             // for std::shared_ptr
+#include "vtkSmartPointer.h"  // for the carrier's values
+class vtkDataArray;
 namespace mfadvr {
 class Model;
+namespace vtkglue {
+struct CarrierGrid;
 }
+}  // namespace mfadvr
 #endif
 
 class vtkMFAModelData;
@@ -64,10 +70,14 @@ class VTKMFA_EXPORT vtkMFAModelAlgorithm : public vtkAlgorithm {
    * Puts `model` into the output of port 0 (`outInfo`), as the model or as image data that
    * carries it; renderBounds (image data only): the region to render, null for the model's box;
    * firstIndex (image data only): the index of the carrier's first point in the input image's
-   * index space, null for 0.
+   * index space, null for 0; values (image data only, optional): the carrier's point scalars
+   * instead of the model evaluated on its grid (VtkModelImage.h).
    */
-  void SetOutputModel(vtkInformationVector* outInfo, std::shared_ptr<const mfadvr::Model> model,
-                      const double* renderBounds = nullptr, const int* firstIndex = nullptr);
+  void SetOutputModel(
+      vtkInformationVector* outInfo, std::shared_ptr<const mfadvr::Model> model,
+      const double* renderBounds = nullptr, const int* firstIndex = nullptr,
+      const std::function<vtkSmartPointer<vtkDataArray>(const mfadvr::vtkglue::CarrierGrid&)>&
+          values = {});
 #endif
 
   bool OutputImageData = false;
