@@ -12,7 +12,8 @@
 //     the cell size, which must not depend on how many ranks share the volume);
 //   point scalars: the models evaluated at those points (float, named after the model's field;
 //     NaN outside every region and outside a domain mask): the model resampled on the data
-//     grid, for colour maps, slices and contours of the model in the pipeline.
+//     grid, for colour maps, slices and contours of the model in the pipeline (or, from an
+//     encoder with PassInputValues, its input's samples).
 // Private to the module.
 #include <functional>
 #include <memory>

@@ -99,7 +99,7 @@ class VTKMFA_EXPORT vtkMFAEncoder : public vtkMFAModelAlgorithm {
    * scalars are the input's samples (the input's own array, shared without a copy where the
    * carrier covers the whole input; a piece's own extent copied from it in a parallel pipeline)
    * instead of the model evaluated on the grid. Saves the evaluation and, on one piece, a float
-   * per sample (docs/paraview.md, "Memory"); slices, contours and colour ranges of the carrier
+   * per sample (docs/paraview.md); slices, contours and colour ranges of the carrier
    * then show the data, the volume the model. Default off.
    */
   vtkSetMacro(PassInputValues, bool);
