@@ -1,6 +1,7 @@
 #include "core/render/DepthBounds.h"
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
 #include <limits>
 
@@ -59,22 +60,25 @@ std::int64_t footprints(const CameraRays& cam, const ImagePlane& plane, const Mo
                         const int cells[3], int level, int tilesX, int tilesY,
                         std::vector<std::vector<BlockFootprint>>& planes) {
   const LevelBlocks blocks = levelBlocks(v, cells, level);
-  // Per axis a, block b and side s (0: low, 1: high face): the block face's coordinate, less the
-  // camera's, and that offset's part of each image-plane coordinate (a corner's w is the sum of
-  // its three faces' parts).
+  // An occupied block is projected as the box of its occupied sub-blocks one level finer (a
+  // cell's box at level 0): bounds of the finer level's precision for 8 flag reads per block.
+  const int fine = level > 0 ? level - 1 : 0, ratio = level > 0 ? 2 : 1;
+  const LevelBlocks subs = levelBlocks(v, cells, fine);
+  // Per axis a, sub-block boundary b and: the boundary's coordinate, less the camera's, and that
+  // offset's part of each image-plane coordinate (a corner's w is the sum of its three faces'
+  // parts).
   std::vector<double> face[3], part[3];
   for (int a = 0; a < 3; ++a) {
     const KnotAxisView& axis = v.spline.axis[a];
-    const int p = axis.degree, n = blocks.count[a];
-    face[a].resize(2 * std::size_t(n));
-    part[a].resize(6 * std::size_t(n));
-    for (int b = 0; b < n; ++b)
-      for (int side = 0; side < 2; ++side) {
-        const int c = std::min((b + side) << level, cells[a]);
-        const double q = v.boxMin[a] + axis.knots[p + c] / v.inverseExtent[a] - cam.position[a];
-        face[a][2 * b + side] = q;
-        for (int i = 0; i < 3; ++i) part[a][(2 * b + side) * 3 + i] = plane.inverse[i][a] * q;
-      }
+    const int p = axis.degree, n = subs.count[a];
+    face[a].resize(std::size_t(n) + 1);
+    part[a].resize(3 * (std::size_t(n) + 1));
+    for (int b = 0; b <= n; ++b) {
+      const int c = std::min(b << fine, cells[a]);
+      const double q = v.boxMin[a] + axis.knots[p + c] / v.inverseExtent[a] - cam.position[a];
+      face[a][b] = q;
+      for (int i = 0; i < 3; ++i) part[a][3 * b + i] = plane.inverse[i][a] * q;
+    }
   }
   // Pixel coordinates whose centres have image-plane coordinates (sx, sy).
   const double W = cam.width, H = cam.height;
@@ -89,7 +93,26 @@ std::int64_t footprints(const CameraRays& cam, const ImagePlane& plane, const Mo
     for (int by = 0; by < blocks.count[1]; ++by)
       for (int bx = 0; bx < blocks.count[0]; ++bx, ++index) {
         if (blocks.flags[index]) continue;  // all empty
+        // The sub-block range [lo, hi] per axis of the occupied sub-blocks.
+        int lo[3] = {INT_MAX, INT_MAX, INT_MAX}, hi[3] = {-1, -1, -1};
         const int at[3] = {bx, by, bz};
+        for (int k = bz * ratio; k < std::min(bz * ratio + ratio, subs.count[2]); ++k)
+          for (int j = by * ratio; j < std::min(by * ratio + ratio, subs.count[1]); ++j)
+            for (int i = bx * ratio; i < std::min(bx * ratio + ratio, subs.count[0]); ++i) {
+              if (subs.flags[i +
+                             std::int64_t(subs.count[0]) * (j + std::int64_t(subs.count[1]) * k)])
+                continue;
+              const int s[3] = {i, j, k};
+              for (int a = 0; a < 3; ++a)
+                lo[a] = std::min(lo[a], s[a]), hi[a] = std::max(hi[a], s[a]);
+            }
+        // (An occupied block has an occupied sub-block; the box of the block itself otherwise.)
+        for (int a = 0; a < 3; ++a)
+          if (hi[a] < lo[a]) {
+            lo[a] = at[a] * ratio;
+            hi[a] = std::min(at[a] * ratio + ratio, subs.count[a]) - 1;
+          }
+        const int bound[3][2] = {{lo[0], hi[0] + 1}, {lo[1], hi[1] + 1}, {lo[2], hi[2] + 1}};
         BlockFootprint f{0, 0, tilesX - 1, tilesY - 1, 0.0, 0.0};
         double xMin = INFINITY, xMax = -INFINITY, yMin = INFINITY, yMax = -INFINITY;
         bool behind = false;  // a corner not in front of a perspective camera
@@ -97,7 +120,7 @@ std::int64_t footprints(const CameraRays& cam, const ImagePlane& plane, const Mo
         for (int c = 0; c < 8; ++c) {
           double w[3] = {0.0, 0.0, 0.0};
           for (int a = 0; a < 3; ++a) {
-            const double* t = &part[a][(2 * at[a] + ((c >> a) & 1)) * 3];
+            const double* t = &part[a][3 * bound[a][(c >> a) & 1]];
             for (int i = 0; i < 3; ++i) w[i] += t[i];
           }
           double sx = w[1], sy = w[2];
@@ -121,9 +144,9 @@ std::int64_t footprints(const CameraRays& cam, const ImagePlane& plane, const Mo
           // perspective ray's direction is unit).
           double sum = 0.0, farSum = 0.0;
           for (int a = 0; a < 3; ++a) {
-            const double lo = face[a][2 * at[a]], hi = face[a][2 * at[a] + 1];
-            const double e = lo > 0.0 ? lo : (hi < 0.0 ? -hi : 0.0);
-            const double m = std::max(std::abs(lo), std::abs(hi));
+            const double l = face[a][bound[a][0]], h = face[a][bound[a][1]];
+            const double e = l > 0.0 ? l : (h < 0.0 ? -h : 0.0);
+            const double m = std::max(std::abs(l), std::abs(h));
             sum += e * e;
             farSum += m * m;
           }

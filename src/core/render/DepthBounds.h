@@ -4,13 +4,14 @@
 // the camera and the model's empty-space pyramid:
 //
 // every aligned block of the pyramid's level L that is not all empty (an "occupied" block) is
-// projected onto the image (the rays that cross a box are those through the pixels inside its
-// corners' projections when all are in front of the camera; one pixel more on each side for
-// rounding); each tile its projection covers keeps the least and the greatest distance from the
-// camera to a point of such a box. A sample nearer than the least or farther than the greatest
-// lies in no occupied block, so its cell is empty. (A sample whose location rounds across a
-// block's face into an occupied cell lies within a rounding error of that cell's block: the two
-// steps of slack of boundSteps cover it.)
+// projected onto the image as the box of its occupied sub-blocks of level L - 1 (the cell at
+// level 0), which holds every cell of it that is not empty: the rays that cross a box are those
+// through the pixels inside its corners' projections when all are in front of the camera (one
+// pixel more on each side for rounding); each tile its projection covers keeps the least and the
+// greatest distance from the camera to a point of such a box. A sample nearer than the least or
+// farther than the greatest lies in no occupied block, so its cell is empty. (A sample whose
+// location rounds across a block's face into an occupied cell lies within a rounding error of that
+// cell's block: the two steps of slack of boundSteps cover it.)
 //
 // L is the finest level with at most kDepthBlocksPerAxis blocks per axis, coarser while the
 // projections would cover too many tiles (a camera close to the model), so the build stays a
