@@ -64,7 +64,7 @@ std::int64_t footprints(const CameraRays& cam, const ImagePlane& plane, const Mo
   // cell's box at level 0): bounds of the finer level's precision for 8 flag reads per block.
   const int fine = level > 0 ? level - 1 : 0, ratio = level > 0 ? 2 : 1;
   const LevelBlocks subs = levelBlocks(v, cells, fine);
-  // Per axis a, sub-block boundary b and: the boundary's coordinate, less the camera's, and that
+  // Per axis a and sub-block boundary b: the boundary's coordinate, less the camera's, and that
   // offset's part of each image-plane coordinate (a corner's w is the sum of its three faces'
   // parts).
   std::vector<double> face[3], part[3];
