@@ -18,7 +18,6 @@
 #include <algorithm>
 #include <cmath>
 #include <exception>
-#include <functional>
 #include <memory>
 #include <string>
 
@@ -194,7 +193,7 @@ int vtkMFAEncoder::RequestData(vtkInformation*, vtkInformationVector** inInfo,
     bool hasRegion = false;
     int firstIndex[3] = {0, 0, 0};  // of the carrier's first point, in the input's index space
     bool fromImage = false;
-    std::function<vtkSmartPointer<vtkDataArray>(const mfadvr::vtkglue::CarrierGrid&)> values;
+    mfadvr::vtkglue::CarrierValues values;  // the input's samples for the carrier, if asked
     if (auto* image = vtkImageData::SafeDownCast(input)) {
       mfadvr::StructuredGrid grid = mfadvr::gridFromVtkImage(image, field, source);
       grid.validate();
