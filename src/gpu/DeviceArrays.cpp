@@ -54,15 +54,15 @@ ModelView relocateModel(const ModelView& view, const std::vector<const void*>& c
 }
 
 std::vector<HostArray> flagArrays(const EmptySpaceFlags& flags) {
-  return {{flags.cells.data(), flags.cells.size(), "the empty-space flags"},
-          {flags.pyramid.data(), flags.pyramid.size(), "the empty-space pyramid"}};
+  return {{flags.cells.data(), flags.cells.size(), "the empty-space flags"}};
 }
 
 ModelView relocateFlags(const ModelView& view, const std::vector<const void*>& copies) {
-  if (copies.size() != 2) throw Error("device arrays: the flags need 2 copies");
+  if (copies.size() != 1) throw Error("device arrays: the flags need 1 copy");
   ModelView v = view;
   v.empty = static_cast<const std::uint8_t*>(copies[0]);
-  v.emptyPyramid = static_cast<const std::uint8_t*>(copies[1]);
+  v.emptyPyramid = nullptr;
+  v.emptyLevels = 0;
   return v;
 }
 

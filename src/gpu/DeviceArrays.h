@@ -28,7 +28,9 @@ std::vector<HostArray> modelArrays(const ModelView& view);
 // `view` with those arrays replaced by `copies` (one per modelArrays(view) entry, same order).
 ModelView relocateModel(const ModelView& view, const std::vector<const void*>& copies);
 
-// The empty-space flags behind a view: cells, then blocks.
+// The empty-space flags the device's rays read: the cells' (each holds its level of the pyramid,
+// ModelView::empty). The pyramid serves the host's depth bounds only and stays on the host: the
+// relocated view has none (emptyPyramid null, emptyLevels 0).
 std::vector<HostArray> flagArrays(const EmptySpaceFlags& flags);
 ModelView relocateFlags(const ModelView& view, const std::vector<const void*>& copies);
 

@@ -108,7 +108,8 @@ TEST(DeviceArrays, RelocatedCopiesRenderTheCpuImage) {
         }
         if (view.empty) {
           EXPECT_TRUE(flags->owns(view.empty));
-          EXPECT_TRUE(flags->owns(view.emptyPyramid));
+          EXPECT_EQ(view.emptyPyramid, nullptr);  // the device's rays read the cells only
+          EXPECT_EQ(view.emptyLevels, 0);
         }
         EXPECT_TRUE(frame.owns(params.tf.entries));
         if (params.rayEnd) {
@@ -131,7 +132,8 @@ TEST(DeviceArrays, WrongNumberOfCopiesIsAnError) {
   ModelView v;
   v.spline = m.spline().view();
   EXPECT_THROW(gpu::relocateModel(v, {}), Error);
-  EXPECT_THROW(gpu::relocateFlags(v, {nullptr}), Error);
+  EXPECT_THROW(gpu::relocateFlags(v, {}), Error);
+  EXPECT_THROW(gpu::relocateFlags(v, {nullptr, nullptr}), Error);
 }
 
 }  // namespace
