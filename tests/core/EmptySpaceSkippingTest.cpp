@@ -382,6 +382,95 @@ TEST(EmptySpaceSkipping, SkipsMostOfASparseScene) {
   EXPECT_LT(on.samples, off.samples / 2);
 }
 
+// An empty-space jump walks on from the cell's largest empty block through the neighbouring
+// blocks (SplineRaySampler::emptyAlong): every point of the ray up to where the jump ends lies
+// in an empty cell, the jump reaches at least the cell's own block's far face, and often goes
+// further. Rays in random directions, along the axes (in knot planes too) and along diagonals
+// (faces left at the same distance).
+TEST(EmptySpaceSkipping, JumpsWalkOnlyThroughEmptyCells) {
+  const Model& m = marschnerLobb();
+  for (int f : {0, 2}) {
+    const RenderSettings s = settingsFor(m, testTransferFunctions()[f], false);
+    const ModelField field(m);
+    const ModelRenderSetup setup(field, s);
+    const ModelView& v = setup.view();
+    ASSERT_NE(v.empty, nullptr);
+    SplineRaySampler<0, true, false> sampler(v);
+    int cells[3], p[3];
+    for (int a = 0; a < 3; ++a) {
+      p[a] = v.spline.axis[a].degree;
+      cells[a] = v.spline.axis[a].count - p[a];
+    }
+    const Eigen::Vector3d lo = m.domain().min, hi = m.domain().max;
+    std::mt19937 rng(7 + f);
+    std::uniform_real_distribution<double> unit(0.0, 1.0), normal(-1.0, 1.0);
+    std::vector<Eigen::Vector3d> directions;
+    for (int a = 0; a < 3; ++a)
+      for (double sign : {1.0, -1.0}) {
+        Eigen::Vector3d d = Eigen::Vector3d::Zero();
+        d[a] = sign;
+        directions.push_back(d);
+      }
+    directions.push_back(Eigen::Vector3d(1, 1, 1).normalized());
+    directions.push_back(Eigen::Vector3d(1, -1, 0).normalized());
+    int jumps = 0, further = 0;
+    for (int i = 0; i < 3000; ++i) {
+      Eigen::Vector3d d;
+      if (i % 3 == 0) {
+        d = directions[static_cast<size_t>(i / 3) % directions.size()];
+      } else {
+        do d = Eigen::Vector3d(normal(rng), normal(rng), normal(rng));
+        while (d.norm() < 0.1);
+        d.normalize();
+      }
+      Eigen::Vector3d o;
+      for (int a = 0; a < 3; ++a) o[a] = lo[a] + unit(rng) * (hi[a] - lo[a]);
+      if (i % 6 == 0) {  // on a knot plane of each axis
+        for (int a = 0; a < 3; ++a) {
+          const int knot = p[a] + static_cast<int>(unit(rng) * cells[a]);
+          o[a] = lo[a] + v.spline.axis[a].knots[knot] / v.inverseExtent[a];
+        }
+      }
+      SplineRaySampler<0, true, false>::RayMarch r;
+      sampler.beginMarch(o.data(), d.data(), r);
+      AxisLocation loc[3];
+      double tLeave;
+      if (!sampler.emptyAlong(r, o.data(), tLeave, loc)) continue;
+      ++jumps;
+      // The far face of the cell's own largest empty block, as a jump without the walk finds it.
+      const int level = v.empty[(loc[0].span - p[0]) +
+                                cells[0] * ((loc[1].span - p[1]) +
+                                            std::int64_t(cells[1]) * (loc[2].span - p[2]))] -
+                        1;
+      double single = INFINITY;
+      for (int a = 0; a < 3; ++a) {
+        const int first = ((loc[a].span - p[a]) >> level) << level;
+        const int end = std::min(first + (1 << level), cells[a]);
+        const double* U = v.spline.axis[a].knots;
+        if (r.ud[a] > 0.0)
+          single = std::min(single, (U[p[a] + end] - 1e-10 - r.uo[a]) * r.invUd[a]);
+        else if (r.ud[a] < 0.0)
+          single = std::min(single, (U[p[a] + first] + 1e-10 - r.uo[a]) * r.invUd[a]);
+      }
+      ASSERT_GE(tLeave, single) << "ray " << i;
+      if (tLeave > single + 1e-9) ++further;
+      ASSERT_TRUE(std::isfinite(tLeave));
+      // Every point up to tLeave is in an empty cell (the jump's end included). A start on a
+      // face the ray leaves by ends its jump there (at most an inset behind it).
+      sampler.beginRay(o.data(), d.data());
+      for (int k = 1; k <= 256 && tLeave > 0.0; ++k) {
+        const double t = k == 256 ? tLeave : tLeave * k / 256.0;
+        const Eigen::Vector3d q = o + t * d;
+        double ignored;
+        ASSERT_TRUE(sampler.emptyAt(q.data(), ignored))
+            << "transfer function " << f << ", ray " << i << ", point " << k << " of 256";
+      }
+    }
+    EXPECT_GT(jumps, 500) << "transfer function " << f;
+    EXPECT_GT(further, jumps / 10) << "transfer function " << f;
+  }
+}
+
 TEST(EmptySpaceSkipping, SameImageForAnyThreadCount) {
   const Model& m = maskedMarschnerLobb();
   RenderSettings s = settingsFor(m, testTransferFunctions()[1], true);

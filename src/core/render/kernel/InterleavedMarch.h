@@ -2,9 +2,9 @@
 // The way in through empty space, for several rays at once (host).
 //
 // With empty-space skipping, a ray of a sparse scene spends most of its time before its first
-// visible cell: each jump over an empty block (the sampler's emptyAt: locate the sample, read
-// the cell's flag, climb the flags' pyramid, find where the ray leaves the block) waits for the
-// one before, and its flag reads miss the caches. One ray at a time, the processor has nothing
+// visible cell: each jump over empty blocks (the sampler's emptyAlong: locate the sample, read
+// the cell's flag, walk on through the empty blocks ahead) waits for the one before, and its flag
+// reads miss the caches. One ray at a time, the processor has nothing
 // else to do meanwhile. marchIn() walks G neighbouring rays' jumps in turn, one jump of each
 // per round, so that the jumps of different rays overlap; each ray stops at its first sample
 // that is not in an empty cell (or at its end), and integrateSegment (RayIntegrator.h) goes on

@@ -15,8 +15,9 @@
 // can take in the cell is visible (EmptySpaceGrid.h: a cell's values lie within the range of
 // its control points and of its Bezier coefficients, widened by the rounding bounds). A
 // sample in such a cell is not evaluated, and the ray jumps to where it leaves the largest
-// aligned empty block around it (a pyramid of flags over blocks of 2, 4, 8, ... cells per axis):
-// crossing empty space costs about one step per block, not per cell.
+// aligned empty block around it (of 1, 2, 4, 8, ... cells per axis), walking on through the
+// empty blocks beyond without locating a sample: crossing empty space costs one located sample
+// per stretch of empty blocks and a few flag reads per block, not work per cell.
 #include <cstdint>
 
 #include "core/mask/MaskView.h"
@@ -63,6 +64,10 @@ template <int P, bool Skip, bool Shade>
 class SplineRaySampler {
  public:
   static constexpr bool kSkipsEmptySpace = Skip;
+  // Blocks an empty-space jump walks through at most (emptyAlong): 8, 16 and 64 measured alike
+  // (docs/benchmarks.md, "Walking on through empty blocks"); a bound keeps a device thread's
+  // loop short.
+  static constexpr int kWalk = 16;
   static constexpr int W = SplineDegree<P>::kWidth;
   // With SIMD rows a gather is (p+1)^2 vector loads; doing it for every sample lets the
   // compiler keep the block in registers, and measured faster than reusing it, even at 16
@@ -137,28 +142,60 @@ class SplineRaySampler {
     const int flag = m_.empty[cell];
     if (!flag) return false;
     // The region to leave: the largest aligned block of the pyramid around the cell that is all
-    // empty (its level kept in the cell's flag), else the cell. Its faces are knots; they are
-    // pulled in by far more than the rounding of a sample's parameter, so every sample before
-    // tLeave is found in this same empty region.
-    const int level = flag - 1;
-    int c[3];  // the cell
-    for (int a = 0; a < 3; ++a) c[a] = loc[a].span - p_[a];
-    int lo[3], hi[3];  // span range of the region on each axis
-    for (int a = 0; a < 3; ++a) {
-      lo[a] = p_[a] + ((c[a] >> level) << level);
-      const int end = lo[a] + (1 << level);
-      hi[a] = end < cells_[a] + p_[a] ? end : cells_[a] + p_[a];
-    }
+    // empty (its level kept in the cell's flag), else the cell. From there the ray walks on
+    // through the faces it leaves by, block to block as a DDA (no sample located on the way): the
+    // neighbouring block of the same level is all empty when the flag of its first cell gives
+    // a largest empty block of that level or more, and the walk goes on in that largest block.
+    // It stops at a block that is not all empty, at the grid's faces, after kWalk blocks, or
+    // where the ray leaves through two faces at nearly the same distance (which one comes first
+    // is then not certain). The faces are knots, those the ray leaves by pulled in by far more
+    // than the rounding of a sample's parameter, so every sample before tLeave is found in an
+    // empty block the walk went through.
     constexpr double kInset = 1e-10;
-    tLeave = INFINITY;
-    for (int a = 0; a < 3; ++a) {
+    const double margin = 8.0 * kInset *
+                          ((r.invUd[0] < 0.0 ? -r.invUd[0] : r.invUd[0]) +
+                           (r.invUd[1] < 0.0 ? -r.invUd[1] : r.invUd[1]) +
+                           (r.invUd[2] < 0.0 ? -r.invUd[2] : r.invUd[2]));
+    int level = flag - 1;
+    int b[3] = {0, 0, 0};  // the region's first cell on each axis
+    double tn[3];          // where the ray leaves the region on each axis
+    const auto leave = [&](int a) {
       const double* U = m_.spline.axis[a].knots;
-      double ta = INFINITY;
-      if (r.ud[a] > 0.0)
-        ta = (U[hi[a]] - kInset - r.uo[a]) * r.invUd[a];
-      else if (r.ud[a] < 0.0)
-        ta = (U[lo[a]] + kInset - r.uo[a]) * r.invUd[a];
-      if (ta < tLeave) tLeave = ta;
+      if (r.ud[a] > 0.0) {
+        const int end = b[a] + (1 << level);
+        return (U[p_[a] + (end < cells_[a] ? end : cells_[a])] - kInset - r.uo[a]) * r.invUd[a];
+      }
+      if (r.ud[a] < 0.0) return (U[p_[a] + b[a]] + kInset - r.uo[a]) * r.invUd[a];
+      return static_cast<double>(INFINITY);
+    };
+    for (int a = 0; a < 3; ++a) {
+      b[a] = ((loc[a].span - p_[a]) >> level) << level;
+      tn[a] = leave(a);
+    }
+    for (int walk = 0;; ++walk) {
+      int a = tn[1] < tn[0] ? 1 : 0;
+      a = tn[2] < tn[a] ? 2 : a;
+      tLeave = tn[a];
+      if (walk == kWalk) break;
+      const double next = a == 0   ? (tn[1] < tn[2] ? tn[1] : tn[2])
+                          : a == 1 ? (tn[0] < tn[2] ? tn[0] : tn[2])
+                                   : (tn[0] < tn[1] ? tn[0] : tn[1]);
+      if (!(next - tLeave > margin)) break;
+      int n[3] = {b[0], b[1], b[2]};  // the neighbouring block's first cell
+      n[a] += r.ud[a] > 0.0 ? (1 << level) : -(1 << level);
+      if (n[a] < 0 || n[a] >= cells_[a]) break;
+      const int f = m_.empty[n[0] + cells_[0] * (n[1] + std::int64_t(cells_[1]) * n[2])];
+      if (f - 1 < level) break;
+      if (f - 1 == level) {
+        b[a] = n[a];
+        tn[a] = leave(a);
+      } else {
+        level = f - 1;
+        for (int e = 0; e < 3; ++e) {
+          b[e] = (n[e] >> level) << level;
+          tn[e] = leave(e);
+        }
+      }
     }
     return true;
   }
