@@ -395,7 +395,8 @@ TEST(EmptySpaceSkipping, JumpsWalkOnlyThroughEmptyCells) {
     const ModelRenderSetup setup(field, s);
     const ModelView& v = setup.view();
     ASSERT_NE(v.empty, nullptr);
-    SplineRaySampler<0, true, false> sampler(v);
+    using Sampler = SplineRaySampler<0, true, false>;
+    Sampler sampler(v);
     int cells[3], p[3];
     for (int a = 0; a < 3; ++a) {
       p[a] = v.spline.axis[a].degree;
@@ -431,7 +432,7 @@ TEST(EmptySpaceSkipping, JumpsWalkOnlyThroughEmptyCells) {
           o[a] = lo[a] + v.spline.axis[a].knots[knot] / v.inverseExtent[a];
         }
       }
-      SplineRaySampler<0, true, false>::RayMarch r;
+      Sampler::RayMarch r;
       sampler.beginMarch(o.data(), d.data(), r);
       AxisLocation loc[3];
       double tLeave;
@@ -448,9 +449,10 @@ TEST(EmptySpaceSkipping, JumpsWalkOnlyThroughEmptyCells) {
         const int end = std::min(first + (1 << level), cells[a]);
         const double* U = v.spline.axis[a].knots;
         if (r.ud[a] > 0.0)
-          single = std::min(single, (U[p[a] + end] - 1e-10 - r.uo[a]) * r.invUd[a]);
+          single = std::min(single, (U[p[a] + end] - Sampler::kEmptyInset - r.uo[a]) * r.invUd[a]);
         else if (r.ud[a] < 0.0)
-          single = std::min(single, (U[p[a] + first] + 1e-10 - r.uo[a]) * r.invUd[a]);
+          single =
+              std::min(single, (U[p[a] + first] + Sampler::kEmptyInset - r.uo[a]) * r.invUd[a]);
       }
       ASSERT_GE(tLeave, single) << "ray " << i;
       if (tLeave > single + 1e-9) ++further;

@@ -68,6 +68,8 @@ class SplineRaySampler {
   // (docs/benchmarks.md, "Walking on through empty blocks"); a bound keeps a device thread's
   // loop short.
   static constexpr int kWalk = 16;
+  // How far (in parameter units) the faces a ray leaves an empty block by are pulled in.
+  static constexpr double kEmptyInset = 1e-10;
   static constexpr int W = SplineDegree<P>::kWidth;
   // With SIMD rows a gather is (p+1)^2 vector loads; doing it for every sample lets the
   // compiler keep the block in registers, and measured faster than reusing it, even at 16
@@ -102,6 +104,9 @@ class SplineRaySampler {
   // inverse (0 where the direction is 0) per axis.
   struct RayMarch {
     double uo[3] = {0.0, 0.0, 0.0}, ud[3] = {0.0, 0.0, 0.0}, invUd[3] = {0.0, 0.0, 0.0};
+    // Ray distances closer than this are a tie for the empty-space walk: 8 times the most the
+    // faces' inset (kEmptyInset) moves where the ray leaves a block, over all axes.
+    double tieMargin = 0.0;
   };
 
   MFADVR_HD MFADVR_INLINE void beginMarch(const double o[3], const double d[3], RayMarch& r) const {
@@ -110,6 +115,9 @@ class SplineRaySampler {
       r.ud[a] = d[a] * m_.inverseExtent[a];
       r.invUd[a] = r.ud[a] != 0.0 ? 1.0 / r.ud[a] : 0.0;
     }
+    r.tieMargin = 0.0;
+    for (int a = 0; a < 3; ++a)
+      r.tieMargin += 8.0 * kEmptyInset * (r.invUd[a] < 0.0 ? -r.invUd[a] : r.invUd[a]);
   }
 
   MFADVR_HD MFADVR_INLINE void beginRay(const double o[3], const double d[3]) {
@@ -151,11 +159,6 @@ class SplineRaySampler {
     // is then not certain). The faces are knots, those the ray leaves by pulled in by far more
     // than the rounding of a sample's parameter, so every sample before tLeave is found in an
     // empty block the walk went through.
-    constexpr double kInset = 1e-10;
-    const double margin = 8.0 * kInset *
-                          ((r.invUd[0] < 0.0 ? -r.invUd[0] : r.invUd[0]) +
-                           (r.invUd[1] < 0.0 ? -r.invUd[1] : r.invUd[1]) +
-                           (r.invUd[2] < 0.0 ? -r.invUd[2] : r.invUd[2]));
     int level = flag - 1;
     int b[3] = {0, 0, 0};  // the region's first cell on each axis
     double tn[3];          // where the ray leaves the region on each axis
@@ -163,9 +166,10 @@ class SplineRaySampler {
       const double* U = m_.spline.axis[a].knots;
       if (r.ud[a] > 0.0) {
         const int end = b[a] + (1 << level);
-        return (U[p_[a] + (end < cells_[a] ? end : cells_[a])] - kInset - r.uo[a]) * r.invUd[a];
+        return (U[p_[a] + (end < cells_[a] ? end : cells_[a])] - kEmptyInset - r.uo[a]) *
+               r.invUd[a];
       }
-      if (r.ud[a] < 0.0) return (U[p_[a] + b[a]] + kInset - r.uo[a]) * r.invUd[a];
+      if (r.ud[a] < 0.0) return (U[p_[a] + b[a]] + kEmptyInset - r.uo[a]) * r.invUd[a];
       return static_cast<double>(INFINITY);
     };
     for (int a = 0; a < 3; ++a) {
@@ -177,10 +181,8 @@ class SplineRaySampler {
       a = tn[2] < tn[a] ? 2 : a;
       tLeave = tn[a];
       if (walk == kWalk) break;
-      const double next = a == 0   ? (tn[1] < tn[2] ? tn[1] : tn[2])
-                          : a == 1 ? (tn[0] < tn[2] ? tn[0] : tn[2])
-                                   : (tn[0] < tn[1] ? tn[0] : tn[1]);
-      if (!(next - tLeave > margin)) break;
+      const double next = tn[(a + 1) % 3] < tn[(a + 2) % 3] ? tn[(a + 1) % 3] : tn[(a + 2) % 3];
+      if (!(next - tLeave > r.tieMargin)) break;
       int n[3] = {b[0], b[1], b[2]};  // the neighbouring block's first cell
       n[a] += r.ud[a] > 0.0 ? (1 << level) : -(1 << level);
       if (n[a] < 0 || n[a] >= cells_[a]) break;
