@@ -40,7 +40,8 @@ if [[ ! -f $work/stamp || $(cat "$work/stamp") != "$head" ]]; then
   fresh=$(mktemp -d)
   git -C "$root" archive HEAD | tar -x -C "$fresh"
   # patch, not git apply: inside this repository's tree, git apply would skip the files.
-  patch -s -p1 -d "$fresh" <"$root/bench/empty_space_replay.patch"
+  patch -s -p1 -d "$fresh" <"$root/bench/empty_space_replay.patch" ||
+    { echo "bench/empty_space_replay.patch no longer applies to HEAD: update it" >&2; exit 1; }
   grep -q MFADVR_EMPTY_SPACE_REPLAY "$fresh/src/core/render/RayCaster.h"
   # Only the files that changed are copied, so that the build stays incremental.
   mkdir -p "$work/src"
@@ -66,11 +67,13 @@ for ((i = 1; i <= runs; ++i)); do
       "${options[@]}" --frames 4 -o "$out/$w.png" 2>&1) || { echo "$log" >&2; exit 1; }
     [[ $i -gt 1 || $w != replayed ]] || grep -h "^replay:" <<<"$log" >&2 || true
     t=$(grep -o "render [0-9.]* s" <<<"$log" | awk '{print $2}')
+    [[ -n $t ]] || { echo "$log" >&2; echo "no frame time in the render's report" >&2; exit 1; }
     times[$w]="${times[$w]:-} $t"
   done
-done
-for w in "${ways[@]:1}"; do
-  cmp -s "$out/plain.png" "$out/$w.png" || { echo "the $w image differs from the plain one" >&2; exit 1; }
+  for w in "${ways[@]:1}"; do
+    cmp -s "$out/plain.png" "$out/$w.png" ||
+      { echo "run $i: the $w image differs from the plain one" >&2; exit 1; }
+  done
 done
 median() { tr ' ' '\n' <<<"$1" | grep . | sort -n | awk '{v[NR] = $1} END {print v[int((NR + 1) / 2)]}'; }
 declare -A m
