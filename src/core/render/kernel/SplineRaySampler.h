@@ -176,27 +176,38 @@ class SplineRaySampler {
       b[a] = ((loc[a].span - p_[a]) >> level) << level;
       tn[a] = leave(a);
     }
+    // The flags' strides per axis, and the index of the region's first cell.
+    const std::int64_t stride[3] = {1, cells_[0], std::int64_t(cells_[0]) * cells_[1]};
+    std::int64_t first = b[0] + stride[1] * b[1] + stride[2] * b[2];
     for (int walk = 0;; ++walk) {
-      int a = tn[1] < tn[0] ? 1 : 0;
-      a = tn[2] < tn[a] ? 2 : a;
-      tLeave = tn[a];
+      // The nearest face and the next one, compared as values rather than looked up by axis.
+      const double t0 = tn[0], t1 = tn[1], t2 = tn[2];
+      const bool yFirst = t1 < t0;
+      const double near01 = yFirst ? t1 : t0, far01 = yFirst ? t0 : t1;
+      const bool zFirst = t2 < near01;
+      const int a = zFirst ? 2 : (yFirst ? 1 : 0);
+      tLeave = zFirst ? t2 : near01;
       if (walk == kWalk) break;
-      const double next = tn[(a + 1) % 3] < tn[(a + 2) % 3] ? tn[(a + 1) % 3] : tn[(a + 2) % 3];
+      const double next = zFirst ? near01 : (t2 < far01 ? t2 : far01);
       if (!(next - tLeave > r.tieMargin)) break;
-      int n[3] = {b[0], b[1], b[2]};  // the neighbouring block's first cell
-      n[a] += r.ud[a] > 0.0 ? (1 << level) : -(1 << level);
-      if (n[a] < 0 || n[a] >= cells_[a]) break;
-      const int f = m_.empty[n[0] + cells_[0] * (n[1] + std::int64_t(cells_[1]) * n[2])];
+      const int step = r.ud[a] > 0.0 ? (1 << level) : -(1 << level);
+      const int na = b[a] + step;  // the neighbouring block's first cell on axis a
+      if (na < 0 || na >= cells_[a]) break;
+      const std::int64_t neighbour = first + step * stride[a];
+      const int f = m_.empty[neighbour];
       if (f - 1 < level) break;
       if (f - 1 == level) {
-        b[a] = n[a];
+        b[a] = na;
+        first = neighbour;
         tn[a] = leave(a);
       } else {
         level = f - 1;
+        b[a] = na;
         for (int e = 0; e < 3; ++e) {
-          b[e] = (n[e] >> level) << level;
+          b[e] = (b[e] >> level) << level;
           tn[e] = leave(e);
         }
+        first = b[0] + stride[1] * b[1] + stride[2] * b[2];
       }
     }
     return true;
