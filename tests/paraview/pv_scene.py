@@ -35,21 +35,35 @@ def load_plugin():
 
 def source(kind):
     """'encode': MFA Encode of a Wavelet (split among the ranks, with ghost layers);
-    'single' / 'blocks': the MFA reader on a single or a 4-block model file."""
-    if kind == "encode":
+    'encode-pass': the same with Pass Input Values (each rank's carrier keeps the input's array
+    and its ghost layers, marked as ghost cells); 'single' / 'blocks': the MFA reader on a
+    single or a 4-block model file."""
+    if kind in ("encode", "encode-pass"):
         wavelet = pvs.Wavelet()
         wavelet.WholeExtent = [-20, 20, -20, 20, -20, 20]
         encoded = pvs.MFAEncode(Input=wavelet)
         encoded.Degree = 2
+        encoded.PassInputValues = int(kind == "encode-pass")
         return encoded, "RTData", (37.35, 276.8)
     path = os.path.join(os.environ["MFADVR_TEST_DATA"], kind + ".mfa")
     # The array is named after the model's field: the built-in's name.
     return pvs.MFAModelReader(FileName=path), "marschner-lobb", (0.0, 1.0)
 
 
+def check_cells_counted_once(src, cells):
+    """The carriers' cells that are not ghost cells cover the data once, whatever the number of
+    ranks: Integrate Variables (which skips ghost cells) gives the data's volume."""
+    integrated = pvs.servermanager.Fetch(pvs.IntegrateVariables(Input=src))
+    volume = integrated.GetCellData().GetArray("Volume").GetValue(0)
+    if abs(volume - cells) > 1e-6 * cells:
+        raise SystemExit(f"the carriers' cells add up to a volume of {volume}, not {cells}")
+
+
 def render(kind, png):
     load_plugin()
     src, array, (lo, hi) = source(kind)
+    if kind.startswith("encode"):
+        check_cells_counted_once(src, 40 ** 3)
     view = pvs.CreateRenderView()
     view.ViewSize = SIZE
     view.OrientationAxesVisibility = 0
@@ -63,7 +77,7 @@ def render(kind, png):
     opacity.Points = [lo, 0.0, 0.5, 0.0, lo + 0.45 * (hi - lo), 0.0, 0.5, 0.0,
                       lo + 0.55 * (hi - lo), 0.8, 0.5, 0.0, hi, 0.8, 0.5, 0.0]
     # World units: the Wavelet spans 40, the models 2.
-    display.ScalarOpacityUnitDistance = 2.0 if kind == "encode" else 0.1
+    display.ScalarOpacityUnitDistance = 2.0 if kind.startswith("encode") else 0.1
     display.Shade = 1
     view.ResetCamera()
     camera = view.GetActiveCamera()

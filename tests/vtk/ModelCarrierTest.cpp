@@ -210,8 +210,10 @@ TEST(ModelCarrier, EncoderPiecesCompositeToTheWholeImage) {
   EXPECT_GT(compareImages(reference, pieces).psnr, 40.0);
 }
 
-// PassInputValues: the carrier's point scalars are the input's samples (the input's own array
-// on one piece, the piece's own points on two), and the models are those of the default carrier.
+// PassInputValues: the carrier's point scalars are the input's samples, the input's own array
+// (shared, not copied) on one piece and on each of two; a piece's carrier then keeps the
+// input's extent, the cells outside its own region marked as ghost cells. The models are those
+// of the default carrier.
 TEST(ModelCarrier, EncoderCanPassTheInputSamplesThrough) {
   vtkSmartPointer<vtkImageData> input = imageOf(mlGrid());
   vtkDataArray* samples = input->GetPointData()->GetScalars();
@@ -241,31 +243,49 @@ TEST(ModelCarrier, EncoderCanPassTheInputSamplesThrough) {
       auto* a = vtkImageData::SafeDownCast(evaluated->GetOutputDataObject(0));
       auto* b = vtkImageData::SafeDownCast(passed->GetOutputDataObject(0));
       ASSERT_TRUE(a && b);
-      int ea[6], eb[6];
+      int ea[6], eb[6], ein[6];
       a->GetExtent(ea);
       b->GetExtent(eb);
-      for (int i = 0; i < 6; ++i) EXPECT_EQ(ea[i], eb[i]);
+      input->GetExtent(ein);
+      for (int i = 0; i < 6; ++i) EXPECT_EQ(eb[i], ein[i]);
+      // The ghost cells: exactly the cells outside the evaluated carrier's (the piece's own).
+      vtkUnsignedCharArray* ghosts = b->GetCellGhostArray();
+      if (pieces == 1) {
+        EXPECT_FALSE(b->HasAnyGhostCells());
+      } else {
+        ASSERT_NE(ghosts, nullptr);
+        vtkIdType owned = 0;
+        for (int k = eb[4]; k < eb[5]; ++k)
+          for (int j = eb[2]; j < eb[3]; ++j)
+            for (int i = eb[0]; i < eb[1]; ++i) {
+              int ijk[3] = {i, j, k};
+              const bool own =
+                  i >= ea[0] && i < ea[1] && j >= ea[2] && j < ea[3] && k >= ea[4] && k < ea[5];
+              const bool ghost = ghosts->GetValue(b->ComputeCellId(ijk)) != 0;
+              ASSERT_EQ(ghost, !own) << i << " " << j << " " << k;
+              owned += own;
+            }
+        EXPECT_EQ(owned, a->GetNumberOfCells());
+      }
       const std::vector<float> ctrl = controlPoints(b);
       EXPECT_FALSE(ctrl.empty());
       EXPECT_EQ(controlPoints(a), ctrl);
       vtkDataArray* values = b->GetPointData()->GetScalars();
       ASSERT_NE(values, nullptr);
-      if (pieces == 1)
-        EXPECT_EQ(values, samples);  // shared, not copied
-      else
-        EXPECT_LT(values->GetNumberOfTuples(), samples->GetNumberOfTuples());
+      EXPECT_EQ(values, samples);  // shared, not copied
       ASSERT_EQ(values->GetNumberOfTuples(), b->GetNumberOfPoints());
       // Every carrier point holds the input's sample there; the evaluated carrier holds the
       // interpolating model's value, which differs from it by rounding only.
       vtkDataArray* modelValues = a->GetPointData()->GetScalars();
       double worst = 0.0;
-      for (int k = eb[4]; k <= eb[5]; ++k)
-        for (int j = eb[2]; j <= eb[3]; ++j)
-          for (int i = eb[0]; i <= eb[1]; ++i) {
+      for (int k = ea[4]; k <= ea[5]; ++k)
+        for (int j = ea[2]; j <= ea[3]; ++j)
+          for (int i = ea[0]; i <= ea[1]; ++i) {
             int ijk[3] = {i, j, k};
             const vtkIdType at = b->ComputePointId(ijk), in = input->ComputePointId(ijk);
             ASSERT_EQ(values->GetTuple1(at), samples->GetTuple1(in)) << i << " " << j << " " << k;
-            worst = std::max(worst, std::abs(modelValues->GetTuple1(at) - values->GetTuple1(at)));
+            worst = std::max(worst, std::abs(modelValues->GetTuple1(a->ComputePointId(ijk)) -
+                                             values->GetTuple1(at)));
           }
       EXPECT_LT(worst, 1e-4);
     }

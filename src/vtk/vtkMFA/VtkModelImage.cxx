@@ -73,7 +73,7 @@ CarrierGrid carrierSubGrid(const CarrierGrid& whole, const DomainBox& region) {
 }
 
 vtkSmartPointer<vtkImageData> imageOfModels(std::vector<CarriedModel> models, const int* firstIndex,
-                                            const CarrierValues& values) {
+                                            const CarrierValues& values, const int* reach) {
   if (models.empty()) throw Error("internal: a carrier needs at least one model");
   DomainBox all = models.front().region;
   for (const auto& m : models) {
@@ -87,6 +87,16 @@ vtkSmartPointer<vtkImageData> imageOfModels(std::vector<CarriedModel> models, co
       grid.origin[a] -= firstIndex[a] * grid.spacing[a];
       grid.extent[2 * a] += firstIndex[a];
       grid.extent[2 * a + 1] += firstIndex[a];
+    }
+  }
+  if (reach && values && !std::equal(reach, reach + 6, grid.extent)) {
+    CarrierGrid wide = grid;  // the origin is that of index 0: the same for the wider extent
+    std::copy(reach, reach + 6, wide.extent);
+    if (vtkSmartPointer<vtkDataArray> samples = values(wide)) {
+      vtkSmartPointer<vtkImageData> image = imageOfModels(
+          std::move(models), wide, [&samples](const CarrierGrid&) { return samples; });
+      image->GenerateGhostArray(grid.extent, true);
+      return image;
     }
   }
   return imageOfModels(std::move(models), grid, values);

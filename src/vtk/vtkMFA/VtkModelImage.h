@@ -77,9 +77,15 @@ vtkSmartPointer<vtkImageData> imageOfModels(std::vector<CarriedModel> models,
 // the index of the carrier's first point, for a carrier made from image data, so that its
 // extent lies in the input's index space (a pipeline crops an image to the update extent it
 // asked for, which is in that space); null: the extent starts at 0.
+// reach (optional, with values): the carrier's extent in that index space when it reaches past
+// the regions (a piece of a parallel pipeline with its ghost layers). Where `values` gives its
+// array for that grid, the carrier takes it (the input's own array: no copy) and marks the
+// cells outside the regions as ghost cells (vtkGhostType, duplicates that another piece owns);
+// otherwise the carrier covers the regions only.
 vtkSmartPointer<vtkImageData> imageOfModels(std::vector<CarriedModel> models,
                                             const int* firstIndex = nullptr,
-                                            const CarrierValues& values = {});
+                                            const CarrierValues& values = {},
+                                            const int* reach = nullptr);
 
 // The name of a carrier's point array for `model`: the model's field, "MFA value" when it has
 // none.

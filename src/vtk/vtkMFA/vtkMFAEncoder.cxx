@@ -191,6 +191,8 @@ int vtkMFAEncoder::RequestData(vtkInformation*, vtkInformationVector** inInfo,
     mfadvr::Model model;
     double region[6];
     bool hasRegion = false;
+    int reach[6];  // the carrier's extent with the piece's ghost layers, where it keeps them
+    bool hasReach = false;
     int firstIndex[3] = {0, 0, 0};  // of the carrier's first point, in the input's index space
     bool fromImage = false;
     mfadvr::vtkglue::CarrierValues values;  // the input's samples for the carrier, if asked
@@ -235,6 +237,12 @@ int vtkMFAEncoder::RequestData(vtkInformation*, vtkInformationVector** inInfo,
         }
         hasRegion = true;
         for (int a = 0; a < 3; ++a) firstIndex[a] = own[2 * a];
+        // Passed values: the carrier keeps the piece's ghost layers (as ghost cells) so that
+        // its scalars are the input's array itself, not a copy of the piece's own extent.
+        if (values) {
+          std::copy(ext, ext + 6, reach);
+          hasReach = true;
+        }
       } else {
         model = mfadvr::encodeStructured(grid, options, &report);
       }
@@ -253,7 +261,8 @@ int vtkMFAEncoder::RequestData(vtkInformation*, vtkInformationVector** inInfo,
                                          << this->LastMaxRelativeError);
     }
     this->SetOutputModel(outInfo, std::make_shared<const mfadvr::Model>(std::move(model)),
-                         hasRegion ? region : nullptr, fromImage ? firstIndex : nullptr, values);
+                         hasRegion ? region : nullptr, fromImage ? firstIndex : nullptr, values,
+                         hasReach ? reach : nullptr);
   } catch (const std::exception& e) {
     vtkErrorMacro(<< e.what());
     return 0;

@@ -96,10 +96,11 @@ class VTKMFA_EXPORT vtkMFAEncoder : public vtkMFAModelAlgorithm {
   //@{
   /**
    * With OutputImageData and image data whose field is a point array: the carrier's point
-   * scalars are the input's samples (the input's own array, shared without a copy where the
-   * carrier covers the whole input; a piece's own extent copied from it in a parallel pipeline)
-   * instead of the model evaluated on the grid. Saves the evaluation and, on one piece, a float
-   * per sample (docs/paraview.md); slices, contours and colour ranges of the carrier
+   * scalars are the input's samples (the input's own array, shared without a copy) instead of
+   * the model evaluated on the grid. A piece of a parallel pipeline then keeps the input's
+   * extent, ghost layers included, its cells outside the piece's own extent marked as ghost
+   * cells (vtkGhostType); the models' regions stay the piece's own. Saves the evaluation and a
+   * float per sample (docs/paraview.md); slices, contours and colour ranges of the carrier
    * then show the data, the volume the model. Default off.
    */
   vtkSetMacro(PassInputValues, bool);

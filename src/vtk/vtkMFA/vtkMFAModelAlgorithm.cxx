@@ -82,7 +82,8 @@ int vtkMFAModelAlgorithm::RequestUpdateExtent(vtkInformation*, vtkInformationVec
 void vtkMFAModelAlgorithm::SetOutputModel(vtkInformationVector* outInfo,
                                           std::shared_ptr<const mfadvr::Model> model,
                                           const double* renderBounds, const int* firstIndex,
-                                          const mfadvr::vtkglue::CarrierValues& values) {
+                                          const mfadvr::vtkglue::CarrierValues& values,
+                                          const int* reach) {
   vtkDataObject* output = outInfo->GetInformationObject(0)->Get(vtkDataObject::DATA_OBJECT());
   if (auto* image = vtkImageData::SafeDownCast(output)) {
     mfadvr::vtkglue::CarriedModel carried{nullptr, model->domain()};
@@ -94,7 +95,8 @@ void vtkMFAModelAlgorithm::SetOutputModel(vtkInformationVector* outInfo,
     carried.model = std::move(model);
     std::vector<mfadvr::vtkglue::CarriedModel> models;
     models.push_back(std::move(carried));
-    image->ShallowCopy(mfadvr::vtkglue::imageOfModels(std::move(models), firstIndex, values));
+    image->ShallowCopy(
+        mfadvr::vtkglue::imageOfModels(std::move(models), firstIndex, values, reach));
   } else if (auto* data = vtkMFAModelData::SafeDownCast(output)) {
     data->SetModel(std::move(model));
   }

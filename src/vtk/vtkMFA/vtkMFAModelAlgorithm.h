@@ -71,13 +71,16 @@ class VTKMFA_EXPORT vtkMFAModelAlgorithm : public vtkAlgorithm {
    * carries it; renderBounds (image data only): the region to render, null for the model's box;
    * firstIndex (image data only): the index of the carrier's first point in the input image's
    * index space, null for 0; values (image data only, optional): the carrier's point scalars
-   * instead of the model evaluated on its grid (VtkModelImage.h).
+   * instead of the model evaluated on its grid; reach (image data only, with values, optional):
+   * the carrier's extent past renderBounds, its cells outside them marked as ghost cells
+   * (VtkModelImage.h).
    */
   void SetOutputModel(
       vtkInformationVector* outInfo, std::shared_ptr<const mfadvr::Model> model,
       const double* renderBounds = nullptr, const int* firstIndex = nullptr,
       const std::function<vtkSmartPointer<vtkDataArray>(const mfadvr::vtkglue::CarrierGrid&)>&
-          values = {});
+          values = {},
+      const int* reach = nullptr);
 #endif
 
   bool OutputImageData = false;

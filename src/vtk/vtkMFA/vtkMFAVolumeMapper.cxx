@@ -165,6 +165,10 @@ vtkMFAModelData* vtkMFAVolumeMapper::GetMFAInput() {
   return this->Internal->Model;
 }
 
+bool vtkMFAVolumeMapper::CarriesModels(vtkDataObject* data) {
+  return mfadvr::vtkglue::carriesModels(data);
+}
+
 vtkMFAModelData* vtkMFAVolumeMapper::UpdateModel() {
   vtkSmartPointer<vtkMFAModelData> model;
   bool carrier = false;

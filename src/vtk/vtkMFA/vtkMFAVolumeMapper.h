@@ -57,6 +57,12 @@ class VTKMFA_EXPORT vtkMFAVolumeMapper : public vtkVolumeMapper {
   void SetInputData(vtkMFAModelData* model);
   //@}
 
+  /**
+   * Whether `data` is image data that carries MFA models (the output of vtkMFAReader or of
+   * vtkMFAEncoder with OutputImageData): what this mapper renders as models, not as samples.
+   */
+  static bool CarriesModels(vtkDataObject* data);
+
   //@{
   /**
    * Aliases of SetInputConnection / SetInputData (port 0), kept for programs written when the

@@ -1,7 +1,15 @@
 #include "vtkMFAVolumeRepresentation.h"
 
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
 #include "vtkMFAVolumeMapper.h"
+#include "vtkMath.h"
 #include "vtkObjectFactory.h"
+#include "vtkOutlineSource.h"
+#include "vtkPVLODVolume.h"
+#include "vtkSmartPointer.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
 
 vtkStandardNewMacro(vtkMFAVolumeRepresentation);
 
@@ -39,4 +47,34 @@ void vtkMFAVolumeRepresentation::SetImageSampleDistance(double distance) {
 void vtkMFAVolumeRepresentation::SetMaximumImageSampleDistance(double distance) {
   this->GetMFAMapper()->SetMaximumImageSampleDistance(distance);
   this->Modified();
+}
+
+int vtkMFAVolumeRepresentation::RequestData(vtkInformation* request,
+                                            vtkInformationVector** inputVector,
+                                            vtkInformationVector* outputVector) {
+  vtkImageData* input = inputVector[0]->GetNumberOfInformationObjects() == 1
+                            ? vtkImageData::GetData(inputVector[0], 0)
+                            : nullptr;
+  if (!input || this->UseSeparateOpacityArray || !input->HasAnyGhostCells() ||
+      !vtkMFAVolumeMapper::CarriesModels(input)) {
+    return this->Superclass::RequestData(request, inputVector, outputVector);
+  }
+  auto cache = vtkSmartPointer<vtkImageData>::New();
+  cache->ShallowCopy(input);
+  this->Actor->SetEnableLOD(0);
+  this->VolumeMapper->SetInputData(cache);
+  double bounds[6];
+  this->GetMFAMapper()->GetBounds(bounds);
+  if (!vtkMath::AreBoundsInitialized(bounds)) {
+    cache->GetBounds(bounds);  // a damaged carrier: the mapper reports it and renders nothing
+  }
+  this->OutlineSource->SetBounds(bounds);
+  this->OutlineSource->GetBounds(this->DataBounds);
+  this->OutlineSource->Update();
+  this->DataSize = cache->GetActualMemorySize();
+  vtkStreamingDemandDrivenPipeline::GetWholeExtent(inputVector[0]->GetInformationObject(0),
+                                                   this->WholeExtent);
+  this->Cache = cache;
+  // The superclass's own work is done above; its superclass's (the property, the time) remains.
+  return this->vtkVolumeRepresentation::RequestData(request, inputVector, outputVector);
 }

@@ -43,6 +43,15 @@ class VTKMFAPARAVIEW_EXPORT vtkMFAVolumeRepresentation : public vtkImageVolumeRe
    */
   vtkMFAVolumeMapper* GetMFAMapper();
 
+  /**
+   * As the superclass, except for a carrier with ghost cells (MFA Encode's output on a rank, with
+   * Pass Input Values: its scalars are the input's own array, ghost layers included). The
+   * superclass would crop the ghost cells away, a copy of the rank's piece; the mapper renders
+   * the models' regions only, so it takes the carrier whole, and the regions are the bounds
+   * (outline, ordered compositing) of the rank.
+   */
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
  private:
   vtkMFAVolumeRepresentation(const vtkMFAVolumeRepresentation&) = delete;
   void operator=(const vtkMFAVolumeRepresentation&) = delete;
