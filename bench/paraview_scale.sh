@@ -10,6 +10,10 @@
 # Needs the paraview preset built (scripts/install-deps.sh --paraview first).
 set -euo pipefail
 raw=${4:+$(realpath "$4")}  # before the cd: relative to the caller
+if [ -n "$raw" ] && [ ! -f "$raw" ]; then
+  echo "paraview_scale.sh: $4: no such file (bench/make_large_volume.py N writes one)" >&2
+  exit 1
+fi
 cd "$(dirname "$0")/.."
 n=${1:-512}
 size=${2:-800}
