@@ -178,7 +178,8 @@ class SplineRaySampler {
     }
     // The flags' strides per axis, and the index of the region's first cell.
     const std::int64_t stride[3] = {1, cells_[0], std::int64_t(cells_[0]) * cells_[1]};
-    std::int64_t first = b[0] + stride[1] * b[1] + stride[2] * b[2];
+    const auto firstCell = [&] { return b[0] + stride[1] * b[1] + stride[2] * b[2]; };
+    std::int64_t first = firstCell();
     for (int walk = 0;; ++walk) {
       // The nearest face and the next one, compared as values rather than looked up by axis.
       const double t0 = tn[0], t1 = tn[1], t2 = tn[2];
@@ -196,18 +197,17 @@ class SplineRaySampler {
       const std::int64_t neighbour = first + step * stride[a];
       const int f = m_.empty[neighbour];
       if (f - 1 < level) break;
+      b[a] = na;
       if (f - 1 == level) {
-        b[a] = na;
         first = neighbour;
         tn[a] = leave(a);
       } else {
         level = f - 1;
-        b[a] = na;
         for (int e = 0; e < 3; ++e) {
           b[e] = (b[e] >> level) << level;
           tn[e] = leave(e);
         }
-        first = b[0] + stride[1] * b[1] + stride[2] * b[2];
+        first = firstCell();
       }
     }
     return true;
