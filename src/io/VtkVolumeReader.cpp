@@ -225,8 +225,24 @@ std::string axesText(const Index3& dims) {
          std::to_string(dims[2]);
 }
 
+// A view of a plain scalar array where it is (one component, contiguous, a numeric type), or
+// an empty view.
+GridSamples viewOf(vtkDataArray* a, const Index3& dims) {
+  if (a->GetNumberOfComponents() != 1 || !a->HasStandardMemoryLayout() ||
+      vtkSampleTypeName(a).empty())
+    return {};
+  switch (a->GetDataType()) {
+    vtkTemplateMacro(
+        return GridSamples::of(static_cast<const VTK_TT*>(a->GetVoidPointer(0)), dims));
+    default:
+      return {};
+  }
+}
+
+// With `inPlace`, a plain scalar array is not copied: *inPlace views it and grid.values stays
+// empty (a copy is made, and *inPlace left empty, for components and magnitudes).
 StructuredGrid toGrid(const std::string& path, VtkVolumeFormat format, vtkImageData* image,
-                      const FieldSelection& field) {
+                      const FieldSelection& field, GridSamples* inPlace = nullptr) {
   if (vtkMatrix3x3* direction = image->GetDirectionMatrix(); direction && !direction->IsIdentity())
     throw Error(path +
                 ": the grid axes are rotated or flipped (direction matrix is not the "
@@ -285,6 +301,10 @@ StructuredGrid toGrid(const std::string& path, VtkVolumeFormat format, vtkImageD
       grid.sampleCount() * array->GetDataTypeSize() *
       (selected.component == FieldSelection::kWholeArray ? 1 : array->GetNumberOfComponents());
   // VTK's point and cell order is x fastest, like StructuredGrid's.
+  if (inPlace) {
+    *inPlace = viewOf(array, grid.dims);
+    if (!inPlace->empty()) return grid;
+  }
   grid.values = selectedValues<float>(selected);
   return grid;
 }
@@ -319,13 +339,14 @@ StructuredGrid readVtkVolume(const std::string& path, VtkVolumeFormat format,
 }
 
 StructuredGrid gridFromVtkImage(vtkImageData* image, const std::string& field,
-                                const std::string& source) {
+                                const std::string& source, GridSamples* inPlace) {
+  if (inPlace) *inPlace = GridSamples();
   if (!image || image->GetNumberOfPoints() == 0)
     throw Error(source + ": the image data holds no samples");
   // The NRRD-specific advice never applies to in-memory images.
   FieldSelection selection;
   selection.name = field;
-  StructuredGrid grid = toGrid(source, VtkVolumeFormat::kXmlImageData, image, selection);
+  StructuredGrid grid = toGrid(source, VtkVolumeFormat::kXmlImageData, image, selection, inPlace);
   grid.source = source;
   return grid;
 }

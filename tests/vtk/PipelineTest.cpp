@@ -14,8 +14,12 @@
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
+#include <vtkTrivialProducer.h>
+#include <vtkUnsignedCharArray.h>
 #include <vtkUnstructuredGrid.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -25,6 +29,7 @@
 #include "TestSupport.h"
 #include "VtkSceneFixture.h"
 #include "core/encode/PieceEncoder.h"
+#include "core/encode/StructuredEncoder.h"
 #include "core/model/BlockModelFile.h"
 #include "core/model/ModelFile.h"
 #include "vtkMFAEncoder.h"
@@ -167,6 +172,51 @@ TEST(MFAEncoder, FitsImageDataWithTheGivenControlCounts) {
   out->GetScalarRange(r);
   EXPECT_LE(worst / (r[1] - r[0]), encoder->GetLastMaxRelativeError() + 1e-6);
   EXPECT_GT(encoder->GetLastMaxRelativeError(), 0.0);
+}
+
+// A uint8 image is fitted from its own array, plane by plane (no float32 copy of it): the model
+// is the one of the float samples, bit for bit, for the whole image and for a piece of it.
+TEST(MFAEncoder, FitsAByteImageAsItsFloatSamples) {
+  StructuredGrid grid = mlGrid(19);
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetDimensions(19, 19, 19);
+  image->SetOrigin(grid.origin.data());
+  image->SetSpacing(grid.spacing.data());
+  vtkNew<vtkUnsignedCharArray> bytes;
+  bytes->SetName("density");
+  bytes->SetNumberOfTuples(vtkIdType(grid.values.size()));
+  for (size_t i = 0; i < grid.values.size(); ++i) {
+    bytes->SetValue(vtkIdType(i), static_cast<unsigned char>(std::lround(grid.values[i] * 250.0)));
+    grid.values[i] = bytes->GetValue(vtkIdType(i));
+  }
+  image->GetPointData()->SetScalars(bytes);
+  vtkNew<vtkTrivialProducer> producer;
+  producer->SetOutput(image);
+  vtkNew<vtkMFAEncoder> encoder;
+  encoder->SetInputConnection(producer->GetOutputPort());
+  encoder->SetNumberOfControlPoints(14, 15, 16);
+  encoder->Update();
+  ASSERT_TRUE(encoder->GetOutput()->HasModel());
+  StructuredFitOptions fit;
+  fit.controlCounts = {14, 15, 16};
+  const Model expected = fitStructured(grid, fit);
+  const auto same = [](const Model& a, const Model& b) {
+    const auto pa = a.spline().controlPoints(), pb = b.spline().controlPoints();
+    return std::equal(pa.begin(), pa.end(), pb.begin(), pb.end());
+  };
+  const Model& whole = *encoder->GetOutput()->GetModel();
+  EXPECT_TRUE(same(whole, expected));
+  EXPECT_EQ(whole.provenance().sampleType, "uint8");
+  EXPECT_EQ(whole.provenance().maxError, expected.provenance().maxError);
+  // Piece 1 of 2: the trivial producer gives the whole image, which the encoder fits as the
+  // piece's samples with their ghost layers (the piece fit, at the whole image's density).
+  encoder->UpdatePiece(1, 2, 0);
+  ASSERT_TRUE(encoder->GetOutput()->HasModel());
+  const auto [lo, hi] = std::minmax_element(grid.values.begin(), grid.values.end());
+  EncodeOptions options;
+  options.controlCounts = {14, 15, 16};
+  EXPECT_TRUE(same(*encoder->GetOutput()->GetModel(),
+                   encodeStructuredPiece(grid, grid.dims, options, *lo, *hi)));
 }
 
 // Images are fitted plainly unless ImageSmoothing is set; Smoothing is for scattered data.

@@ -104,6 +104,29 @@ Model encodeStructured(const StructuredGrid& grid, const EncodeOptions& options,
   return m;
 }
 
+Model encodeStructured(const StructuredGrid& layout, const GridSamples& samples,
+                       const EncodeOptions& options, FitReport* report) {
+  const bool planeByPlane = !options.autoSmoothing && !options.adaptive &&
+                            options.coding.budget.kind == BudgetKind::kNone &&
+                            !options.coding.coder;
+  if (!planeByPlane) {
+    StructuredGrid grid = layout;
+    grid.values = samples.toFloats();
+    return encodeStructured(grid, options, report);
+  }
+  if (options.smoothing) validateSmoothing(*options.smoothing);
+  StructuredFitOptions fit;
+  fit.degree = options.degree;
+  fit.controlCounts = options.controlCounts;
+  fit.smoothing = options.smoothing.value_or(0.0);
+  fit.progress = options.progress;
+  FitReport local;
+  FitReport& r = report ? *report : local;
+  Model m = fitStructured(layout, samples, fit, &r);
+  r.smoothing = fit.smoothing;
+  return m;
+}
+
 Index3 maskDimsFor(const ScatteredData& data, const MaskOptions& options) {
   if (options.dims[0] > 0) return options.dims;
   const DomainBox box{data.boxMin(), data.boxMax()};

@@ -53,6 +53,12 @@ struct EncodeOptions {
 Model encodeStructured(const StructuredGrid& grid, const EncodeOptions& options,
                        FitReport* report = nullptr);
 
+// The same for samples held elsewhere (GridSamples; `layout` gives dims, box and provenance). A
+// plain or smoothed fit without coding reads them plane by plane (no float32 copy of the grid);
+// automatic smoothing, error bounds, budgets and coders work on a float32 copy.
+Model encodeStructured(const StructuredGrid& layout, const GridSamples& samples,
+                       const EncodeOptions& options, FitReport* report = nullptr);
+
 // options with autoSmoothing replaced by the lambda chosen for `grid` (for fitting pieces of one
 // grid with one lambda); `choice` receives the choice when made.
 EncodeOptions withChosenSmoothing(const StructuredGrid& grid, const EncodeOptions& options,

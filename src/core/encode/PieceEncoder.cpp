@@ -36,9 +36,11 @@ int defaultGhostLayers(const Degree3& degree) {
   return 2 * (*std::max_element(degree.begin(), degree.end()) + 1);
 }
 
-Model encodeStructuredPiece(const StructuredGrid& pieceGrid, const Index3& wholeDims,
-                            const EncodeOptions& options, double valueMin, double valueMax,
-                            FitReport* report) {
+namespace {
+
+// options with the whole grid's control counts scaled to the piece (same density).
+EncodeOptions pieceOptions(const StructuredGrid& pieceGrid, const Index3& wholeDims,
+                           const EncodeOptions& options) {
   EncodeOptions piece = options;
   for (int a = 0; a < 3; ++a) {
     if (options.controlCounts[a] <= 0) continue;
@@ -57,7 +59,24 @@ Model encodeStructuredPiece(const StructuredGrid& pieceGrid, const Index3& whole
       if (piece.adaptive->maxControlCounts[a] > 0)
         piece.adaptive->maxControlCounts[a] =
             std::min<std::int64_t>(piece.adaptive->maxControlCounts[a], pieceGrid.dims[a]);
-  Model m = encodeStructured(pieceGrid, piece, report);
+  return piece;
+}
+
+}  // namespace
+
+Model encodeStructuredPiece(const StructuredGrid& pieceGrid, const Index3& wholeDims,
+                            const EncodeOptions& options, double valueMin, double valueMax,
+                            FitReport* report) {
+  Model m = encodeStructured(pieceGrid, pieceOptions(pieceGrid, wholeDims, options), report);
+  m.setValueRange(valueMin, valueMax);
+  return m;
+}
+
+Model encodeStructuredPiece(const StructuredGrid& pieceLayout, const GridSamples& samples,
+                            const Index3& wholeDims, const EncodeOptions& options, double valueMin,
+                            double valueMax, FitReport* report) {
+  Model m =
+      encodeStructured(pieceLayout, samples, pieceOptions(pieceLayout, wholeDims, options), report);
   m.setValueRange(valueMin, valueMax);
   return m;
 }

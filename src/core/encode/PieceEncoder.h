@@ -41,6 +41,10 @@ int defaultGhostLayers(const Degree3& degree);
 Model encodeStructuredPiece(const StructuredGrid& pieceGrid, const Index3& wholeDims,
                             const EncodeOptions& options, double valueMin, double valueMax,
                             FitReport* report = nullptr);
+// The same for a piece whose samples are held elsewhere (Encoder.h's encodeStructured).
+Model encodeStructuredPiece(const StructuredGrid& pieceLayout, const GridSamples& samples,
+                            const Index3& wholeDims, const EncodeOptions& options, double valueMin,
+                            double valueMax, FitReport* report = nullptr);
 
 // Blocks per axis for out-of-core encoding: pieces of at most kDefaultBlockIntervals sample
 // intervals along each axis (about 256^3 samples, a fit of a few hundred MB, and a good share

@@ -194,20 +194,21 @@ class AxisEvaluator {
 // places of its first n2 values), so that besides the samples only that array lives: 4 bytes
 // per sample instead of two double arrays (16). Every solve runs in double; the intermediate
 // coefficients are rounded to float once, as the stored model is.
-std::vector<float> fitControlPoints(const StructuredGrid& grid,
+std::vector<float> fitControlPoints(const GridSamples& samples,
                                     const std::array<AxisSampling, 3>& sampling, double smoothing,
                                     const std::function<void(double, const char*)>& progress) {
-  const std::int64_t N0 = grid.dims[0], N1 = grid.dims[1], N2 = grid.dims[2];
+  const std::int64_t N0 = samples.dims()[0], N1 = samples.dims()[1], N2 = samples.dims()[2];
   const std::int64_t n0 = sampling[0].controlCount, n1 = sampling[1].controlCount,
                      n2 = sampling[2].controlCount, plane = n0 * n1;
   const AxisFitter fitX(sampling[0], smoothing), fitY(sampling[1], smoothing);
   std::vector<float> ctrl(static_cast<size_t>(plane * N2));
   progress(0.0, "fit x, y");
   tbb::parallel_for(std::int64_t(0), N2, [&](std::int64_t k) {
-    const Eigen::MatrixXd samples =
-        Eigen::Map<const Eigen::MatrixXf>(grid.values.data() + k * N0 * N1, N0, N1).cast<double>();
+    std::vector<float> scratch;
+    const Eigen::MatrixXd planeSamples =
+        Eigen::Map<const Eigen::MatrixXf>(samples.plane(k, scratch), N0, N1).cast<double>();
     Eigen::MatrixXd alongX(n0, N1);
-    fitX(Eigen::Map<const Eigen::MatrixXd>(samples.data(), N0, N1), alongX);
+    fitX(Eigen::Map<const Eigen::MatrixXd>(planeSamples.data(), N0, N1), alongX);
     const Eigen::MatrixXd yLines = alongX.transpose();  // N1 x n0: one y line per column
     Eigen::MatrixXd alongY(n1, n0);
     fitY(Eigen::Map<const Eigen::MatrixXd>(yLines.data(), N1, n0), alongY);
@@ -448,18 +449,36 @@ Index3 resolveControlCounts(const StructuredGrid& grid, const StructuredFitOptio
 Model fitStructured(const StructuredGrid& grid, const StructuredFitOptions& options,
                     FitReport* report) {
   grid.validate();
-  const Index3 n = resolveControlCounts(grid, options);
+  return fitStructured(grid, GridSamples(grid), options, report);
+}
+
+Model fitStructured(const StructuredGrid& layout, const GridSamples& samples,
+                    const StructuredFitOptions& options, FitReport* report) {
+  const Index3 n = resolveControlCounts(layout, options);
   std::array<KnotVector, 3> knots;
   for (int a = 0; a < 3; ++a)
-    knots[a] = knotsForSamples(options.degree[a], static_cast<int>(n[a]), grid.dims[a]);
-  return fitStructuredWithKnots(grid, std::move(knots), options, report);
+    knots[a] = knotsForSamples(options.degree[a], static_cast<int>(n[a]), layout.dims[a]);
+  return fitStructuredWithKnots(layout, samples, std::move(knots), options, report);
 }
 
 Model fitStructuredWithKnots(const StructuredGrid& grid, std::array<KnotVector, 3> knots,
                              const StructuredFitOptions& options, FitReport* report,
                              std::array<std::vector<double>, 3>* spanErrors) {
-  const auto start = std::chrono::steady_clock::now();
   grid.validate();
+  return fitStructuredWithKnots(grid, GridSamples(grid), std::move(knots), options, report,
+                                spanErrors, /*validated=*/true);
+}
+
+// `grid` gives dims, box and provenance; its values are not read (they are in `samples`).
+Model fitStructuredWithKnots(const StructuredGrid& grid, const GridSamples& samples,
+                             std::array<KnotVector, 3> knots, const StructuredFitOptions& options,
+                             FitReport* report, std::array<std::vector<double>, 3>* spanErrors,
+                             bool validated) {
+  const auto start = std::chrono::steady_clock::now();
+  if (!validated) {
+    grid.validateLayout();
+    samples.validateFor(grid);
+  }
   validateSmoothing(options.smoothing);
   Index3 n{};
   Degree3 degree{};
@@ -487,23 +506,25 @@ Model fitStructuredWithKnots(const StructuredGrid& grid, std::array<KnotVector, 
   std::array<AxisSampling, 3> sampling;
   for (int a = 0; a < 3; ++a) sampling[a] = sampleAxis(knots[a], grid.dims[a]);
   std::vector<float> ctrl =
-      fitControlPoints(grid, sampling, options.smoothing,
+      fitControlPoints(samples, sampling, options.smoothing,
                        [&](double f, const char* stage) { progress(0.75 * f, stage); });
 
   // Error of the stored (float32) model at every input sample, z slab by z slab.
   progress(0.75, "error");
   double maxErr = 0.0, sumSq = 0.0;
-  double vmin = grid.values.empty() ? 0.0 : grid.values[0], vmax = vmin;
+  std::vector<float> scratch;
+  double vmin = *samples.values(0, 1, scratch), vmax = vmin;
   if (spanErrors)
     for (int a = 0; a < 3; ++a) (*spanErrors)[a].assign(static_cast<size_t>(n[a] - degree[a]), 0.0);
-  size_t i = 0;
   forEachSlab(
       sampling, ctrl, n, [&](std::int64_t z0, std::int64_t z1, const std::vector<double>& recon) {
+        const std::int64_t planeSize = grid.dims[0] * grid.dims[1];
+        const float* slab = samples.values(z0 * planeSize, (z1 - z0) * planeSize, scratch);
         size_t r = 0;
         for (std::int64_t z = z0; z < z1; ++z)
           for (std::int64_t y = 0; y < grid.dims[1]; ++y)
-            for (std::int64_t x = 0; x < grid.dims[0]; ++x, ++i, ++r) {
-              const double v = grid.values[i];
+            for (std::int64_t x = 0; x < grid.dims[0]; ++x, ++r) {
+              const double v = slab[r];
               const double e = std::abs(recon[r] - v);
               maxErr = std::max(maxErr, e);
               sumSq += e * e;

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "core/encode/FitReport.h"
+#include "core/grid/GridSamples.h"
 #include "core/grid/StructuredGrid.h"
 #include "core/model/Model.h"
 
@@ -35,6 +36,12 @@ struct StructuredFitOptions {
 // that is negative or not finite.
 Model fitStructured(const StructuredGrid& grid, const StructuredFitOptions& options,
                     FitReport* report = nullptr);
+// The same fit of samples held elsewhere (`layout` gives dims, box and provenance; its values
+// are not read): the samples are read one z plane (and one error slab) at a time, so an input
+// in another type costs no float32 copy of the whole grid. Gives the model of the fit above
+// with the samples converted to float32.
+Model fitStructured(const StructuredGrid& layout, const GridSamples& samples,
+                    const StructuredFitOptions& options, FitReport* report = nullptr);
 
 // The same fit with the given knot vectors (any clamped vectors, e.g. refined by the adaptive
 // encoder; n <= samples on every axis). With spanErrors, (*spanErrors)[a][s - p] receives the
@@ -42,6 +49,12 @@ Model fitStructured(const StructuredGrid& grid, const StructuredFitOptions& opti
 Model fitStructuredWithKnots(const StructuredGrid& grid, std::array<KnotVector, 3> knots,
                              const StructuredFitOptions& options, FitReport* report = nullptr,
                              std::array<std::vector<double>, 3>* spanErrors = nullptr);
+// The same with the samples held elsewhere; `validated`: layout and samples were checked.
+Model fitStructuredWithKnots(const StructuredGrid& layout, const GridSamples& samples,
+                             std::array<KnotVector, 3> knots, const StructuredFitOptions& options,
+                             FitReport* report = nullptr,
+                             std::array<std::vector<double>, 3>* spanErrors = nullptr,
+                             bool validated = false);
 
 // For each axis a, the largest absolute error, per knot span of knots[a], of 1-D least-squares
 // fits of every grid line along a with knots[a] alone: where axis a needs knots, whatever the

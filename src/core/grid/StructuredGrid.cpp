@@ -17,7 +17,7 @@ std::string nonFiniteSampleMessage(const StructuredGrid& grid, std::int64_t n, f
   return m.str();
 }
 
-void StructuredGrid::validate() const {
+void StructuredGrid::validateLayout() const {
   const std::string what = source.empty() ? std::string("volume") : source;
   for (int a = 0; a < 3; ++a) {
     if (dims[a] < 1) throw Error(what + ": grid dimensions must be at least 1 on every axis");
@@ -25,6 +25,11 @@ void StructuredGrid::validate() const {
       throw Error(what + ": grid spacing must be positive and finite");
     if (!std::isfinite(origin[a])) throw Error(what + ": grid origin must be finite");
   }
+}
+
+void StructuredGrid::validate() const {
+  validateLayout();
+  const std::string what = source.empty() ? std::string("volume") : source;
   if (static_cast<std::int64_t>(values.size()) != sampleCount()) {
     std::ostringstream m;
     m << what << ": " << values.size() << " values for a " << dims[0] << "x" << dims[1] << "x"

@@ -45,6 +45,9 @@ struct StructuredGrid {
   // Throws mfadvr::Error unless dims >= 1, spacing > 0 and finite, values sized to dims and
   // every value finite (the error names the first bad sample).
   void validate() const;
+  // The same for the layout alone (dims, spacing, origin), for a grid whose samples are held
+  // elsewhere (GridSamples).
+  void validateLayout() const;
 };
 
 // The error for sample n (x fastest) of `grid` being `value`, NaN or Inf: names the sample by

@@ -20,6 +20,9 @@
 #include <exception>
 #include <memory>
 #include <string>
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
 
 #include "VtkModelImage.h"
 #include "core/encode/Encoder.h"
@@ -197,8 +200,13 @@ int vtkMFAEncoder::RequestData(vtkInformation*, vtkInformationVector** inInfo,
     bool fromImage = false;
     mfadvr::vtkglue::CarrierValues values;  // the input's samples for the carrier, if asked
     if (auto* image = vtkImageData::SafeDownCast(input)) {
-      mfadvr::StructuredGrid grid = mfadvr::gridFromVtkImage(image, field, source);
-      grid.validate();
+      // The fit reads a plain scalar array where it is, plane by plane: no float32 copy of the
+      // image (4 bytes per sample) at the encoder's peak.
+      mfadvr::GridSamples inPlace;
+      mfadvr::StructuredGrid grid = mfadvr::gridFromVtkImage(image, field, source, &inPlace);
+      const mfadvr::GridSamples fitSamples = inPlace.empty() ? mfadvr::GridSamples(grid) : inPlace;
+      grid.validateLayout();
+      fitSamples.validateFor(grid);
       fromImage = true;
       if (this->PassInputValues && this->OutputImageData) {
         vtkDataArray* samples = grid.fieldAssociation == "point data"
@@ -227,8 +235,9 @@ int vtkMFAEncoder::RequestData(vtkInformation*, vtkInformationVector** inInfo,
         image->GetExtent(ext);
         const mfadvr::Index3 wholeDims{whole[1] - whole[0] + 1, whole[3] - whole[2] + 1,
                                        whole[5] - whole[4] + 1};
-        const auto [lo, hi] = std::minmax_element(grid.values.begin(), grid.values.end());
-        model = mfadvr::encodeStructuredPiece(grid, wholeDims, options, *lo, *hi, &report);
+        const auto [lo, hi] = fitSamples.range();
+        model =
+            mfadvr::encodeStructuredPiece(grid, fitSamples, wholeDims, options, lo, hi, &report);
         for (int a = 0; a < 3; ++a) {
           own[2 * a] = std::max(own[2 * a], ext[2 * a]);
           own[2 * a + 1] = std::min(own[2 * a + 1], ext[2 * a + 1]);
@@ -244,7 +253,7 @@ int vtkMFAEncoder::RequestData(vtkInformation*, vtkInformationVector** inInfo,
           hasReach = true;
         }
       } else {
-        model = mfadvr::encodeStructured(grid, options, &report);
+        model = mfadvr::encodeStructured(grid, fitSamples, options, &report);
       }
     } else {
       model = mfadvr::encodeScattered(mfadvr::scatteredFromVtkDataSet(input, field, source),
@@ -263,6 +272,12 @@ int vtkMFAEncoder::RequestData(vtkInformation*, vtkInformationVector** inInfo,
     this->SetOutputModel(outInfo, std::make_shared<const mfadvr::Model>(std::move(model)),
                          hasRegion ? region : nullptr, fromImage ? firstIndex : nullptr, values,
                          hasReach ? reach : nullptr);
+#if defined(__GLIBC__)
+    // The fit's working set (about as large as the model) is free now, but glibc keeps freed
+    // pages of its arenas resident, and the renderer's flags and frame buffers would come on
+    // top of them: hand them back (measured under pvbatch: docs/benchmarks.md).
+    malloc_trim(0);
+#endif
   } catch (const std::exception& e) {
     vtkErrorMacro(<< e.what());
     return 0;
