@@ -14,6 +14,7 @@
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
+#include <vtkRTAnalyticSource.h>
 #include <vtkTrivialProducer.h>
 #include <vtkUnsignedCharArray.h>
 #include <vtkUnstructuredGrid.h>
@@ -217,6 +218,35 @@ TEST(MFAEncoder, FitsAByteImageAsItsFloatSamples) {
   options.controlCounts = {14, 15, 16};
   EXPECT_TRUE(same(*encoder->GetOutput()->GetModel(),
                    encodeStructuredPiece(grid, grid.dims, options, *lo, *hi)));
+}
+
+// Under MPI a piece of an image asks its source for its own extent grown by the ghost layers, as
+// one extent: the source reads just that, and adds no ghost-mark array the fit would not use.
+TEST(MFAEncoder, AsksAnImageSourceForItsPieceWithGhostLayers) {
+  vtkNew<vtkRTAnalyticSource> source;
+  source->SetWholeExtent(0, 30, 0, 30, 0, 30);
+  vtkNew<vtkMFAEncoder> encoder;
+  encoder->SetInputConnection(source->GetOutputPort());
+  encoder->SetDegree(2);
+  encoder->SetGhostLevels(3);
+  for (int piece = 0; piece < 2; ++piece) {
+    SCOPED_TRACE("piece " + std::to_string(piece));
+    encoder->UpdatePiece(piece, 2, 0);
+    ASSERT_TRUE(encoder->GetOutput()->HasModel());
+    vtkImageData* read = source->GetOutput();
+    int ext[6];
+    read->GetExtent(ext);
+    // The pipeline's block split of 31^3 points in two halves one axis at point 15; the piece
+    // reaches 3 layers past it.
+    int across = -1;
+    for (int a = 0; a < 3; ++a)
+      if (ext[2 * a] != 0 || ext[2 * a + 1] != 30) across = a;
+    ASSERT_GE(across, 0) << "the source was asked for the whole extent";
+    EXPECT_EQ(piece == 0 ? ext[2 * across + 1] : ext[2 * across], piece == 0 ? 18 : 12);
+    EXPECT_EQ(read->GetPointData()->GetArray("vtkGhostType"), nullptr);
+    EXPECT_FALSE(read->HasAnyGhostPoints());
+    EXPECT_EQ(encoder->GetOutput()->GetModel()->provenance().sampleDims[across], 19);
+  }
 }
 
 // Images are fitted plainly unless ImageSmoothing is set; Smoothing is for scattered data.

@@ -20,9 +20,6 @@
 #include <exception>
 #include <memory>
 #include <string>
-#if defined(__GLIBC__)
-#include <malloc.h>
-#endif
 
 #include "VtkModelImage.h"
 #include "core/encode/Encoder.h"
@@ -70,39 +67,69 @@ int vtkMFAEncoder::EffectiveGhostLevels() const {
              : mfadvr::defaultGhostLayers({this->Degree, this->Degree, this->Degree});
 }
 
+namespace {
+
+// The extent of `whole` that the piece `request` asks for owns without ghost layers (its
+// UPDATE_PIECE_NUMBER of UPDATE_NUMBER_OF_PIECES), as the pipeline splits a whole extent
+// (vtkExtentTranslator, the split mode the request gives, else blocks).
+bool ownExtent(vtkInformation* request, const int whole[6], int ext[6]) {
+  using SDDP = vtkStreamingDemandDrivenPipeline;
+  if (!request->Has(SDDP::UPDATE_NUMBER_OF_PIECES())) return false;
+  const int piece = request->Get(SDDP::UPDATE_PIECE_NUMBER());
+  const int pieces = request->Get(SDDP::UPDATE_NUMBER_OF_PIECES());
+  const int mode = request->Has(vtkExtentTranslator::UPDATE_SPLIT_MODE())
+                       ? request->Get(vtkExtentTranslator::UPDATE_SPLIT_MODE())
+                       : vtkExtentTranslator::BLOCK_MODE;
+  vtkNew<vtkExtentTranslator> translator;
+  int w[6];
+  std::copy(whole, whole + 6, w);
+  return translator->PieceToExtentThreadSafe(piece, pieces, 0, w, ext, mode, 0) != 0;
+}
+
+// The piece count the output was asked for (1 when none).
+int requestedPieces(vtkInformation* out) {
+  using SDDP = vtkStreamingDemandDrivenPipeline;
+  return out->Has(SDDP::UPDATE_NUMBER_OF_PIECES()) ? out->Get(SDDP::UPDATE_NUMBER_OF_PIECES()) : 1;
+}
+
+}  // namespace
+
 int vtkMFAEncoder::RequestUpdateExtent(vtkInformation*, vtkInformationVector** inInfo,
                                        vtkInformationVector* outInfo) {
   vtkInformation* out = outInfo->GetInformationObject(0);
   vtkInformation* in = inInfo[0]->GetInformationObject(0);
   using SDDP = vtkStreamingDemandDrivenPipeline;
-  const int pieces =
-      out->Has(SDDP::UPDATE_NUMBER_OF_PIECES()) ? out->Get(SDDP::UPDATE_NUMBER_OF_PIECES()) : 1;
+  const int pieces = requestedPieces(out);
   if (pieces > 1) {
     const int asked = out->Has(SDDP::UPDATE_NUMBER_OF_GHOST_LEVELS())
                           ? out->Get(SDDP::UPDATE_NUMBER_OF_GHOST_LEVELS())
                           : 0;
-    in->Set(SDDP::UPDATE_NUMBER_OF_GHOST_LEVELS(), asked + this->EffectiveGhostLevels());
+    const int layers = asked + this->EffectiveGhostLevels();
+    int ext[6], whole[6];
+    if (in->Has(SDDP::WHOLE_EXTENT())) {
+      // An image: its piece grown by the layers, asked for as one extent (as image filters ask
+      // for the neighbourhoods of their kernels) and not as a piece with ghost levels, for which
+      // the pipeline would add a ghost-mark array (1 byte per point) to the input that the fit
+      // does not use (the carrier marks its own ghost cells). One piece of that extent, so
+      // that a reader does not split it again.
+      in->Get(SDDP::WHOLE_EXTENT(), whole);
+      ownExtent(out, whole, ext);
+      for (int a = 0; a < 3; ++a) {
+        ext[2 * a] = std::max(whole[2 * a], ext[2 * a] - layers);
+        ext[2 * a + 1] = std::min(whole[2 * a + 1], ext[2 * a + 1] + layers);
+      }
+      in->Set(SDDP::UPDATE_EXTENT(), ext, 6);
+      in->Set(SDDP::UPDATE_PIECE_NUMBER(), 0);
+      in->Set(SDDP::UPDATE_NUMBER_OF_PIECES(), 1);
+      in->Set(SDDP::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
+    } else {
+      in->Set(SDDP::UPDATE_NUMBER_OF_GHOST_LEVELS(), layers);
+    }
   }
   return 1;
 }
 
 namespace {
-
-// The extent piece `piece` of `pieces` owns without ghost layers, as the pipeline splits a
-// whole extent (vtkExtentTranslator, the split mode the pipeline was given, else blocks).
-bool ownExtent(vtkInformation* in, int ext[6]) {
-  using SDDP = vtkStreamingDemandDrivenPipeline;
-  if (!in->Has(SDDP::WHOLE_EXTENT()) || !in->Has(SDDP::UPDATE_NUMBER_OF_PIECES())) return false;
-  int whole[6];
-  in->Get(SDDP::WHOLE_EXTENT(), whole);
-  const int piece = in->Get(SDDP::UPDATE_PIECE_NUMBER());
-  const int pieces = in->Get(SDDP::UPDATE_NUMBER_OF_PIECES());
-  const int mode = in->Has(vtkExtentTranslator::UPDATE_SPLIT_MODE())
-                       ? in->Get(vtkExtentTranslator::UPDATE_SPLIT_MODE())
-                       : vtkExtentTranslator::BLOCK_MODE;
-  vtkNew<vtkExtentTranslator> translator;
-  return translator->PieceToExtentThreadSafe(piece, pieces, 0, whole, ext, mode, 0) != 0;
-}
 
 // The samples of `source` (a point array of `image`) on a carrier's grid: the array itself
 // when the grid is the image's, a copy of the grid's extent when it lies within the image's,
@@ -184,8 +211,8 @@ int vtkMFAEncoder::RequestData(vtkInformation*, vtkInformationVector** inInfo,
   const std::string source = std::string("VTK ") + input->GetClassName();
   vtkInformation* in = inInfo[0]->GetInformationObject(0);
   using SDDP = vtkStreamingDemandDrivenPipeline;
-  const int pieces =
-      in->Has(SDDP::UPDATE_NUMBER_OF_PIECES()) ? in->Get(SDDP::UPDATE_NUMBER_OF_PIECES()) : 1;
+  vtkInformation* request = outInfo->GetInformationObject(0);  // the piece asked for
+  const int pieces = requestedPieces(request);
   if (input->GetNumberOfPoints() == 0 && pieces > 1) {
     return 1;  // this piece holds no data: nothing to fit or render
   }
@@ -226,12 +253,12 @@ int vtkMFAEncoder::RequestData(vtkInformation*, vtkInformationVector** inInfo,
       options.smoothing = this->ImageSmoothing;
       const int* dataExtent = image->GetExtent();
       for (int a = 0; a < 3; ++a) firstIndex[a] = dataExtent[2 * a];
-      int own[6];
-      if (pieces > 1 && ownExtent(in, own)) {
+      int own[6], whole[6];
+      if (pieces > 1 && in->Has(SDDP::WHOLE_EXTENT()) &&
+          (in->Get(SDDP::WHOLE_EXTENT(), whole), ownExtent(request, whole, own))) {
         // One piece with its ghost layers: fitted at the whole image's control-point density,
         // rendered in its own extent only.
-        int whole[6], ext[6];
-        in->Get(SDDP::WHOLE_EXTENT(), whole);
+        int ext[6];
         image->GetExtent(ext);
         const mfadvr::Index3 wholeDims{whole[1] - whole[0] + 1, whole[3] - whole[2] + 1,
                                        whole[5] - whole[4] + 1};
@@ -272,12 +299,6 @@ int vtkMFAEncoder::RequestData(vtkInformation*, vtkInformationVector** inInfo,
     this->SetOutputModel(outInfo, std::make_shared<const mfadvr::Model>(std::move(model)),
                          hasRegion ? region : nullptr, fromImage ? firstIndex : nullptr, values,
                          hasReach ? reach : nullptr);
-#if defined(__GLIBC__)
-    // The fit's working set (about as large as the model) is free now, but glibc keeps freed
-    // pages of its arenas resident, and the renderer's flags and frame buffers would come on
-    // top of them: hand them back (measured under pvbatch: docs/benchmarks.md).
-    malloc_trim(0);
-#endif
   } catch (const std::exception& e) {
     vtkErrorMacro(<< e.what());
     return 0;

@@ -12,8 +12,10 @@
  * array, averaged to the points).
  *
  * In a parallel pipeline (ParaView's ranks), each piece fits its own part: image data are
- * requested with GhostLevels layers of the neighbouring pieces' samples, fitted together with
- * them, and the model renders only the piece's own extent (PieceEncoder.h); control counts are
+ * requested as the piece's extent grown by GhostLevels layers of the neighbouring pieces'
+ * samples (one extent, not ghost levels: the input then carries no ghost-mark array), fitted
+ * together with them, and the model renders only the piece's own extent (PieceEncoder.h); a
+ * plain scalar array is read where it is, without a float32 copy; control counts are
  * then for the whole image and scaled to the piece. With OutputImageData on, the output is an
  * image carrying the model and its region (vtkMFAModelAlgorithm), which is how ParaView moves
  * it.
