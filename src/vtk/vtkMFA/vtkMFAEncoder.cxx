@@ -106,14 +106,13 @@ int vtkMFAEncoder::RequestUpdateExtent(vtkInformation*, vtkInformationVector** i
                           : 0;
     const int layers = asked + this->EffectiveGhostLevels();
     int ext[6], whole[6];
-    if (in->Has(SDDP::WHOLE_EXTENT())) {
+    if (in->Has(SDDP::WHOLE_EXTENT()) &&
+        (in->Get(SDDP::WHOLE_EXTENT(), whole), ownExtent(out, whole, ext))) {
       // An image: its piece grown by the layers, asked for as one extent (as image filters ask
       // for the neighbourhoods of their kernels) and not as a piece with ghost levels, for which
       // the pipeline would add a ghost-mark array (1 byte per point) to the input that the fit
       // does not use (the carrier marks its own ghost cells). One piece of that extent, so
       // that a reader does not split it again.
-      in->Get(SDDP::WHOLE_EXTENT(), whole);
-      ownExtent(out, whole, ext);
       for (int a = 0; a < 3; ++a) {
         ext[2 * a] = std::max(whole[2 * a], ext[2 * a] - layers);
         ext[2 * a + 1] = std::min(whole[2 * a + 1], ext[2 * a + 1] + layers);
