@@ -8,6 +8,7 @@
 #include <vtkCommand.h>
 #include <vtkDataSetTriangleFilter.h>
 #include <vtkDoubleArray.h>
+#include <vtkExtentTranslator.h>
 #include <vtkFieldData.h>
 #include <vtkImageData.h>
 #include <vtkNew.h>
@@ -247,6 +248,30 @@ TEST(MFAEncoder, AsksAnImageSourceForItsPieceWithGhostLayers) {
     EXPECT_FALSE(read->HasAnyGhostPoints());
     EXPECT_EQ(encoder->GetOutput()->GetModel()->provenance().sampleDims[across], 19);
   }
+}
+
+// More pieces than the image can be split into: the pieces left empty fit nothing (they do not
+// ask for a corner of the image and fit it as a model of their own).
+TEST(MFAEncoder, PiecesLeftEmptyFitNothing) {
+  vtkNew<vtkRTAnalyticSource> source;
+  source->SetWholeExtent(0, 2, 0, 2, 0, 2);
+  vtkNew<vtkMFAEncoder> encoder;
+  encoder->SetInputConnection(source->GetOutputPort());
+  encoder->SetDegree(1);
+  encoder->SetGhostLevels(1);
+  int whole[6] = {0, 2, 0, 2, 0, 2}, ext[6];
+  vtkNew<vtkExtentTranslator> translator;
+  int empty = 0, fitted = 0;
+  for (int piece = 0; piece < 16; ++piece) {
+    SCOPED_TRACE("piece " + std::to_string(piece));
+    const bool owns = translator->PieceToExtentThreadSafe(piece, 16, 0, whole, ext,
+                                                          vtkExtentTranslator::BLOCK_MODE, 0);
+    encoder->UpdatePiece(piece, 16, 0);
+    EXPECT_EQ(encoder->GetOutput()->HasModel(), owns);
+    (owns ? fitted : empty) += 1;
+  }
+  EXPECT_GT(empty, 0);
+  EXPECT_GT(fitted, 0);
 }
 
 // Images are fitted plainly unless ImageSmoothing is set; Smoothing is for scattered data.
