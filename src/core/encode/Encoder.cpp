@@ -8,13 +8,19 @@ namespace mfadvr {
 
 namespace {
 
-Model encodeStructuredFit(const StructuredGrid& grid, const EncodeOptions& options,
-                          FitReport* report) {
+// The fit the encode options ask for (smoothing resolved: no automatic choice left).
+StructuredFitOptions fitOptionsOf(const EncodeOptions& options) {
   StructuredFitOptions fit;
   fit.degree = options.degree;
   fit.controlCounts = options.controlCounts;
   fit.smoothing = options.smoothing.value_or(0.0);
   fit.progress = options.progress;
+  return fit;
+}
+
+Model encodeStructuredFit(const StructuredGrid& grid, const EncodeOptions& options,
+                          FitReport* report) {
+  const StructuredFitOptions fit = fitOptionsOf(options);
   const CodingOptions& coding = options.coding;
   const bool countsGiven = options.controlCounts[0] > 0;
   if (coding.budget.kind != BudgetKind::kNone) {
@@ -115,11 +121,7 @@ Model encodeStructured(const StructuredGrid& layout, const GridSamples& samples,
     return encodeStructured(grid, options, report);
   }
   if (options.smoothing) validateSmoothing(*options.smoothing);
-  StructuredFitOptions fit;
-  fit.degree = options.degree;
-  fit.controlCounts = options.controlCounts;
-  fit.smoothing = options.smoothing.value_or(0.0);
-  fit.progress = options.progress;
+  const StructuredFitOptions fit = fitOptionsOf(options);
   FitReport local;
   FitReport& r = report ? *report : local;
   Model m = fitStructured(layout, samples, fit, &r);

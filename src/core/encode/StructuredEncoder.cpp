@@ -446,19 +446,30 @@ Index3 resolveControlCounts(const StructuredGrid& grid, const StructuredFitOptio
   return n;
 }
 
-Model fitStructured(const StructuredGrid& grid, const StructuredFitOptions& options,
-                    FitReport* report) {
-  grid.validate();
-  return fitStructured(grid, GridSamples(grid), options, report);
-}
+namespace {
 
-Model fitStructured(const StructuredGrid& layout, const GridSamples& samples,
-                    const StructuredFitOptions& options, FitReport* report) {
+// The knot vectors of a fit with options.controlCounts (0: as many as samples).
+std::array<KnotVector, 3> knotsOfFit(const StructuredGrid& layout,
+                                     const StructuredFitOptions& options) {
   const Index3 n = resolveControlCounts(layout, options);
   std::array<KnotVector, 3> knots;
   for (int a = 0; a < 3; ++a)
     knots[a] = knotsForSamples(options.degree[a], static_cast<int>(n[a]), layout.dims[a]);
-  return fitStructuredWithKnots(layout, samples, std::move(knots), options, report);
+  return knots;
+}
+
+}  // namespace
+
+Model fitStructured(const StructuredGrid& grid, const StructuredFitOptions& options,
+                    FitReport* report) {
+  grid.validate();
+  return fitStructuredWithKnots(grid, GridSamples(grid), knotsOfFit(grid, options), options, report,
+                                nullptr, /*validated=*/true);
+}
+
+Model fitStructured(const StructuredGrid& layout, const GridSamples& samples,
+                    const StructuredFitOptions& options, FitReport* report) {
+  return fitStructuredWithKnots(layout, samples, knotsOfFit(layout, options), options, report);
 }
 
 Model fitStructuredWithKnots(const StructuredGrid& grid, std::array<KnotVector, 3> knots,

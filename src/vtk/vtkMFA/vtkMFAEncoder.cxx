@@ -231,8 +231,6 @@ int vtkMFAEncoder::RequestData(vtkInformation*, vtkInformationVector** inInfo,
       mfadvr::GridSamples inPlace;
       mfadvr::StructuredGrid grid = mfadvr::gridFromVtkImage(image, field, source, &inPlace);
       const mfadvr::GridSamples fitSamples = inPlace.empty() ? mfadvr::GridSamples(grid) : inPlace;
-      grid.validateLayout();
-      fitSamples.validateFor(grid);
       fromImage = true;
       if (this->PassInputValues && this->OutputImageData) {
         vtkDataArray* samples = grid.fieldAssociation == "point data"
