@@ -51,6 +51,24 @@ void convertSamples(const std::string& dtype, const unsigned char* bytes, size_t
   throw Error("internal: no conversion for sample type " + dtype);
 }
 
+// Calls run(first, count) for the runs of consecutive file samples that make up `range`, in
+// the order of the range's samples (x fastest): whole rows, or whole planes, lie one after
+// another in the file and are one run.
+template <typename Run>
+void forEachRun(const Index3& d, const SampleRange& range, Run&& run) {
+  const Index3 r = range.dims();
+  const bool wholeRows = r[0] == d[0], wholePlanes = wholeRows && r[1] == d[1];
+  if (wholePlanes) return run(d[0] * d[1] * range.lo[2], range.sampleCount());
+  for (std::int64_t k = range.lo[2]; k <= range.hi[2]; ++k) {
+    const std::int64_t row = range.lo[0] + d[0] * (range.lo[1] + d[1] * k);
+    if (wholeRows) {
+      run(row, r[0] * r[1]);
+      continue;
+    }
+    for (std::int64_t j = 0; j < r[1]; ++j) run(row + d[0] * j, r[0]);
+  }
+}
+
 }  // namespace
 
 RawVolumeSource::RawVolumeSource(RawSampleLayout file, const StructuredGrid& grid)
@@ -89,24 +107,30 @@ void RawVolumeSource::setPlacement(const Vec3d& origin, const Vec3d& spacing) {
   layout_.spacing = spacing;
 }
 
+void RawVolumeSource::readBytes(std::int64_t first, std::int64_t count, unsigned char* out) {
+  const size_t want = static_cast<size_t>(count) * static_cast<size_t>(sampleBytes_);
+  const off_t at = static_cast<off_t>(file_.offset + first * sampleBytes_);
+  size_t got = 0;
+  while (got < want) {
+    const ssize_t r = ::pread(fd_, out + got, want - got, at + static_cast<off_t>(got));
+    if (r < 0 && errno == EINTR) continue;
+    if (r <= 0)
+      throw Error("cannot read " + file_.path + ": " +
+                  (r < 0 ? std::strerror(errno) : "unexpected end of file"));
+    got += static_cast<size_t>(r);
+  }
+}
+
+bool RawVolumeSource::swapsBytes() const {
+  return sampleBytes_ > 1 && file_.bigEndian != (std::endian::native == std::endian::big);
+}
+
 void RawVolumeSource::readRun(std::int64_t first, std::int64_t count, float* out) {
-  const bool swap = file_.bigEndian != (std::endian::native == std::endian::big);
   while (count > 0) {
     const std::int64_t n = std::min(count, kChunkSamples);
-    const size_t want = static_cast<size_t>(n) * static_cast<size_t>(sampleBytes_);
-    buffer_.resize(std::max(buffer_.size(), want));
-    size_t got = 0;
-    const off_t at = static_cast<off_t>(file_.offset + first * sampleBytes_);
-    while (got < want) {
-      const ssize_t r =
-          ::pread(fd_, buffer_.data() + got, want - got, at + static_cast<off_t>(got));
-      if (r < 0 && errno == EINTR) continue;
-      if (r <= 0)
-        throw Error("cannot read " + file_.path + ": " +
-                    (r < 0 ? std::strerror(errno) : "unexpected end of file"));
-      got += static_cast<size_t>(r);
-    }
-    convertSamples(file_.dtype, buffer_.data(), static_cast<size_t>(n), swap, out);
+    buffer_.resize(std::max(buffer_.size(), static_cast<size_t>(n * sampleBytes_)));
+    readBytes(first, n, buffer_.data());
+    convertSamples(file_.dtype, buffer_.data(), static_cast<size_t>(n), swapsBytes(), out);
     if (file_.scale != 1.0 || file_.shift != 0.0)
       for (std::int64_t s = 0; s < n; ++s)
         out[s] = static_cast<float>(out[s] * file_.scale + file_.shift);
@@ -121,28 +145,29 @@ StructuredGrid RawVolumeSource::readUnchecked(const SampleRange& range) {
   requireMemory(std::int64_t(sizeof(float)) * g.sampleCount(),
                 "reading " + file_.path + " (its samples are held as float32)");
   g.values.resize(static_cast<size_t>(g.sampleCount()));
-  const Index3& d = layout_.dims;
-  const Index3 r = range.dims();
-  // Whole rows (and whole planes) lie one after another in the file: read them as one run.
-  const bool wholeRows = r[0] == d[0], wholePlanes = wholeRows && r[1] == d[1];
-  float* out = g.values.data();
-  for (std::int64_t k = range.lo[2]; k <= range.hi[2]; ++k) {
-    if (wholePlanes) {
-      readRun(d[0] * d[1] * range.lo[2], g.sampleCount(), out);
-      break;
-    }
-    for (std::int64_t j = range.lo[1]; j <= range.hi[1]; ++j) {
-      const std::int64_t first = range.lo[0] + d[0] * (j + d[1] * k);
-      if (wholeRows) {
-        readRun(first, r[0] * r[1], out);
-        out += r[0] * r[1];
-        break;
-      }
-      readRun(first, r[0], out);
-      out += r[0];
-    }
-  }
+  readFloats(range, g.values.data());
   return g;
+}
+
+void RawVolumeSource::readFloats(const SampleRange& range, float* out) {
+  requireRangeInside(range, layout_.dims);
+  forEachRun(layout_.dims, range, [&](std::int64_t first, std::int64_t count) {
+    readRun(first, count, out);
+    out += count;
+  });
+}
+
+void RawVolumeSource::readStored(const SampleRange& range, void* out) {
+  requireRangeInside(range, layout_.dims);
+  auto* bytes = static_cast<unsigned char*>(out);
+  forEachRun(layout_.dims, range, [&](std::int64_t first, std::int64_t count) {
+    readBytes(first, count, bytes);
+    const size_t size = static_cast<size_t>(count) * static_cast<size_t>(sampleBytes_);
+    if (swapsBytes())
+      for (size_t at = 0; at < size; at += static_cast<size_t>(sampleBytes_))
+        std::reverse(bytes + at, bytes + at + sampleBytes_);
+    bytes += size;
+  });
 }
 
 StructuredGrid RawVolumeSource::read(const SampleRange& range) {

@@ -40,10 +40,25 @@ class RawVolumeSource final : public GridSampleSource {
   // caller validates).
   StructuredGrid readUnchecked(const SampleRange& range);
   std::pair<double, double> valueRange() override;
+  // The samples of `range` (inside the grid) as float32 values, x fastest, into `out`
+  // (range.sampleCount() floats), not checked.
+  void readFloats(const SampleRange& range, float* out);
+
+  // The samples as stored: `layout().sampleType`, `sampleBytes()` each. They are the values
+  // unless the file calibrates them (NIfTI's scl_slope, scl_inter).
+  int sampleBytes() const { return sampleBytes_; }
+  bool calibrated() const { return file_.scale != 1.0 || file_.shift != 0.0; }
+  // The stored samples of `range` (inside the grid), in this machine's byte order, x fastest,
+  // into `out` (range.sampleCount() * sampleBytes() bytes), not converted: a reader can hand
+  // them on in their own type.
+  void readStored(const SampleRange& range, void* out);
 
  private:
-  // `count` consecutive samples from sample index `first` of the file, converted to float.
+  // `count` consecutive samples from sample index `first` of the file, as stored.
+  void readBytes(std::int64_t first, std::int64_t count, unsigned char* out);
+  // The same, converted to float (and calibrated).
   void readRun(std::int64_t first, std::int64_t count, float* out);
+  bool swapsBytes() const;
 
   RawSampleLayout file_;
   StructuredGrid layout_;

@@ -3,9 +3,7 @@
 // reported through VTK's error events and leave the output empty.
 #include <gtest/gtest.h>
 
-#include <vtkCallbackCommand.h>
 #include <vtkCellArray.h>
-#include <vtkCommand.h>
 #include <vtkDataSetTriangleFilter.h>
 #include <vtkDoubleArray.h>
 #include <vtkExtentTranslator.h>
@@ -29,6 +27,7 @@
 #include <string>
 
 #include "TestSupport.h"
+#include "VtkErrorLog.h"
 #include "VtkSceneFixture.h"
 #include "core/encode/PieceEncoder.h"
 #include "core/encode/StructuredEncoder.h"
@@ -39,19 +38,6 @@
 
 namespace mfadvr::test {
 namespace {
-
-// Collects the error messages an algorithm reports.
-struct ErrorLog {
-  std::string text;
-  vtkNew<vtkCallbackCommand> callback;
-  explicit ErrorLog(vtkObject* object) {
-    callback->SetClientData(this);
-    callback->SetCallback([](vtkObject*, unsigned long, void* self, void* message) {
-      static_cast<ErrorLog*>(self)->text += static_cast<const char*>(message);
-    });
-    object->AddObserver(vtkCommand::ErrorEvent, callback);
-  }
-};
 
 StructuredGrid mlGrid(std::int64_t n) {
   return sampleBuiltin(*makeBuiltin("marschner-lobb"), {n, n, n});
