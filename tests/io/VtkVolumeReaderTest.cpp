@@ -16,9 +16,9 @@
 
 #include <gtest/gtest.h>
 
-#include <zlib.h>
 #include <cstdio>
 
+#include "GzipBytes.h"
 #include "TestSupport.h"
 #include "core/util/Error.h"
 #include "io/VolumeLoader.h"
@@ -570,22 +570,6 @@ std::string nrrdHeader(const std::string& type, const std::string& encoding,
          encoding + "\nendian: little\n" + extra;
 }
 
-std::string gzipped(const std::string& bytes) {
-  z_stream zs{};
-  // windowBits 15 + 16 asks zlib for a gzip wrapper, which is what NRRD's "gzip" means.
-  EXPECT_EQ(deflateInit2(&zs, Z_BEST_COMPRESSION, Z_DEFLATED, 15 + 16, 8, Z_DEFAULT_STRATEGY),
-            Z_OK);
-  std::string out(deflateBound(&zs, bytes.size()) + 64, '\0');
-  zs.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(bytes.data()));
-  zs.avail_in = static_cast<uInt>(bytes.size());
-  zs.next_out = reinterpret_cast<Bytef*>(out.data());
-  zs.avail_out = static_cast<uInt>(out.size());
-  EXPECT_EQ(deflate(&zs, Z_FINISH), Z_STREAM_END);
-  out.resize(zs.total_out);
-  deflateEnd(&zs);
-  return out;
-}
-
 TEST(NrrdReader, RawEncoding) {
   const auto path = writeFile(test::scratchDir() / "v.nrrd", nrrdHeader("float", "raw") + "\n" +
                                                                  densityBytes(std::endian::little));
@@ -593,9 +577,9 @@ TEST(NrrdReader, RawEncoding) {
 }
 
 TEST(NrrdReader, GzipEncoding) {
-  const auto path =
-      writeFile(test::scratchDir() / "v.nrrd",
-                nrrdHeader("short", "gzip") + "\n" + gzipped(labelBytes(std::endian::little)));
+  const auto path = writeFile(
+      test::scratchDir() / "v.nrrd",
+      nrrdHeader("short", "gzip") + "\n" + test::gzipBytes(labelBytes(std::endian::little)));
   expectLabelGrid(loadStructuredVolume(path));
 }
 
@@ -642,7 +626,7 @@ TEST(NrrdReader, SpacingsWithoutSpace) {
 
 TEST(NrrdReader, DetachedHeader) {
   const auto dir = test::scratchDir();
-  writeFile(dir / "v.raw.gz", gzipped(densityBytes(std::endian::little)));
+  writeFile(dir / "v.raw.gz", test::gzipBytes(densityBytes(std::endian::little)));
   const auto path = writeFile(dir / "v.nhdr", nrrdHeader("float", "gzip", "data file: v.raw.gz\n"));
   expectDensityGrid(loadStructuredVolume(path));
 }
@@ -662,7 +646,7 @@ TEST(NrrdReader, ShortFastestAxisIsAnError) {
 }
 
 TEST(NrrdReader, TruncatedGzipIsAnError) {
-  std::string payload = gzipped(densityBytes(std::endian::little));
+  std::string payload = test::gzipBytes(densityBytes(std::endian::little));
   payload.resize(payload.size() / 2);
   const auto path =
       writeFile(test::scratchDir() / "v.nrrd", nrrdHeader("float", "gzip") + "\n" + payload);

@@ -24,6 +24,18 @@ def pixels(path):
                                    for c in range(min(3, comps))]
 
 
+def is_blank(values):
+    """Whether fewer than 1 % of the pixels differ from the most common colour (the background):
+    a scene that rendered nothing. Channels are compared as colours, not pooled: a uniform
+    background of unequal channels is blank too."""
+    colours = {}
+    for i in range(0, len(values), 3):
+        key = tuple(values[i:i + 3])
+        colours[key] = colours.get(key, 0) + 1
+    pixels_in_all = len(values) // 3
+    return pixels_in_all - max(colours.values()) < 0.01 * pixels_in_all
+
+
 def compare_views(minimum, reference_prefix, others):
     """Each OTHER-<view>.png against REFERENCE-<view>.png, for every view of the reference."""
     import glob
@@ -34,7 +46,7 @@ def compare_views(minimum, reference_prefix, others):
     for ref_path in references:
         view = ref_path[len(reference_prefix):]
         dims, ref = pixels(ref_path)
-        if max(ref) - min(ref) < 16:
+        if is_blank(ref):
             sys.exit("the reference image %s is blank" % ref_path)
         for prefix in others:
             other_dims, other = pixels(prefix + view)
@@ -57,7 +69,7 @@ def main():
         return
     minimum = float(sys.argv[1])
     dims, ref = pixels(sys.argv[2])
-    if max(ref) - min(ref) < 16:
+    if is_blank(ref):
         sys.exit("the reference image %s is blank" % sys.argv[2])
     worst = math.inf
     for path in sys.argv[3:]:

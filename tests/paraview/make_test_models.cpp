@@ -5,11 +5,13 @@
 //                            differs per axis and an origin away from zero, as real scans are:
 //                            one model (scan-1.mfa), blocks split along x, y and z
 //                            (scan-x.mfa, scan-y.mfa, scan-z.mfa) and 2 x 2 x 1 (scan-xy.mfa),
-//                            and the samples as VTK XML image data (scan.vti) for MFA Encode;
+//                            and the samples as VTK XML image data (scan.vti) and as a gzip
+//                            uint8 NRRD file (scan.nrrd) for MFA Encode;
 //   head.mfa                 the model docs/paraview.md's examples open (default encoding of
 //                            builtin:ct-head:64).
 // Interpolating quadratic fits throughout.
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
@@ -17,6 +19,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "GzipBytes.h"
 #include "core/analytic/BuiltinFunction.h"
 #include "core/encode/Encoder.h"
 #include "core/encode/PieceEncoder.h"
@@ -53,6 +56,20 @@ void writeVti(const mfadvr::StructuredGrid& g, const std::filesystem::path& path
   if (!out) throw std::runtime_error("cannot write " + path.string());
 }
 
+// The samples rounded to uint8 in a gzip NRRD file (the encoding scanners and Slicer write)
+// with the grid's placement.
+void writeNrrd(const mfadvr::StructuredGrid& g, const std::filesystem::path& path) {
+  std::string samples;
+  for (const float v : g.values) samples.push_back(static_cast<char>(std::lround(v)));
+  std::ofstream out(path, std::ios::binary);
+  out << "NRRD0004\ntype: uint8\ndimension: 3\nsizes: " << g.dims[0] << ' ' << g.dims[1] << ' '
+      << g.dims[2] << "\nspace: 3D-right-handed\nspace directions: (" << g.spacing[0] << ",0,0) (0,"
+      << g.spacing[1] << ",0) (0,0," << g.spacing[2] << ")\nspace origin: (" << g.origin[0] << ','
+      << g.origin[1] << ',' << g.origin[2] << ")\nencoding: gzip\n\n"
+      << mfadvr::test::gzipBytes(samples);
+  if (!out) throw std::runtime_error("cannot write " + path.string());
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -78,6 +95,7 @@ int main(int argc, char** argv) {
       mfadvr::saveBlockModels(mfadvr::encodeStructuredBlocks(scan, blocks, -1, options), blocks,
                               dir / ("scan-" + std::string(name) + ".mfa"));
     writeVti(scan, dir / "scan.vti");
+    writeNrrd(scan, dir / "scan.nrrd");
     // The model docs/paraview.md's example opens (`mfadvr encode builtin:ct-head:64`).
     mfadvr::saveModel(mfadvr::encodeStructured(mfadvr::sampleBuiltinSpec("builtin:ct-head:64"),
                                                mfadvr::EncodeOptions{}),

@@ -8,7 +8,9 @@ Scenes (files written by mfadvr_paraview_test_data, a CT-like head with field 's
   scan-1, scan-x, scan-y, scan-z, scan-xy   the MFA reader on one model, and on blocks split
                                             along x, y, z and 2 x 2 x 1;
   scan-encode                               MFA Encode of scan.vti, partitioned among the ranks
-                                            by ParaView's XML image reader.
+                                            by ParaView's XML image reader;
+  scan-nrrd                                 MFA Encode of scan.nrrd (uint8 samples, gzip),
+                                            each rank's piece read by MFA Volume Reader.
 """
 import os
 import sys
@@ -27,25 +29,31 @@ def source(scene):
         image = pvs.XMLImageDataReader(FileName=[os.path.join(data, "scan.vti")])
         encoded = pvs.MFAEncode(Input=image)
         encoded.Degree = 2
-        return encoded
-    return pvs.MFAModelReader(FileName=os.path.join(data, scene + ".mfa"))
+        return encoded, "scalars"
+    if scene == "scan-nrrd":
+        image = pvs.MFAVolumeReader(FileName=os.path.join(data, "scan.nrrd"))
+        encoded = pvs.MFAEncode(Input=image)
+        encoded.Degree = 2
+        # The name VTK's NRRD reader gives gzip samples.
+        return encoded, "ImageScalars"
+    return pvs.MFAModelReader(FileName=os.path.join(data, scene + ".mfa")), "scalars"
 
 
 def main():
     scene, prefix = sys.argv[1], sys.argv[2]
     pv_scene.load_plugin()
-    src = source(scene)
+    src, array = source(scene)
     view = pvs.CreateRenderView()
     view.ViewSize = SIZE
     view.OrientationAxesVisibility = 0
     display = pvs.Show(src, view)
     display.Representation = "MFA Volume"
-    pvs.ColorBy(display, ("POINTS", "scalars"))
-    lut = pvs.GetColorTransferFunction("scalars")
+    pvs.ColorBy(display, ("POINTS", array))
+    lut = pvs.GetColorTransferFunction(array)
     lut.ApplyPreset("Cool to Warm", True)
     lut.RescaleTransferFunction(0.0, 255.0)
     # As for a CT scan: air transparent, soft tissue faint, bone the most opaque.
-    pvs.GetOpacityTransferFunction("scalars").Points = [0, 0, 0.5, 0, 60, 0, 0.5, 0,
+    pvs.GetOpacityTransferFunction(array).Points = [0, 0, 0.5, 0, 60, 0, 0.5, 0,
                                                         255, 0.6, 0.5, 0]
     display.ScalarOpacityUnitDistance = 2.0
     display.Shade = 1

@@ -21,6 +21,7 @@
 #include <fstream>
 #include <string>
 
+#include "GzipBytes.h"
 #include "TestSupport.h"
 #include "VtkErrorLog.h"
 #include "core/encode/PieceEncoder.h"
@@ -37,22 +38,25 @@ namespace fs = std::filesystem;
 
 constexpr int kNx = 20, kNy = 16, kNz = 12;
 
-// Big-endian int16 samples, each distinct, in an attached-data NRRD file with a placement.
-std::string writeNrrd(const fs::path& dir) {
+// int16 samples, each distinct, in an attached-data NRRD file with a placement: big-endian and
+// raw, or with `gzip` little-endian and gzip-compressed (the encoding for which VTK 9.1's reader
+// returns zeros for a piece).
+std::string writeNrrd(const fs::path& dir, bool gzip = false) {
+  const std::endian order = gzip ? std::endian::little : std::endian::big;
   std::string data;
   for (int n = 0; n < kNx * kNy * kNz; ++n) {
     const auto v = static_cast<std::int16_t>(n % 2 ? 3 * n : -n);
     unsigned char bytes[2];
     std::memcpy(bytes, &v, 2);
-    if (std::endian::native != std::endian::big) std::swap(bytes[0], bytes[1]);
+    if (std::endian::native != order) std::swap(bytes[0], bytes[1]);
     data.append(reinterpret_cast<const char*>(bytes), 2);
   }
-  const fs::path path = dir / "volume.nrrd";
+  const fs::path path = dir / (gzip ? "gzip.nrrd" : "volume.nrrd");
   std::ofstream(path, std::ios::binary)
       << "NRRD0004\ntype: short\ndimension: 3\nsizes: 20 16 12\nspace: 3D-right-handed\n"
          "space directions: (0.5,0,0) (0,0.25,0) (0,0,2)\nspace origin: (1.5,-2,3)\n"
-         "encoding: raw\nendian: big\n\n"
-      << data;
+      << (gzip ? "encoding: gzip\nendian: little\n\n" + gzipBytes(data)
+               : "encoding: raw\nendian: big\n\n" + data);
   return path.string();
 }
 
@@ -95,8 +99,8 @@ TEST(MFAVolumeReader, GivesTheGridAndSamplesOfVtksReader) {
   EXPECT_EQ(samplesIn(ours, e1), samplesIn(theirs, e2));
 }
 
-TEST(MFAVolumeReader, ReadsEachPieceAndExtentAskedFor) {
-  const std::string path = writeNrrd(scratchDir());
+// Each of 3 pieces, and a box asked for as an extent, hold their own samples of `path`.
+void expectPiecesAndExtent(const std::string& path) {
   const StructuredGrid whole = loadStructuredVolume(path);
   auto reader = vtkSmartPointer<vtkMFAVolumeReader>::New();
   reader->SetFileName(path.c_str());
@@ -128,10 +132,17 @@ TEST(MFAVolumeReader, ReadsEachPieceAndExtentAskedFor) {
   expectSamples(box);
 }
 
+TEST(MFAVolumeReader, ReadsEachPieceAndExtentAskedFor) {
+  for (const bool gzip : {false, true}) {
+    SCOPED_TRACE(gzip ? "gzip" : "raw");
+    expectPiecesAndExtent(writeNrrd(scratchDir(), gzip));
+  }
+}
+
 // The fault this reader exists for: MFA Encode split among ranks fits, on every rank, that
-// rank's samples with their ghost layers as read from the file.
+// rank's samples with their ghost layers as read from a gzip NRRD file.
 TEST(MFAVolumeReader, EncodesEveryPieceOfAFile) {
-  const std::string path = writeNrrd(scratchDir());
+  const std::string path = writeNrrd(scratchDir(), true);
   const StructuredGrid whole = loadStructuredVolume(path);
   vtkNew<vtkMFAVolumeReader> reader;
   reader->SetFileName(path.c_str());
