@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <vtkCellArray.h>
+#include <vtkCommand.h>
 #include <vtkDataSetTriangleFilter.h>
 #include <vtkDoubleArray.h>
 #include <vtkExtentTranslator.h>
@@ -234,6 +235,36 @@ TEST(MFAEncoder, AsksAnImageSourceForItsPieceWithGhostLayers) {
     EXPECT_FALSE(read->HasAnyGhostPoints());
     EXPECT_EQ(encoder->GetOutput()->GetModel()->provenance().sampleDims[across], 19);
   }
+}
+
+// A source that serves the same extent whatever it is asked for: a piece given fewer ghost
+// layers than it asked for is fitted with what it was given, and warns; a piece given none of
+// its own extent is refused.
+TEST(MFAEncoder, PiecesServedAnotherExtentWarnOrFail) {
+  vtkNew<vtkRTAnalyticSource> wave;
+  wave->SetWholeExtent(0, 20, 0, 20, 0, 20);
+  wave->Update();
+  vtkNew<vtkTrivialProducer> producer;
+  producer->SetOutput(wave->GetOutput());
+  producer->SetWholeExtent(0, 20, 0, 20, 0, 40);  // split in z at 20 into two pieces
+  vtkNew<vtkMFAEncoder> encoder;
+  encoder->SetInputConnection(producer->GetOutputPort());
+  encoder->SetDegree(2);
+  encoder->SetGhostLevels(3);
+  ErrorLog warnings(encoder, vtkCommand::WarningEvent), errors(encoder);
+  encoder->UpdatePiece(0, 2, 0);
+  ASSERT_TRUE(encoder->GetOutput()->HasModel()) << errors.text;
+  EXPECT_NE(warnings.text.find("asked its input for the extent [0..20, 0..20, 0..23] and was "
+                               "given [0..20, 0..20, 0..20]"),
+            std::string::npos)
+      << warnings.text;
+  EXPECT_EQ(errors.text, "");
+  encoder->UpdatePiece(1, 2, 0);
+  EXPECT_FALSE(encoder->GetOutput()->HasModel());
+  EXPECT_NE(errors.text.find("piece 1 of 2 was given the extent [0..20, 0..20, 0..20], which "
+                             "holds no grid of its own extent [0..20, 0..20, 20..40]"),
+            std::string::npos)
+      << errors.text;
 }
 
 // More pieces than the image can be split into: the pieces left empty fit nothing (they do not

@@ -1,5 +1,6 @@
 #pragma once
-// Collects the error messages a VTK object reports (its ErrorEvent), for tests that check them.
+// Collects the error (or, asked for, warning) messages a VTK object reports, for tests that
+// check them.
 #include <vtkCallbackCommand.h>
 #include <vtkCommand.h>
 #include <vtkNew.h>
@@ -12,12 +13,12 @@ namespace mfadvr::test {
 struct ErrorLog {
   std::string text;
   vtkNew<vtkCallbackCommand> callback;
-  explicit ErrorLog(vtkObject* object) {
+  explicit ErrorLog(vtkObject* object, unsigned long event = vtkCommand::ErrorEvent) {
     callback->SetClientData(this);
     callback->SetCallback([](vtkObject*, unsigned long, void* self, void* message) {
       static_cast<ErrorLog*>(self)->text += static_cast<const char*>(message);
     });
-    object->AddObserver(vtkCommand::ErrorEvent, callback);
+    object->AddObserver(event, callback);
   }
 };
 

@@ -19,6 +19,7 @@
 #include <cmath>
 #include <exception>
 #include <memory>
+#include <sstream>
 #include <string>
 
 #include "VtkModelImage.h"
@@ -26,6 +27,7 @@
 #include "core/encode/FitReport.h"
 #include "core/encode/PieceEncoder.h"
 #include "core/model/Model.h"
+#include "core/util/Error.h"
 #include "io/VtkDataConversion.h"
 
 vtkStandardNewMacro(vtkMFAEncoder);
@@ -67,6 +69,14 @@ int vtkMFAEncoder::EffectiveGhostLevels() const {
              : mfadvr::defaultGhostLayers({this->Degree, this->Degree, this->Degree});
 }
 
+int vtkMFAEncoder::PieceLayers(vtkInformation* out) const {
+  using SDDP = vtkStreamingDemandDrivenPipeline;
+  const int asked = out->Has(SDDP::UPDATE_NUMBER_OF_GHOST_LEVELS())
+                        ? out->Get(SDDP::UPDATE_NUMBER_OF_GHOST_LEVELS())
+                        : 0;
+  return asked + this->EffectiveGhostLevels();
+}
+
 namespace {
 
 // The extent of `whole` that the piece `request` asks for owns without ghost layers (its
@@ -86,6 +96,22 @@ bool ownExtent(vtkInformation* request, const int whole[6], int ext[6]) {
   return translator->PieceToExtentThreadSafe(piece, pieces, 0, w, ext, mode, 0) != 0;
 }
 
+// `own` grown by `layers` samples on every side, within `whole`: the extent a piece asks its
+// image source for.
+void growExtent(const int own[6], const int whole[6], int layers, int out[6]) {
+  for (int a = 0; a < 3; ++a) {
+    out[2 * a] = std::max(whole[2 * a], own[2 * a] - layers);
+    out[2 * a + 1] = std::min(whole[2 * a + 1], own[2 * a + 1] + layers);
+  }
+}
+
+std::string extentText(const int e[6]) {
+  std::ostringstream out;
+  out << "[" << e[0] << ".." << e[1] << ", " << e[2] << ".." << e[3] << ", " << e[4] << ".." << e[5]
+      << "]";
+  return out.str();
+}
+
 // The piece count the output was asked for (1 when none).
 int requestedPieces(vtkInformation* out) {
   using SDDP = vtkStreamingDemandDrivenPipeline;
@@ -101,10 +127,7 @@ int vtkMFAEncoder::RequestUpdateExtent(vtkInformation*, vtkInformationVector** i
   using SDDP = vtkStreamingDemandDrivenPipeline;
   const int pieces = requestedPieces(out);
   if (pieces > 1) {
-    const int asked = out->Has(SDDP::UPDATE_NUMBER_OF_GHOST_LEVELS())
-                          ? out->Get(SDDP::UPDATE_NUMBER_OF_GHOST_LEVELS())
-                          : 0;
-    const int layers = asked + this->EffectiveGhostLevels();
+    const int layers = this->PieceLayers(out);
     int ext[6], whole[6];
     if (in->Has(SDDP::WHOLE_EXTENT()) &&
         (in->Get(SDDP::WHOLE_EXTENT(), whole), ownExtent(out, whole, ext))) {
@@ -113,11 +136,9 @@ int vtkMFAEncoder::RequestUpdateExtent(vtkInformation*, vtkInformationVector** i
       // the pipeline would add a ghost-mark array (1 byte per point) to the input that the fit
       // does not use (the carrier marks its own ghost cells). One piece of that extent, so
       // that a reader does not split it again.
-      for (int a = 0; a < 3; ++a) {
-        ext[2 * a] = std::max(whole[2 * a], ext[2 * a] - layers);
-        ext[2 * a + 1] = std::min(whole[2 * a + 1], ext[2 * a + 1] + layers);
-      }
-      in->Set(SDDP::UPDATE_EXTENT(), ext, 6);
+      int asked[6];
+      growExtent(ext, whole, layers, asked);
+      in->Set(SDDP::UPDATE_EXTENT(), asked, 6);
       in->Set(SDDP::UPDATE_PIECE_NUMBER(), 0);
       in->Set(SDDP::UPDATE_NUMBER_OF_PIECES(), 1);
       in->Set(SDDP::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
@@ -255,8 +276,30 @@ int vtkMFAEncoder::RequestData(vtkInformation*, vtkInformationVector** inInfo,
           (in->Get(SDDP::WHOLE_EXTENT(), whole), ownExtent(request, whole, own))) {
         // One piece with its ghost layers: fitted at the whole image's control-point density,
         // rendered in its own extent only.
-        int ext[6];
+        int ext[6], asked[6];
         image->GetExtent(ext);
+        growExtent(own, whole, this->PieceLayers(request), asked);
+        // A source that serves its own piece whatever it is asked for (RequestUpdateExtent
+        // asked for one extent): fit what it holds of this piece, or refuse when that is not
+        // a grid of the piece.
+        bool holdsAsked = true;
+        for (int a = 0; a < 3; ++a) {
+          holdsAsked =
+              holdsAsked && ext[2 * a] <= asked[2 * a] && ext[2 * a + 1] >= asked[2 * a + 1];
+          if (std::min(ext[2 * a + 1], own[2 * a + 1]) - std::max(ext[2 * a], own[2 * a]) < 1)
+            throw mfadvr::Error(
+                "piece " + std::to_string(request->Get(SDDP::UPDATE_PIECE_NUMBER())) + " of " +
+                std::to_string(pieces) + " was given the extent " + extentText(ext) +
+                ", which holds no grid of its own extent " + extentText(own) +
+                " (the input was asked for " + extentText(asked) + ")");
+        }
+        if (!holdsAsked) {
+          vtkWarningMacro(<< "piece " << request->Get(SDDP::UPDATE_PIECE_NUMBER()) << " of "
+                          << pieces << " asked its input for the extent " << extentText(asked)
+                          << " and was given " << extentText(ext)
+                          << ": it is fitted with the samples it was given (fewer ghost layers "
+                             "or part of its own extent)");
+        }
         const mfadvr::Index3 wholeDims{whole[1] - whole[0] + 1, whole[3] - whole[2] + 1,
                                        whole[5] - whole[4] + 1};
         const auto [lo, hi] = fitSamples.range();

@@ -150,6 +150,9 @@ class VTKMFA_EXPORT vtkMFAEncoder : public vtkMFAModelAlgorithm {
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int EffectiveGhostLevels() const;
+  // The sample layers a piece asks for beyond its own extent: the ghost levels the output was
+  // asked for and EffectiveGhostLevels().
+  int PieceLayers(vtkInformation* outputRequest) const;
 
   int Degree = 3;
   int GhostLevels = -1;
