@@ -18,6 +18,8 @@
 #include <vtkOutputWindow.h>
 #include <vtkType.h>
 
+#include "core/util/Error.h"
+
 namespace mfadvr {
 namespace {
 
@@ -162,6 +164,18 @@ std::string vtkSampleTypeName(vtkDataArray* array) {
     default:
       return "";
   }
+}
+
+int vtkTypeOfSampleType(const std::string& name) {
+  if (name == "uint8") return VTK_UNSIGNED_CHAR;
+  if (name == "int8") return VTK_SIGNED_CHAR;
+  if (name == "uint16") return VTK_UNSIGNED_SHORT;
+  if (name == "int16") return VTK_SHORT;
+  if (name == "uint32") return VTK_UNSIGNED_INT;
+  if (name == "int32") return VTK_INT;
+  if (name == "float32") return VTK_FLOAT;
+  if (name == "float64") return VTK_DOUBLE;
+  throw Error("internal: no VTK type for sample type " + name);
 }
 
 std::string describeVtkArrays(vtkFieldData* data) {

@@ -34,6 +34,10 @@ class VtkMessageCapture {
 
 // "float32", "int16", "uint8", ...; "" for types that are not plain numbers.
 std::string vtkSampleTypeName(vtkDataArray* array);
+// The VTK data type (VTK_UNSIGNED_CHAR, ...) that holds samples of a raw sample type name
+// (RawVolumeReader.h's: uint8, int8, uint16, int16, uint32, int32, float32, float64). Throws
+// mfadvr::Error for any other name.
+int vtkTypeOfSampleType(const std::string& name);
 
 // Makes a legacy reader read every SCALARS/VECTORS/COLOR_SCALARS/FIELD block (by default it
 // reads only the first SCALARS block, and the field asked for may be another).

@@ -15,13 +15,17 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <vtkDataArray.h>
+#include <vtkSmartPointer.h>
 
 #include <cstdio>
 
 #include "GzipBytes.h"
 #include "TestSupport.h"
 #include "core/util/Error.h"
+#include "io/RawVolumeReader.h"
 #include "io/VolumeLoader.h"
+#include "io/VtkSupport.h"
 
 namespace mfadvr {
 namespace {
@@ -145,6 +149,18 @@ std::string vtiText(int firstIndex = 0, const std::string& extraImageAttributes 
     << "  </ImageData>\n"
     << "</VTKFile>\n";
   return s.str();
+}
+
+// The VTK type of each raw sample type holds samples of that type (the name VTK's arrays are
+// described by comes back), and other names are refused.
+TEST(VtkSampleTypes, EveryRawTypeHasAVtkTypeOfItsOwn) {
+  for (const std::string& type : rawSampleTypes()) {
+    vtkSmartPointer<vtkDataArray> array;
+    array.TakeReference(vtkDataArray::CreateDataArray(vtkTypeOfSampleType(type)));
+    ASSERT_NE(array, nullptr) << type;
+    EXPECT_EQ(vtkSampleTypeName(array), type);
+  }
+  expectError([] { vtkTypeOfSampleType("float16"); }, {"float16"});
 }
 
 TEST(VtiReader, ActiveScalarsByDefault) {

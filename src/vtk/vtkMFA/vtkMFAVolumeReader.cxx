@@ -9,9 +9,9 @@
 #include "vtkPointData.h"
 #include "vtkSmartPointer.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
-#include "vtkType.h"
 
 #include <algorithm>
+#include <cctype>
 #include <exception>
 #include <filesystem>
 #include <fstream>
@@ -26,6 +26,7 @@
 #include "io/RawVolumeReader.h"
 #include "io/StreamedVolumeReader.h"
 #include "io/VolumeLoader.h"
+#include "io/VtkSupport.h"
 
 vtkStandardNewMacro(vtkMFAVolumeReader);
 
@@ -39,19 +40,6 @@ struct vtkMFAVolumeReader::Opened {
 };
 
 namespace {
-
-// The VTK type of a stored sample type (RawVolumeReader.h's names).
-int vtkTypeOf(const std::string& dtype) {
-  if (dtype == "uint8") return VTK_UNSIGNED_CHAR;
-  if (dtype == "int8") return VTK_SIGNED_CHAR;
-  if (dtype == "uint16") return VTK_UNSIGNED_SHORT;
-  if (dtype == "int16") return VTK_SHORT;
-  if (dtype == "uint32") return VTK_UNSIGNED_INT;
-  if (dtype == "int32") return VTK_INT;
-  if (dtype == "float32") return VTK_FLOAT;
-  if (dtype == "float64") return VTK_DOUBLE;
-  throw mfadvr::Error("internal: no VTK type for sample type " + dtype);
-}
 
 // Whether a legacy VTK file holds structured points (the one data set this reader reads).
 bool isLegacyStructuredPoints(const char* fileName) {
@@ -138,8 +126,8 @@ int vtkMFAVolumeReader::RequestInformation(vtkInformation*, vtkInformationVector
     info->Set(vtkDataObject::SPACING(), spacing, 3);
     info->Set(CAN_PRODUCE_SUB_EXTENT(), 1);
     const bool stored = this->Cached->streamed && !this->Cached->streamed->calibrated();
-    vtkDataObject::SetPointDataActiveScalarInfo(info,
-                                                stored ? vtkTypeOf(grid.sampleType) : VTK_FLOAT, 1);
+    vtkDataObject::SetPointDataActiveScalarInfo(
+        info, stored ? mfadvr::vtkTypeOfSampleType(grid.sampleType) : VTK_FLOAT, 1);
   } catch (const std::exception& e) {
     this->Cached.reset();
     vtkErrorMacro(<< e.what());
@@ -164,7 +152,8 @@ int vtkMFAVolumeReader::RequestData(vtkInformation*, vtkInformationVector**,
     const std::string what = "reading " + opened.path;
     if (opened.streamed && !opened.streamed->calibrated()) {
       mfadvr::requireMemory(range.sampleCount() * opened.streamed->sampleBytes(), what);
-      samples.TakeReference(vtkDataArray::CreateDataArray(vtkTypeOf(grid.sampleType)));
+      samples.TakeReference(
+          vtkDataArray::CreateDataArray(mfadvr::vtkTypeOfSampleType(grid.sampleType)));
       samples->SetNumberOfTuples(range.sampleCount());
       opened.streamed->readStored(range, samples->GetVoidPointer(0));
     } else {
