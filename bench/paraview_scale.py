@@ -4,7 +4,10 @@ many MPI ranks pvbatch runs with (bench/paraview_scale.sh drives it).
     pvbatch bench/paraview_scale.py N IMAGE_SIZE [RAW]
 
 RAW (optional): an N^3 uint8 raw volume (x fastest, as bench/make_large_volume.py writes) read by
-ParaView's Image Reader instead of the float Wavelet source, as a user's scan would be.
+ParaView's Image Reader instead of the float Wavelet source, as a user's scan would be. With
+MFADVR_VOLUME_READER=1, RAW is any volume file (a raw file named NAME_XxYxZ_TYPE.raw, NRRD, ...)
+read by the plugin's MFA Volume Reader, each rank its piece; the transfer function is then set
+from the file's value range.
 
 Prints, per rank, the encode time, the first (still) render, a second render, and the peak
 memory of the rank (max RSS), also as it was after encoding and after Show, and the memory
@@ -29,7 +32,11 @@ ranks = sm.vtkProcessModule.GetProcessModule().GetNumberOfLocalPartitions()
 
 raw = sys.argv[3] if len(sys.argv) > 3 else None
 pv_scene.load_plugin()
-if raw:
+if raw and os.environ.get("MFADVR_VOLUME_READER") == "1":
+    source = pvs.MFAVolumeReader(FileName=raw)
+    field = lo = hi = None  # from the encoder's output, once it is computed
+    what = "volume file (MFA Volume Reader)"
+elif raw:
     source = pvs.ImageReader(FileNames=[raw])
     source.DataScalarType = "unsigned char"
     source.DataExtent = [0, n - 1] * 3
@@ -65,6 +72,10 @@ def resident_mib():
 
 encode_peak = peak_mib()
 encode_resident = resident_mib()
+if field is None:
+    field = encoded.PointData.keys()[0]
+    lo, hi = encoded.PointData[field].GetRange()
+    hidden, rising = lo + 0.47 * (hi - lo), lo + 0.68 * (hi - lo)  # as 120 and 173 of 0..255
 
 view = pvs.CreateRenderView()
 view.ViewSize = [size, size]

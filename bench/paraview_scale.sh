@@ -3,6 +3,7 @@
 # Wavelet (degree 2, one control point per sample) on 1 and 2 MPI ranks.
 #   bench/paraview_scale.sh [N=512] [IMAGE=800] [RANKS="1 2"] [RAW]
 # RAW: an N^3 uint8 raw volume (bench/make_large_volume.py N) instead of the float Wavelet.
+# MFADVR_VOLUME_READER=1: RAW is any volume file, read by MFA Volume Reader (each rank its piece).
 # MFADVR_PLUGIN: another build of the plugin (default: the paraview preset's).
 # MFADVR_PASS_INPUT_VALUES=1: the encoder's PassInputValues on (the output holds the input's
 # samples, not the model evaluated on the grid).
