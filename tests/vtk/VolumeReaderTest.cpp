@@ -171,6 +171,27 @@ TEST(MFAVolumeReader, EncodesEveryPieceOfAFile) {
   }
 }
 
+// A raw file is placed by its name alone; its samples get the array name VTK's raw reader uses.
+TEST(MFAVolumeReader, ReadsARawFileByItsName) {
+  const fs::path path = scratchDir() / "ramp_6x5x4_uint16.raw";
+  {
+    std::ofstream out(path, std::ios::binary);
+    for (std::uint16_t n = 0; n < 120; ++n) out.write(reinterpret_cast<const char*>(&n), 2);
+  }
+  vtkNew<vtkMFAVolumeReader> reader;
+  reader->SetFileName(path.c_str());
+  int box[6] = {1, 4, 2, 4, 1, 2};
+  reader->UpdateExtent(box);
+  vtkImageData* out = reader->GetOutput();
+  EXPECT_EQ(out->GetScalarType(), VTK_UNSIGNED_SHORT);
+  EXPECT_STREQ(out->GetPointData()->GetScalars()->GetName(), "ImageFile");
+  std::vector<double> expected;
+  for (int k = 1; k <= 2; ++k)
+    for (int j = 2; j <= 4; ++j)
+      for (int i = 1; i <= 4; ++i) expected.push_back(i + 6 * (j + 5 * k));
+  EXPECT_EQ(samplesIn(out, box), expected);
+}
+
 // A text-encoded NRRD cannot be read box by box: it is read whole (as float32) and cut.
 TEST(MFAVolumeReader, CutsTheExtentOutOfFilesReadWhole) {
   const fs::path path = scratchDir() / "text.nrrd";

@@ -173,7 +173,8 @@ int vtkMFAVolumeReader::RequestData(vtkInformation*, vtkInformationVector**,
       }
       samples = floats;
     }
-    samples->SetName(grid.fieldName.c_str());
+    // A raw file names no field: its samples take the name VTK's raw image reader gives them.
+    samples->SetName(grid.fieldName.empty() ? "ImageFile" : grid.fieldName.c_str());
     output->SetExtent(extent);
     output->SetOrigin(grid.origin[0], grid.origin[1], grid.origin[2]);
     output->SetSpacing(grid.spacing[0], grid.spacing[1], grid.spacing[2]);

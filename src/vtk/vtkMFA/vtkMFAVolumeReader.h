@@ -17,7 +17,8 @@
  * compressed MetaImage, XML, DICOM, built-ins) are read whole as float32 and the extent is
  * copied out of them: every rank then holds the whole volume while it reads.
  *
- * Errors are reported with vtkErrorMacro and leave the output empty.
+ * The array has the name VTK's reader of the format gives it (`ImageFile` for raw files, whose
+ * format names no field). Errors are reported with vtkErrorMacro and leave the output empty.
  */
 #ifndef vtkMFAVolumeReader_h
 #define vtkMFAVolumeReader_h
