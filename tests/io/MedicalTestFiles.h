@@ -5,7 +5,7 @@
 #include <cstring>
 #include <string>
 
-#include "GzipBytes.h"
+#include "../GzipBytes.h"  // tests/: also built by the fuzz targets, which see tests/io only
 
 namespace mfadvr::test {
 
