@@ -118,17 +118,7 @@ int encodeBlocks(GridSampleSource& source, const Index3& blocks, int ghost, Enco
   };
   const double megabytes = double(layout.inputBytes) / 1e6;
   options.progress = nullptr;
-  if (progress)
-    options.progress = [&](double f, const std::string& stage) {
-      const double t = elapsed();
-      char line[160];
-      if (f > 0.0)
-        std::snprintf(line, sizeof line, "%s, %.1f MB/s, %.0f s left", stage.c_str(),
-                      f * megabytes / t, t * (1.0 - f) / f);
-      else
-        std::snprintf(line, sizeof line, "%s", stage.c_str());
-      printProgress("encoding", f, line);
-    };
+  if (progress) options.progress = ThroughputProgress("encoding", double(layout.inputBytes));
   std::optional<BlockModelFileWriter> file;
   if (!output.empty()) file.emplace(output, blocks);
   std::vector<FitReport> reports;
@@ -320,7 +310,12 @@ Command addEncodeCommand(CLI::App& app) {
         if (!load.spacing && !load.origin && !load.field.chosen())
           boxes = std::make_unique<BuiltinGridSource>(o->input);
       } else {
-        boxes = openStreamedVolume(o->input, load, GzipPayloads::kInflateToTemporaryFile);
+        InflateProgress inflating;
+        if (progress)
+          inflating = [printer = ThroughputProgress("inflating")](
+                          std::int64_t done, std::int64_t total) { printer.bytes(done, total); };
+        boxes =
+            openStreamedVolume(o->input, load, GzipPayloads::kInflateToTemporaryFile, inflating);
       }
       const std::int64_t limit = o->memoryLimit.empty()
                                      ? availableMemoryBytes() / 2

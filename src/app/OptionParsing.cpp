@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <iostream>
 #include <vector>
 
@@ -145,6 +146,18 @@ void printProgress(const char* what, double fraction, const std::string& stage) 
   std::cerr << "\r  " << what << ": " << static_cast<int>(fraction * 100) << "%"
             << (stage.empty() ? "" : " (" + stage + ")") << "   " << (fraction >= 1.0 ? "\n" : "")
             << std::flush;
+}
+
+void ThroughputProgress::print(double fraction, double bytes, const std::string& stage) const {
+  const double t = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  std::string line = stage;
+  if (fraction > 0.0 && t > 0.0) {
+    char rate[96];
+    std::snprintf(rate, sizeof rate, "%s%.1f MB/s, %.0f s left", stage.empty() ? "" : ", ",
+                  fraction * bytes / 1e6 / t, t * (1.0 - fraction) / fraction);
+    line += rate;
+  }
+  printProgress(what_, fraction, line);
 }
 
 bool wantProgress(bool quiet) {

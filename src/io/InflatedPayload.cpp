@@ -38,8 +38,8 @@ TemporaryFile::~TemporaryFile() {
 }
 
 TemporaryFile inflateToTemporaryFile(const std::string& file, std::int64_t gzipAt,
-                                     std::int64_t skip, std::int64_t bytes,
-                                     const std::string& what) {
+                                     std::int64_t skip, std::int64_t bytes, const std::string& what,
+                                     const InflateProgress& progress) {
   std::error_code ec;
   const fs::path folder = fs::temp_directory_path(ec);
   if (ec) throw Error("inflating " + what + ": no temporary folder (" + ec.message() + ")");
@@ -66,6 +66,8 @@ TemporaryFile inflateToTemporaryFile(const std::string& file, std::int64_t gzipA
   std::vector<char> input(1 << 16);
   std::vector<unsigned char> output(1 << 20);
   std::int64_t seen = 0, written = 0;
+  // Progress is told at each 1/256 of the samples, not at every buffer.
+  std::int64_t toldStep = 0;
   int status = Z_OK;
   try {
     while (written < bytes) {
@@ -86,6 +88,13 @@ TemporaryFile inflateToTemporaryFile(const std::string& file, std::int64_t gzipA
       if (to > from) writeAll(fd, output.data() + from, static_cast<size_t>(to - from), name);
       written += std::max<std::int64_t>(0, to - from);
       seen += got;
+      if (progress && bytes > 0) {
+        const std::int64_t step = written * 256 / bytes;
+        if (step > toldStep || written >= bytes) {
+          toldStep = step;
+          progress(std::min(written, bytes), bytes);
+        }
+      }
       if (status == Z_STREAM_END) {
         inflateReset(&z);  // another gzip member may follow
         status = Z_OK;

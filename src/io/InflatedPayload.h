@@ -3,6 +3,7 @@
 // temporary file, so that they can be read a box at a time like uncompressed samples: memory
 // stays bounded by zlib's buffers, the disk holds the samples once.
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 
@@ -31,12 +32,18 @@ class TemporaryFile {
   std::unique_ptr<InterruptCleanup> cleanup_;  // removes the file on Ctrl-C
 };
 
+// Told how many of the samples' bytes are inflated so far, out of how many: a few hundred times
+// at most for a large file, and once at the end (done == total). It may throw to stop the
+// inflation; the temporary file is then removed and the exception goes on to the caller.
+using InflateProgress = std::function<void(std::int64_t done, std::int64_t total)>;
+
 // Inflates the gzip stream of `file` that starts at byte `gzipAt` (concatenated members are
 // one stream), drops its first `skip` bytes and writes the next `bytes` to a temporary file.
 // Throws mfadvr::Error naming `what` when the stream is corrupt or ends early, or when the
-// temporary folder lacks the room (the message names TMPDIR).
+// temporary folder lacks the room (the message names TMPDIR). Inflating takes seconds per
+// gigabyte: `progress`, when set, hears how far it is.
 TemporaryFile inflateToTemporaryFile(const std::string& file, std::int64_t gzipAt,
-                                     std::int64_t skip, std::int64_t bytes,
-                                     const std::string& what);
+                                     std::int64_t skip, std::int64_t bytes, const std::string& what,
+                                     const InflateProgress& progress = {});
 
 }  // namespace mfadvr

@@ -82,81 +82,125 @@ bool placeUnreordered(vtkNIFTIImageReader& reader, StructuredGrid& layout) {
   return true;
 }
 
+// A header format's file whose samples can be streamed: the grid and where its samples lie.
+struct HeaderVolume {
+  StructuredGrid layout;     // dims, placement, names, notes; no values
+  RawSampleLayout file;      // for gzip samples: offset counted in the inflated stream
+  std::int64_t gzipAt = -1;  // where the gzip stream starts in file.path, or -1
+};
+
+// The checks every streamed read starts with; false for inputs that are never streamed.
+bool mayStream(const std::string& path, const VolumeLoadOptions& options) {
+  if (options.field.chosen() || isBuiltinSpec(path)) return false;
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) return false;
+  requireReadableFile(path, "a volume file or a directory of DICOM slices");
+  return true;
+}
+
+// NRRD, MetaImage, NIfTI or legacy structured points, read up to its samples; nullopt when its
+// samples cannot be streamed or the format is none of these.
+std::optional<HeaderVolume> readHeaderVolume(const std::string& path) {
+  const std::string ext = lowerExtension(path);
+  requireNonEmptyFile(path, "a volume file or a directory of DICOM slices");
+  DeclaredPayload payload;
+  vtkSmartPointer<vtkAlgorithm> reader;
+  size_t axes = 3;        // the payload's axes VTK reads as one volume
+  std::string arrayName;  // the name VTK's reader gives the samples (tested)
+  if (ext == ".nrrd" || ext == ".nhdr") {
+    checkNrrdDeclaredSize(path, &payload);
+    arrayName = payload.gzipAt >= 0 ? "ImageScalars" : "ImageFile";
+    auto r = vtkSmartPointer<vtkNrrdReader>::New();
+    r->SetFileName(path.c_str());
+    reader = r;
+  } else if (ext == ".mha" || ext == ".mhd") {
+    payload = checkMetaImageDeclaredSize(path);
+    arrayName = "MetaImage";
+    auto r = vtkSmartPointer<vtkMetaImageReader>::New();
+    r->SetFileName(path.c_str());
+    reader = r;
+  } else if (isNiftiPath(path)) {
+    payload = checkNiftiDeclaredSize(path);
+    arrayName = "NIFTI";
+    auto r = vtkSmartPointer<vtkNIFTIImageReader>::New();
+    r->SetFileName(path.c_str());
+    reader = r;
+    axes = 7;  // time points and more: the first volume comes first
+  } else if (ext == ".vtk") {
+    payload = checkLegacyVtkDeclaredSize(path);
+    auto r = vtkSmartPointer<vtkStructuredPointsReader>::New();
+    r->SetFileName(path.c_str());
+    reader = r;
+  }
+  if (!reader || payload.file.empty() || payload.components != 1) return std::nullopt;
+  std::optional<StructuredGrid> layout = layoutFromHeader(*reader, payload, axes);
+  if (!layout) return std::nullopt;
+  // VTK decodes %xx escapes in legacy names; such names are left to the in-memory read.
+  if (payload.arrayName.find('%') != std::string::npos) return std::nullopt;
+  layout->fieldName = payload.arrayName.empty() ? arrayName : payload.arrayName;
+  HeaderVolume volume{
+      *layout, {payload.file, payload.offset, payload.dtype, payload.bigEndian}, payload.gzipAt};
+  if (auto* nifti = vtkNIFTIImageReader::SafeDownCast(reader)) {
+    // VTK's reader flips the slice order of a left-handed qform (qfac -1) while reading.
+    if (nifti->GetQFac() < 0) return std::nullopt;
+    if (const auto calibration = niftiCalibration(*nifti)) {
+      volume.file.scale = calibration->slope;
+      volume.file.shift = calibration->intercept;
+      volume.layout.notes.push_back(calibration->note);
+    }
+    if (!placeUnreordered(*nifti, volume.layout)) return std::nullopt;
+  }
+  volume.layout.source = path;
+  volume.layout.sampleType = payload.dtype;  // as the source opened on the samples says
+  volume.layout.inputBytes = volume.layout.sampleCount() * rawSampleSize(payload.dtype);
+  return volume;
+}
+
 }  // namespace
+
+std::unique_ptr<RawVolumeSource> GzipVolume::open(const InflateProgress& inflating) const {
+  // The samples of the first volume only (a NIfTI file may hold time points after it).
+  const TemporaryFile inflated = inflateToTemporaryFile(
+      file.path, gzipAt, file.offset, layout.sampleCount() * rawSampleSize(file.dtype),
+      layout.source, inflating);
+  RawSampleLayout plain = file;
+  plain.path = inflated.path();
+  plain.offset = 0;
+  // Opened here: the inflated file stays readable once its name is removed at the end of this
+  // scope.
+  return std::make_unique<RawVolumeSource>(plain, layout);
+}
+
+std::optional<GzipVolume> describeGzipVolume(const std::string& path,
+                                             const VolumeLoadOptions& options) {
+  if (!mayStream(path, options) || lowerExtension(path) == ".raw") return std::nullopt;
+  std::optional<HeaderVolume> header = readHeaderVolume(path);
+  if (!header || header->gzipAt < 0) return std::nullopt;
+  GzipVolume volume{std::move(header->layout), std::move(header->file), header->gzipAt};
+  volume.layout.origin = options.origin.value_or(volume.layout.origin);
+  volume.layout.spacing = options.spacing.value_or(volume.layout.spacing);
+  return volume;
+}
 
 std::unique_ptr<RawVolumeSource> openStreamedVolume(const std::string& path,
                                                     const VolumeLoadOptions& options,
-                                                    GzipPayloads gzip) {
-  if (options.field.chosen() || isBuiltinSpec(path)) return nullptr;
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) return nullptr;
-  requireReadableFile(path, "a volume file or a directory of DICOM slices");
-  const std::string ext = lowerExtension(path);
+                                                    GzipPayloads gzip,
+                                                    const InflateProgress& inflating) {
+  if (!mayStream(path, options)) return nullptr;
   std::unique_ptr<RawVolumeSource> source;
-  if (ext == ".raw") {
+  if (lowerExtension(path) == ".raw") {
     source = openRawVolume(path);
   } else {
-    requireNonEmptyFile(path, "a volume file or a directory of DICOM slices");
-    DeclaredPayload payload;
-    vtkSmartPointer<vtkAlgorithm> reader;
-    size_t axes = 3;        // the payload's axes VTK reads as one volume
-    std::string arrayName;  // the name VTK's reader gives the samples (tested)
-    if (ext == ".nrrd" || ext == ".nhdr") {
-      checkNrrdDeclaredSize(path, &payload);
-      arrayName = payload.gzipAt >= 0 ? "ImageScalars" : "ImageFile";
-      auto r = vtkSmartPointer<vtkNrrdReader>::New();
-      r->SetFileName(path.c_str());
-      reader = r;
-    } else if (ext == ".mha" || ext == ".mhd") {
-      payload = checkMetaImageDeclaredSize(path);
-      arrayName = "MetaImage";
-      auto r = vtkSmartPointer<vtkMetaImageReader>::New();
-      r->SetFileName(path.c_str());
-      reader = r;
-    } else if (isNiftiPath(path)) {
-      payload = checkNiftiDeclaredSize(path);
-      arrayName = "NIFTI";
-      auto r = vtkSmartPointer<vtkNIFTIImageReader>::New();
-      r->SetFileName(path.c_str());
-      reader = r;
-      axes = 7;  // time points and more: the first volume comes first
-    } else if (ext == ".vtk") {
-      payload = checkLegacyVtkDeclaredSize(path);
-      auto r = vtkSmartPointer<vtkStructuredPointsReader>::New();
-      r->SetFileName(path.c_str());
-      reader = r;
+    std::optional<HeaderVolume> header = readHeaderVolume(path);
+    if (!header) return nullptr;
+    if (header->gzipAt < 0) {
+      source = std::make_unique<RawVolumeSource>(header->file, header->layout);
+    } else if (gzip == GzipPayloads::kLeaveToVtk) {
+      return nullptr;
+    } else {
+      source = GzipVolume{std::move(header->layout), std::move(header->file), header->gzipAt}.open(
+          inflating);
     }
-    if (!reader || payload.file.empty() || payload.components != 1) return nullptr;
-    if (payload.gzipAt >= 0 && gzip == GzipPayloads::kLeaveToVtk) return nullptr;
-    std::optional<StructuredGrid> layout = layoutFromHeader(*reader, payload, axes);
-    if (!layout) return nullptr;
-    // VTK decodes %xx escapes in legacy names; such names are left to the in-memory read.
-    if (payload.arrayName.find('%') != std::string::npos) return nullptr;
-    layout->fieldName = payload.arrayName.empty() ? arrayName : payload.arrayName;
-    RawSampleLayout file{payload.file, payload.offset, payload.dtype, payload.bigEndian};
-    if (auto* nifti = vtkNIFTIImageReader::SafeDownCast(reader)) {
-      // VTK's reader flips the slice order of a left-handed qform (qfac -1) while reading.
-      if (nifti->GetQFac() < 0) return nullptr;
-      if (const auto calibration = niftiCalibration(*nifti)) {
-        file.scale = calibration->slope;
-        file.shift = calibration->intercept;
-        layout->notes.push_back(calibration->note);
-      }
-      if (!placeUnreordered(*nifti, *layout)) return nullptr;
-    }
-    layout->source = path;
-    std::optional<TemporaryFile> inflated;
-    if (payload.gzipAt >= 0) {
-      // The samples of the first volume only (a NIfTI file may hold time points after it).
-      inflated.emplace(inflateToTemporaryFile(payload.file, payload.gzipAt, payload.offset,
-                                              layout->sampleCount() * rawSampleSize(payload.dtype),
-                                              path));
-      file.path = inflated->path();
-      file.offset = 0;
-    }
-    // Opened here: an inflated file stays readable once its name is removed at the end of this
-    // scope.
-    source = std::make_unique<RawVolumeSource>(file, *layout);
   }
   const StructuredGrid& layout = source->layout();
   source->setPlacement(options.origin.value_or(layout.origin),

@@ -6,9 +6,12 @@
 // (DeclaredSizeCheck.h); the grid's dims and placement come from VTK's reader of the format
 // reading the header only, so that a streamed volume is the same grid, sample for sample, as
 // loadStructuredVolume reads (tested).
+#include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 
+#include "io/InflatedPayload.h"
 #include "io/RawVolumeSource.h"
 #include "io/VolumeLoader.h"
 
@@ -25,9 +28,30 @@ enum class GzipPayloads {
 // components, rotated axes, a NIfTI image that its header reorders, a chosen field): such
 // files are read whole by loadStructuredVolume, which also gives their errors. Throws
 // mfadvr::Error as loadStructuredVolume does for a header that does not match its data.
-// --spacing / --origin in `options` replace the file's placement.
+// --spacing / --origin in `options` replace the file's placement. `inflating`, when set, hears
+// how far the inflation of gzip samples is (it may throw to stop it).
 std::unique_ptr<RawVolumeSource> openStreamedVolume(const std::string& path,
                                                     const VolumeLoadOptions& options = {},
-                                                    GzipPayloads gzip = GzipPayloads::kLeaveToVtk);
+                                                    GzipPayloads gzip = GzipPayloads::kLeaveToVtk,
+                                                    const InflateProgress& inflating = {});
+
+// A file whose samples are one gzip stream (NRRD's gzip encoding, .nii.gz), its header read and
+// checked: the grid is known, the samples are not inflated yet (that takes seconds per
+// gigabyte), so that a reader can give the grid at once and inflate when samples are asked for.
+struct GzipVolume {
+  StructuredGrid layout;  // dims, placement, names, notes; no values
+  RawSampleLayout file;   // the compressed file; `offset` counts bytes of the inflated stream
+  std::int64_t gzipAt;    // where the gzip stream starts in file.path
+
+  // Inflates the samples once to a temporary file (InflatedPayload.h) and opens them box by
+  // box; `inflating` hears how far it is and may throw to stop it.
+  std::unique_ptr<RawVolumeSource> open(const InflateProgress& inflating = {}) const;
+};
+
+// The gzip file at `path` as openStreamedVolume would stream it, before inflating; nullopt for
+// every other file (then openStreamedVolume or loadStructuredVolume). Throws as they do for a
+// header that does not match its data.
+std::optional<GzipVolume> describeGzipVolume(const std::string& path,
+                                             const VolumeLoadOptions& options = {});
 
 }  // namespace mfadvr

@@ -7,7 +7,9 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -42,6 +44,13 @@ std::string samples(std::endian order) {
 std::string write(const fs::path& path, const std::string& content) {
   std::ofstream(path, std::ios::binary) << content;
   return path.string();
+}
+
+// No inflated copy is left in the temporary folder.
+void expectNoInflatedFiles() {
+  for (const auto& entry : fs::directory_iterator(fs::temp_directory_path()))
+    EXPECT_EQ(entry.path().filename().string().rfind("mfadvr-inflated-", 0), std::string::npos)
+        << entry.path();
 }
 
 // The streamed grid against VTK's: everything a model records, and every sample; then a box
@@ -171,10 +180,62 @@ TEST(StreamedVolumeReader, GzipPayloadsAreInflatedToATemporaryFile) {
                            {}, inflate);
       },
       {"d.nrrd", "gzip data is cut off or corrupt"});
-  const fs::path temporary = fs::temp_directory_path();
-  for (const auto& entry : fs::directory_iterator(temporary))
-    EXPECT_EQ(entry.path().filename().string().rfind("mfadvr-inflated-", 0), std::string::npos)
-        << entry.path();
+  expectNoInflatedFiles();
+}
+
+// Inflation tells its progress, a few times for a file of several buffers and once at its end,
+// and a listener that throws stops it, leaving no temporary file behind.
+TEST(StreamedVolumeReader, InflationTellsItsProgressAndCanBeStopped) {
+  const fs::path dir = test::scratchDir();
+  std::string data(size_t{256} * 128 * 40 * 2, '\0');  // 2.6 MB of ushort: 3 inflated buffers
+  for (size_t n = 0; n < data.size(); ++n) data[n] = static_cast<char>(n * 7 % 251);
+  const std::string path = write(dir / "large.nrrd",
+                                 "NRRD0004\ntype: ushort\ndimension: 3\nsizes: 256 128 40\n"
+                                 "encoding: gzip\nendian: little\n\n" +
+                                     test::gzipBytes(data));
+  const auto total = static_cast<std::int64_t>(data.size());
+  std::vector<std::int64_t> done;
+  const auto source = openStreamedVolume(path, {}, GzipPayloads::kInflateToTemporaryFile,
+                                         [&](std::int64_t d, std::int64_t t) {
+                                           EXPECT_EQ(t, total);
+                                           done.push_back(d);
+                                         });
+  ASSERT_NE(source, nullptr);
+  ASSERT_GE(done.size(), 2u);
+  EXPECT_LE(done.size(), 257u);
+  EXPECT_TRUE(std::is_sorted(done.begin(), done.end()));
+  EXPECT_EQ(std::adjacent_find(done.begin(), done.end()), done.end());
+  EXPECT_EQ(done.back(), total);
+  // The same grid, described before inflating: what a reader gives before it reads samples.
+  const std::optional<GzipVolume> described = describeGzipVolume(path);
+  ASSERT_TRUE(described.has_value());
+  EXPECT_EQ(described->layout.dims, source->layout().dims);
+  EXPECT_EQ(described->layout.fieldName, source->layout().fieldName);
+  EXPECT_EQ(described->layout.sampleType, source->layout().sampleType);
+  EXPECT_EQ(described->layout.inputBytes, source->layout().inputBytes);
+  EXPECT_EQ(described->open()->read(wholeRange(source->layout().dims)).values,
+            source->read(wholeRange(source->layout().dims)).values);
+  EXPECT_FALSE(describeGzipVolume(write(dir / "raw.nrrd",
+                                        "NRRD0004\ntype: ushort\ndimension: 3\nsizes: 12 5 4\n"
+                                        "encoding: raw\nendian: little\n\n" +
+                                            samples<std::uint16_t>(std::endian::little)))
+                   .has_value());
+  // The samples are the data's all the same.
+  const StructuredGrid grid = source->read(wholeRange(source->layout().dims));
+  EXPECT_EQ(grid.values[1], static_cast<float>(14 + 256 * 21));  // bytes 2 and 3
+
+  int calls = 0;
+  test::expectError(
+      [&] {
+        openStreamedVolume(path, {}, GzipPayloads::kInflateToTemporaryFile,
+                           [&](std::int64_t, std::int64_t) {
+                             ++calls;
+                             throw Error("stopped by the user");
+                           });
+      },
+      {"stopped by the user"});
+  EXPECT_EQ(calls, 1);
+  expectNoInflatedFiles();
 }
 
 TEST(StreamedVolumeReader, OtherStoragesAreLeftToTheInMemoryRead) {

@@ -4,13 +4,17 @@
 // are errors with an empty output.
 #include <gtest/gtest.h>
 
+#include <vtkCallbackCommand.h>
+#include <vtkCommand.h>
 #include <vtkDataArray.h>
 #include <vtkExtentTranslator.h>
 #include <vtkImageData.h>
+#include <vtkInformation.h>
 #include <vtkNew.h>
 #include <vtkNrrdReader.h>
 #include <vtkPointData.h>
 #include <vtkSmartPointer.h>
+#include <vtkStreamingDemandDrivenPipeline.h>
 #include <vtkType.h>
 
 #include <algorithm>
@@ -20,6 +24,8 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "GzipBytes.h"
 #include "TestSupport.h"
@@ -231,6 +237,52 @@ TEST(MFAVolumeReader, ReportsBadFilesWithAnEmptyOutput) {
   ErrorLog log(unnamed);
   unnamed->Update();
   EXPECT_NE(log.text.find("no FileName"), std::string::npos) << log.text;
+}
+
+// A gzip file's grid is known without inflating it; inflating it, at the first RequestData, is
+// reported as progress with its own text, and an observer that sets AbortExecute stops it: an
+// error and an empty output, and the next update reads the file.
+TEST(MFAVolumeReader, InflatesAtTheFirstRequestDataWithProgressThatCanBeAborted) {
+  const std::string path = writeNrrd(scratchDir(), true);
+  struct Heard {
+    std::vector<std::pair<double, std::string>> events;  // progress, text
+    bool abort = false;
+  } heard;
+  vtkNew<vtkCallbackCommand> listener;
+  listener->SetClientData(&heard);
+  listener->SetCallback([](vtkObject* caller, unsigned long, void* data, void*) {
+    auto* h = static_cast<Heard*>(data);
+    auto* reader = static_cast<vtkMFAVolumeReader*>(caller);
+    const char* text = reader->GetProgressText();
+    h->events.emplace_back(reader->GetProgress(), text ? text : "");
+    if (h->abort && !h->events.back().second.empty()) reader->SetAbortExecute(1);
+  });
+  vtkNew<vtkMFAVolumeReader> reader;
+  reader->AddObserver(vtkCommand::ProgressEvent, listener);
+  reader->SetFileName(path.c_str());
+  reader->UpdateInformation();
+  int extent[6];
+  reader->GetOutputInformation(0)->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent);
+  EXPECT_EQ(extent[5], kNz - 1);
+  EXPECT_TRUE(heard.events.empty());  // nothing inflated for the grid
+  reader->Update();
+  const std::pair<double, std::string> inflated{1.0, "inflating " + path};
+  EXPECT_NE(std::find(heard.events.begin(), heard.events.end(), inflated), heard.events.end());
+  EXPECT_EQ(reader->GetProgressText(), nullptr);
+  EXPECT_EQ(reader->GetOutput()->GetNumberOfPoints(), kNx * kNy * kNz);
+
+  vtkNew<vtkMFAVolumeReader> aborted;
+  aborted->AddObserver(vtkCommand::ProgressEvent, listener);
+  ErrorLog log(aborted);
+  heard.abort = true;
+  aborted->SetFileName(path.c_str());
+  aborted->Update();
+  EXPECT_NE(log.text.find("was aborted"), std::string::npos) << log.text;
+  EXPECT_EQ(aborted->GetOutput()->GetNumberOfPoints(), 0);
+  heard.abort = false;
+  aborted->Modified();
+  aborted->Update();
+  EXPECT_EQ(aborted->GetOutput()->GetNumberOfPoints(), kNx * kNy * kNz);
 }
 
 TEST(MFAVolumeReader, CanReadVolumeFilesByName) {

@@ -30,13 +30,23 @@
 
 vtkStandardNewMacro(vtkMFAVolumeReader);
 
-// The file as opened: a box-by-box source, or the whole grid read into memory.
+// The file as opened: a box-by-box source, gzip samples to inflate into one at the first
+// RequestData, or the whole grid read into memory.
 struct vtkMFAVolumeReader::Opened {
   std::string path;
   std::filesystem::file_time_type time;
   std::unique_ptr<mfadvr::RawVolumeSource> streamed;
+  std::optional<mfadvr::GzipVolume> gzip;
   std::optional<mfadvr::StructuredGrid> whole;
-  const mfadvr::StructuredGrid& layout() const { return streamed ? streamed->layout() : *whole; }
+  const mfadvr::StructuredGrid& layout() const {
+    return streamed ? streamed->layout() : gzip ? gzip->layout : *whole;
+  }
+  // Whether the output holds the samples as the file stores them (else as float32).
+  bool stored() const {
+    const bool calibrated = gzip ? gzip->file.scale != 1.0 || gzip->file.shift != 0.0
+                                 : streamed && streamed->calibrated();
+    return (streamed || gzip) && !calibrated;
+  }
 };
 
 namespace {
@@ -99,13 +109,26 @@ vtkMFAVolumeReader::Opened& vtkMFAVolumeReader::Open() {
   auto opened = std::make_shared<Opened>();
   opened->path = this->FileName;
   opened->time = time;
-  opened->streamed =
-      mfadvr::openStreamedVolume(this->FileName, {}, mfadvr::GzipPayloads::kInflateToTemporaryFile);
-  if (!opened->streamed) {
+  // Gzip samples are inflated when RequestData first needs them: the grid is known without.
+  opened->gzip = mfadvr::describeGzipVolume(this->FileName);
+  if (!opened->gzip) opened->streamed = mfadvr::openStreamedVolume(this->FileName);
+  if (!opened->streamed && !opened->gzip) {
     opened->whole = mfadvr::loadStructuredVolume(this->FileName);
   }
   this->Cached = opened;
   return *opened;
+}
+
+void vtkMFAVolumeReader::Inflate(Opened& opened) {
+  struct ProgressTextReset {
+    vtkAlgorithm* algorithm;
+    ~ProgressTextReset() { algorithm->SetProgressText(nullptr); }
+  } reset{this};
+  this->SetProgressText(("inflating " + opened.path).c_str());
+  opened.streamed = opened.gzip->open([this, &opened](std::int64_t done, std::int64_t total) {
+    this->UpdateProgress(static_cast<double>(done) / static_cast<double>(total));
+    if (this->GetAbortExecute()) throw mfadvr::Error("reading " + opened.path + " was aborted");
+  });
 }
 
 int vtkMFAVolumeReader::RequestInformation(vtkInformation*, vtkInformationVector**,
@@ -125,9 +148,8 @@ int vtkMFAVolumeReader::RequestInformation(vtkInformation*, vtkInformationVector
     info->Set(vtkDataObject::ORIGIN(), origin, 3);
     info->Set(vtkDataObject::SPACING(), spacing, 3);
     info->Set(CAN_PRODUCE_SUB_EXTENT(), 1);
-    const bool stored = this->Cached->streamed && !this->Cached->streamed->calibrated();
     vtkDataObject::SetPointDataActiveScalarInfo(
-        info, stored ? mfadvr::vtkTypeOfSampleType(grid.sampleType) : VTK_FLOAT, 1);
+        info, this->Cached->stored() ? mfadvr::vtkTypeOfSampleType(grid.sampleType) : VTK_FLOAT, 1);
   } catch (const std::exception& e) {
     this->Cached.reset();
     vtkErrorMacro(<< e.what());
@@ -143,6 +165,7 @@ int vtkMFAVolumeReader::RequestData(vtkInformation*, vtkInformationVector**,
   output->Initialize();
   try {
     Opened& opened = this->Open();
+    if (opened.gzip && !opened.streamed) this->Inflate(opened);
     const mfadvr::StructuredGrid& grid = opened.layout();
     int extent[6];
     info->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), extent);
@@ -150,7 +173,7 @@ int vtkMFAVolumeReader::RequestData(vtkInformation*, vtkInformationVector**,
     mfadvr::requireRangeInside(range, grid.dims);
     vtkSmartPointer<vtkDataArray> samples;
     const std::string what = "reading " + opened.path;
-    if (opened.streamed && !opened.streamed->calibrated()) {
+    if (opened.stored()) {
       mfadvr::requireMemory(range.sampleCount() * opened.streamed->sampleBytes(), what);
       samples.TakeReference(
           vtkDataArray::CreateDataArray(mfadvr::vtkTypeOfSampleType(grid.sampleType)));

@@ -19,6 +19,11 @@
  *
  * The array has the name VTK's reader of the format gives it (`ImageFile` for raw files, whose
  * format names no field). Errors are reported with vtkErrorMacro and leave the output empty.
+ *
+ * Gzip data is inflated at the first RequestData (RequestInformation reads the header only),
+ * which takes seconds per gigabyte: the reader reports it as progress (ProgressEvent, progress
+ * text "inflating FILE"), and an observer that sets AbortExecute stops it, which is then an
+ * error like a bad file's.
  */
 #ifndef vtkMFAVolumeReader_h
 #define vtkMFAVolumeReader_h
@@ -59,9 +64,11 @@ class VTKMFA_EXPORT vtkMFAVolumeReader : public vtkImageAlgorithm {
 
  private:
   struct Opened;
-  // FileName opened (its header read and checked, gzip data inflated), kept while the file
+  // FileName opened (its header read and checked), kept while the file
   // and its modification time stay the same.
   Opened& Open();
+  // Inflates the gzip samples of `opened` into a temporary file, reporting progress.
+  void Inflate(Opened& opened);
   std::shared_ptr<Opened> Cached;
 
   vtkMFAVolumeReader(const vtkMFAVolumeReader&) = delete;
