@@ -66,7 +66,7 @@ TemporaryFile inflateToTemporaryFile(const std::string& file, std::int64_t gzipA
   std::vector<char> input(1 << 16);
   std::vector<unsigned char> output(1 << 20);
   std::int64_t seen = 0, written = 0;
-  // Progress is told at each 1/256 of the samples, not at every buffer.
+  // Progress is told at each 1/256 of the stream needed, not at every buffer.
   std::int64_t toldStep = 0;
   int status = Z_OK;
   try {
@@ -88,11 +88,13 @@ TemporaryFile inflateToTemporaryFile(const std::string& file, std::int64_t gzipA
       if (to > from) writeAll(fd, output.data() + from, static_cast<size_t>(to - from), name);
       written += std::max<std::int64_t>(0, to - from);
       seen += got;
-      if (progress && bytes > 0) {
-        const std::int64_t step = written * 256 / bytes;
+      if (progress) {
+        // The skipped bytes take as long to inflate as the written ones.
+        const std::int64_t needed = skip + bytes, done = std::min(seen, needed);
+        const std::int64_t step = done * 256 / needed;
         if (step > toldStep || written >= bytes) {
           toldStep = step;
-          progress(std::min(written, bytes), bytes);
+          progress(written >= bytes ? needed : done, needed);
         }
       }
       if (status == Z_STREAM_END) {

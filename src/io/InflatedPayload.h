@@ -32,8 +32,9 @@ class TemporaryFile {
   std::unique_ptr<InterruptCleanup> cleanup_;  // removes the file on Ctrl-C
 };
 
-// Told how many of the samples' bytes are inflated so far, out of how many: a few hundred times
-// at most for a large file, and once at the end (done == total). It may throw to stop the
+// Told how many bytes of the stream are inflated so far, out of how many are needed (the
+// skipped ones and the samples): a few hundred times at most, and once at the end (done ==
+// total). It may throw to stop the
 // inflation; the temporary file is then removed and the exception goes on to the caller.
 using InflateProgress = std::function<void(std::int64_t done, std::int64_t total)>;
 

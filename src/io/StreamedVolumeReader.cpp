@@ -14,6 +14,7 @@
 #include <optional>
 
 #include "core/analytic/BuiltinFunction.h"
+#include "core/grid/SampleRange.h"
 #include "io/DeclaredSizeCheck.h"
 #include "io/InflatedPayload.h"
 #include "io/InputFile.h"
@@ -159,16 +160,26 @@ std::optional<HeaderVolume> readHeaderVolume(const std::string& path) {
 }  // namespace
 
 std::unique_ptr<RawVolumeSource> GzipVolume::open(const InflateProgress& inflating) const {
-  // The samples of the first volume only (a NIfTI file may hold time points after it).
-  const TemporaryFile inflated = inflateToTemporaryFile(
-      file.path, gzipAt, file.offset, layout.sampleCount() * rawSampleSize(file.dtype),
-      layout.source, inflating);
+  return openPlanes(0, layout.dims[2] - 1, inflating);
+}
+
+std::unique_ptr<RawVolumeSource> GzipVolume::openPlanes(std::int64_t z0, std::int64_t z1,
+                                                        const InflateProgress& inflating) const {
+  const SampleRange planes{{0, 0, z0}, {layout.dims[0] - 1, layout.dims[1] - 1, z1}};
+  requireRangeInside(planes, layout.dims);
+  const std::int64_t planeBytes = layout.dims[0] * layout.dims[1] * rawSampleSize(file.dtype);
+  // Only these planes of the first volume (a NIfTI file may hold time points after it).
+  const TemporaryFile inflated =
+      inflateToTemporaryFile(file.path, gzipAt, file.offset + z0 * planeBytes,
+                             (z1 - z0 + 1) * planeBytes, layout.source, inflating);
   RawSampleLayout plain = file;
   plain.path = inflated.path();
   plain.offset = 0;
   // Opened here: the inflated file stays readable once its name is removed at the end of this
   // scope.
-  return std::make_unique<RawVolumeSource>(plain, layout);
+  StructuredGrid part = subGridLayout(layout, planes);
+  part.notes = layout.notes;
+  return std::make_unique<RawVolumeSource>(plain, part);
 }
 
 std::optional<GzipVolume> describeGzipVolume(const std::string& path,

@@ -46,6 +46,11 @@ struct GzipVolume {
   // Inflates the samples once to a temporary file (InflatedPayload.h) and opens them box by
   // box; `inflating` hears how far it is and may throw to stop it.
   std::unique_ptr<RawVolumeSource> open(const InflateProgress& inflating = {}) const;
+  // The same for the z planes `z0` .. `z1` alone (a piece of a parallel pipeline): the stream
+  // is inflated up to the last of them, and the temporary file holds only them. The source's
+  // grid is those planes (its origin at plane z0).
+  std::unique_ptr<RawVolumeSource> openPlanes(std::int64_t z0, std::int64_t z1,
+                                              const InflateProgress& inflating = {}) const;
 };
 
 // The gzip file at `path` as openStreamedVolume would stream it, before inflating; nullopt for

@@ -215,6 +215,22 @@ TEST(StreamedVolumeReader, InflationTellsItsProgressAndCanBeStopped) {
   EXPECT_EQ(described->layout.inputBytes, source->layout().inputBytes);
   EXPECT_EQ(described->open()->read(wholeRange(source->layout().dims)).values,
             source->read(wholeRange(source->layout().dims)).values);
+  // Planes 10 .. 24 alone: the stream inflated up to plane 24 (progress counts the planes before
+  // 10 too), their samples those of the whole grid, their origin at plane 10.
+  done.clear();
+  const std::int64_t planeBytes = 256 * 128 * 2;
+  const auto planes = described->openPlanes(10, 24, [&](std::int64_t d, std::int64_t t) {
+    EXPECT_EQ(t, 25 * planeBytes);
+    done.push_back(d);
+  });
+  ASSERT_FALSE(done.empty());
+  EXPECT_EQ(done.back(), 25 * planeBytes);
+  EXPECT_EQ(planes->layout().dims, (Index3{256, 128, 15}));
+  EXPECT_EQ(planes->layout().origin, source->layout().position(0, 0, 10));
+  EXPECT_EQ(planes->layout().sampleType, "uint16");
+  EXPECT_EQ(planes->read(wholeRange(planes->layout().dims)).values,
+            source->read({{0, 0, 10}, {255, 127, 24}}).values);
+  test::expectError([&] { described->openPlanes(30, 40); }, {"outside the grid along z"});
   EXPECT_FALSE(describeGzipVolume(write(dir / "raw.nrrd",
                                         "NRRD0004\ntype: ushort\ndimension: 3\nsizes: 12 5 4\n"
                                         "encoding: raw\nendian: little\n\n" +

@@ -30,16 +30,18 @@
 
 vtkStandardNewMacro(vtkMFAVolumeReader);
 
-// The file as opened: a box-by-box source, gzip samples to inflate into one at the first
-// RequestData, or the whole grid read into memory.
+// The file as opened: a box-by-box source; gzip samples, of which the z planes that the
+// requests need are inflated into one; or the whole grid read into memory.
 struct vtkMFAVolumeReader::Opened {
   std::string path;
   std::filesystem::file_time_type time;
   std::unique_ptr<mfadvr::RawVolumeSource> streamed;
+  std::int64_t z0 = 0;  // the first z plane of the file that `streamed` holds
   std::optional<mfadvr::GzipVolume> gzip;
   std::optional<mfadvr::StructuredGrid> whole;
+  // The file's whole grid.
   const mfadvr::StructuredGrid& layout() const {
-    return streamed ? streamed->layout() : gzip ? gzip->layout : *whole;
+    return gzip ? gzip->layout : streamed ? streamed->layout() : *whole;
   }
   // Whether the output holds the samples as the file stores them (else as float32).
   bool stored() const {
@@ -119,16 +121,25 @@ vtkMFAVolumeReader::Opened& vtkMFAVolumeReader::Open() {
   return *opened;
 }
 
-void vtkMFAVolumeReader::Inflate(Opened& opened) {
+void vtkMFAVolumeReader::Inflate(Opened& opened, std::int64_t z0, std::int64_t z1) {
+  if (opened.streamed) {
+    const std::int64_t heldEnd = opened.z0 + opened.streamed->layout().dims[2] - 1;
+    if (opened.z0 <= z0 && z1 <= heldEnd) return;
+    z0 = std::min(z0, opened.z0);  // the planes held stay: a later request may want them
+    z1 = std::max(z1, heldEnd);
+    opened.streamed.reset();  // its temporary file goes before the next one is written
+  }
   struct ProgressTextReset {
     vtkAlgorithm* algorithm;
     ~ProgressTextReset() { algorithm->SetProgressText(nullptr); }
   } reset{this};
   this->SetProgressText(("inflating " + opened.path).c_str());
-  opened.streamed = opened.gzip->open([this, &opened](std::int64_t done, std::int64_t total) {
-    this->UpdateProgress(static_cast<double>(done) / static_cast<double>(total));
-    if (this->GetAbortExecute()) throw mfadvr::Error("reading " + opened.path + " was aborted");
-  });
+  opened.streamed =
+      opened.gzip->openPlanes(z0, z1, [this, &opened](std::int64_t done, std::int64_t total) {
+        this->UpdateProgress(static_cast<double>(done) / static_cast<double>(total));
+        if (this->GetAbortExecute()) throw mfadvr::Error("reading " + opened.path + " was aborted");
+      });
+  opened.z0 = z0;
 }
 
 int vtkMFAVolumeReader::RequestInformation(vtkInformation*, vtkInformationVector**,
@@ -165,12 +176,16 @@ int vtkMFAVolumeReader::RequestData(vtkInformation*, vtkInformationVector**,
   output->Initialize();
   try {
     Opened& opened = this->Open();
-    if (opened.gzip && !opened.streamed) this->Inflate(opened);
     const mfadvr::StructuredGrid& grid = opened.layout();
     int extent[6];
     info->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), extent);
     const mfadvr::SampleRange range = rangeOf(extent);
     mfadvr::requireRangeInside(range, grid.dims);
+    if (opened.gzip) this->Inflate(opened, range.lo[2], range.hi[2]);
+    // The same box in the planes the source holds.
+    mfadvr::SampleRange held = range;
+    held.lo[2] -= opened.z0;
+    held.hi[2] -= opened.z0;
     vtkSmartPointer<vtkDataArray> samples;
     const std::string what = "reading " + opened.path;
     if (opened.stored()) {
@@ -178,14 +193,14 @@ int vtkMFAVolumeReader::RequestData(vtkInformation*, vtkInformationVector**,
       samples.TakeReference(
           vtkDataArray::CreateDataArray(mfadvr::vtkTypeOfSampleType(grid.sampleType)));
       samples->SetNumberOfTuples(range.sampleCount());
-      opened.streamed->readStored(range, samples->GetVoidPointer(0));
+      opened.streamed->readStored(held, samples->GetVoidPointer(0));
     } else {
       mfadvr::requireMemory(range.sampleCount() * std::int64_t{sizeof(float)}, what);
       auto floats = vtkSmartPointer<vtkFloatArray>::New();
       floats->SetNumberOfTuples(range.sampleCount());
       float* out = floats->GetPointer(0);
       if (opened.streamed) {
-        opened.streamed->readFloats(range, out);
+        opened.streamed->readFloats(held, out);
       } else {
         const mfadvr::Index3& d = grid.dims;
         for (std::int64_t k = range.lo[2]; k <= range.hi[2]; ++k)

@@ -21,7 +21,9 @@
  * format names no field). Errors are reported with vtkErrorMacro and leave the output empty.
  *
  * Gzip data is inflated at the first RequestData (RequestInformation reads the header only),
- * which takes seconds per gigabyte: the reader reports it as progress (ProgressEvent, progress
+ * up to the last z plane of the requested extent, and only the requested planes are kept (a
+ * piece's planes, in a parallel pipeline; a later request for other planes inflates again).
+ * That takes seconds per gigabyte: the reader reports it as progress (ProgressEvent, progress
  * text "inflating FILE"), and an observer that sets AbortExecute stops it, which is then an
  * error like a bad file's.
  */
@@ -31,7 +33,8 @@
 #include "vtkImageAlgorithm.h"
 #include "vtkMFAModule.h"  // for export macro
 
-#include <memory>  // for the open file
+#include <cstdint>  // for plane numbers
+#include <memory>   // for the open file
 
 class VTKMFA_EXPORT vtkMFAVolumeReader : public vtkImageAlgorithm {
  public:
@@ -67,8 +70,9 @@ class VTKMFA_EXPORT vtkMFAVolumeReader : public vtkImageAlgorithm {
   // FileName opened (its header read and checked), kept while the file
   // and its modification time stay the same.
   Opened& Open();
-  // Inflates the gzip samples of `opened` into a temporary file, reporting progress.
-  void Inflate(Opened& opened);
+  // Makes `opened` hold the z planes z0 .. z1 of its gzip samples (with those it held),
+  // inflated into a temporary file, reporting progress.
+  void Inflate(Opened& opened, std::int64_t z0, std::int64_t z1);
   std::shared_ptr<Opened> Cached;
 
   vtkMFAVolumeReader(const vtkMFAVolumeReader&) = delete;
