@@ -34,8 +34,8 @@ class TemporaryFile {
 
 // Told how many bytes of the stream are inflated so far, out of how many are needed (the
 // skipped ones and the samples): a few hundred times at most, and once at the end (done ==
-// total). It may throw to stop the
-// inflation; the temporary file is then removed and the exception goes on to the caller.
+// total). It may throw to stop the inflation; the temporary file is then removed and the
+// exception goes on to the caller.
 using InflateProgress = std::function<void(std::int64_t done, std::int64_t total)>;
 
 // Inflates the gzip stream of `file` that starts at byte `gzipAt` (concatenated members are
