@@ -131,7 +131,7 @@ void RawVolumeSource::readRun(std::int64_t first, std::int64_t count, float* out
     buffer_.resize(std::max(buffer_.size(), static_cast<size_t>(n * sampleBytes_)));
     readBytes(first, n, buffer_.data());
     convertSamples(file_.dtype, buffer_.data(), static_cast<size_t>(n), swapsBytes(), out);
-    if (file_.scale != 1.0 || file_.shift != 0.0)
+    if (file_.calibrated())
       for (std::int64_t s = 0; s < n; ++s)
         out[s] = static_cast<float>(out[s] * file_.scale + file_.shift);
     first += n;

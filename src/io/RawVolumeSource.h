@@ -21,6 +21,7 @@ struct RawSampleLayout {
   // samples are calibrated: the stored value as float32, then in double.
   double scale = 1.0;
   double shift = 0.0;
+  bool calibrated() const { return scale != 1.0 || shift != 0.0; }
 };
 
 class RawVolumeSource final : public GridSampleSource {
@@ -47,7 +48,7 @@ class RawVolumeSource final : public GridSampleSource {
   // The samples as stored: `layout().sampleType`, `sampleBytes()` each. They are the values
   // unless the file calibrates them (NIfTI's scl_slope, scl_inter).
   int sampleBytes() const { return sampleBytes_; }
-  bool calibrated() const { return file_.scale != 1.0 || file_.shift != 0.0; }
+  bool calibrated() const { return file_.calibrated(); }
   // The stored samples of `range` (inside the grid), in this machine's byte order, x fastest,
   // into `out` (range.sampleCount() * sampleBytes() bytes), not converted: a reader can hand
   // them on in their own type.

@@ -45,8 +45,7 @@ struct vtkMFAVolumeReader::Opened {
   }
   // Whether the output holds the samples as the file stores them (else as float32).
   bool stored() const {
-    const bool calibrated = gzip ? gzip->file.scale != 1.0 || gzip->file.shift != 0.0
-                                 : streamed && streamed->calibrated();
+    const bool calibrated = gzip ? gzip->file.calibrated() : streamed && streamed->calibrated();
     return (streamed || gzip) && !calibrated;
   }
 };
