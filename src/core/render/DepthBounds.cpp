@@ -5,7 +5,6 @@
 #include <cmath>
 #include <limits>
 
-#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 namespace mfadvr {
@@ -17,6 +16,7 @@ struct BlockFootprint {
   int tx0, ty0, tx1, ty1;  // tiles [tx0, tx1] x [ty0, ty1]
   double nearest;          // the least distance of a point of the block from the camera
   double farthest;         // the greatest
+  double box[6];           // the box, least corner then greatest, grown (DepthBoundsView)
 };
 
 struct LevelBlocks {
@@ -64,20 +64,35 @@ std::int64_t footprints(const CameraRays& cam, const ImagePlane& plane, const Mo
   // cell's box at level 0): bounds of the finer level's precision for 8 flag reads per block.
   const int fine = level > 0 ? level - 1 : 0, ratio = level > 0 ? 2 : 1;
   const LevelBlocks subs = levelBlocks(v, cells, fine);
-  // Per axis a and sub-block boundary b: the boundary's coordinate, less the camera's, and that
+  // Per axis a and sub-block boundary b: the boundary's world coordinate, and `grow`: how far
+  // the boxes are grown on axis a, far beyond the rounding of a sample's location (its
+  // parameter's, and its world coordinate's at the camera's distance), so that a sample located
+  // in a box's cell is in the grown box. Per side s (0: the boundary as a box's least face, moved
+  // down by grow; 1: as its greatest, moved up) the face's coordinate less the camera's, and that
   // offset's part of each image-plane coordinate (a corner's w is the sum of its three faces'
-  // parts).
-  std::vector<double> face[3], part[3];
+  // parts): every distance and projection is the grown box's, so that a ray's entry into a box
+  // is never less than the box's least distance (DepthBoundsView's early end relies on it).
+  std::vector<double> face[2][3], part[2][3], world[3];
+  double grow[3];
   for (int a = 0; a < 3; ++a) {
     const KnotAxisView& axis = v.spline.axis[a];
     const int p = axis.degree, n = subs.count[a];
-    face[a].resize(std::size_t(n) + 1);
-    part[a].resize(3 * (std::size_t(n) + 1));
+    grow[a] =
+        1e-7 / v.inverseExtent[a] +
+        1e-12 * (std::abs(v.boxMin[a]) + 1.0 / v.inverseExtent[a] + std::abs(cam.position[a]));
+    world[a].resize(std::size_t(n) + 1);
+    for (int s = 0; s < 2; ++s) {
+      face[s][a].resize(std::size_t(n) + 1);
+      part[s][a].resize(3 * (std::size_t(n) + 1));
+    }
     for (int b = 0; b <= n; ++b) {
       const int c = std::min(b << fine, cells[a]);
-      const double q = v.boxMin[a] + axis.knots[p + c] / v.inverseExtent[a] - cam.position[a];
-      face[a][b] = q;
-      for (int i = 0; i < 3; ++i) part[a][3 * b + i] = plane.inverse[i][a] * q;
+      world[a][b] = v.boxMin[a] + axis.knots[p + c] / v.inverseExtent[a];
+      for (int s = 0; s < 2; ++s) {
+        const double q = world[a][b] + (s ? grow[a] : -grow[a]) - cam.position[a];
+        face[s][a][b] = q;
+        for (int i = 0; i < 3; ++i) part[s][a][3 * b + i] = plane.inverse[i][a] * q;
+      }
     }
   }
   // Pixel coordinates whose centres have image-plane coordinates (sx, sy).
@@ -113,14 +128,19 @@ std::int64_t footprints(const CameraRays& cam, const ImagePlane& plane, const Mo
             hi[a] = std::min(at[a] * ratio + ratio, subs.count[a]) - 1;
           }
         const int bound[3][2] = {{lo[0], hi[0] + 1}, {lo[1], hi[1] + 1}, {lo[2], hi[2] + 1}};
-        BlockFootprint f{0, 0, tilesX - 1, tilesY - 1, 0.0, 0.0};
+        BlockFootprint f{0, 0, tilesX - 1, tilesY - 1, 0.0, 0.0, {}};
+        for (int a = 0; a < 3; ++a) {
+          f.box[a] = world[a][bound[a][0]] - grow[a];
+          f.box[3 + a] = world[a][bound[a][1]] + grow[a];
+        }
         double xMin = INFINITY, xMax = -INFINITY, yMin = INFINITY, yMax = -INFINITY;
         bool behind = false;  // a corner not in front of a perspective camera
         double nearest = INFINITY, farthest = -INFINITY;
         for (int c = 0; c < 8; ++c) {
           double w[3] = {0.0, 0.0, 0.0};
           for (int a = 0; a < 3; ++a) {
-            const double* t = &part[a][3 * bound[a][(c >> a) & 1]];
+            const int side = (c >> a) & 1;
+            const double* t = &part[side][a][3 * bound[a][side]];
             for (int i = 0; i < 3; ++i) w[i] += t[i];
           }
           double sx = w[1], sy = w[2];
@@ -144,7 +164,7 @@ std::int64_t footprints(const CameraRays& cam, const ImagePlane& plane, const Mo
           // perspective ray's direction is unit).
           double sum = 0.0, farSum = 0.0;
           for (int a = 0; a < 3; ++a) {
-            const double l = face[a][bound[a][0]], h = face[a][bound[a][1]];
+            const double l = face[0][a][bound[a][0]], h = face[1][a][bound[a][1]];
             const double e = l > 0.0 ? l : (h < 0.0 ? -h : 0.0);
             const double m = std::max(std::abs(l), std::abs(h));
             sum += e * e;
@@ -206,34 +226,60 @@ DepthBounds::DepthBounds(const CameraRays& camera, const ModelView& view, int bl
   std::int64_t covered = footprints(camera, plane, view, cells, level_, tilesX_, tilesY, planes);
   while (covered > budget && level_ < view.emptyLevels)
     covered = footprints(camera, plane, view, cells, ++level_, tilesX_, tilesY, planes);
-  // Each thread takes the least and greatest distances of its planes' footprints in copies of
-  // its own; the copies' least and greatest are the bounds.
-  struct Range {
-    std::vector<double> least, greatest;
-  };
-  tbb::enumerable_thread_specific<Range> local([&] {
-    return Range{std::vector<double>(nearest_.size(), INFINITY),
-                 std::vector<double>(nearest_.size(), -INFINITY)};
-  });
-  tbb::parallel_for(std::size_t(0), planes.size(), [&](std::size_t z) {
-    Range& range = local.local();
-    for (const BlockFootprint& f : planes[z])
-      for (int ty = f.ty0; ty <= f.ty1; ++ty) {
-        double* least = range.least.data() + std::int64_t(ty) * tilesX_;
-        double* greatest = range.greatest.data() + std::int64_t(ty) * tilesX_;
-        for (int tx = f.tx0; tx <= f.tx1; ++tx) {
-          least[tx] = std::min(least[tx], f.nearest);
-          greatest[tx] = std::max(greatest[tx], f.farthest);
+  // The footprints in one list, in the planes' order; per row of tiles, those that cover it.
+  std::vector<BlockFootprint> blocks;
+  for (const auto& list : planes) blocks.insert(blocks.end(), list.begin(), list.end());
+  occupied_ = static_cast<std::int64_t>(blocks.size());
+  std::vector<std::int64_t> rowStart(static_cast<std::size_t>(tilesY) + 1, 0);
+  for (const BlockFootprint& f : blocks)
+    for (int ty = f.ty0; ty <= f.ty1; ++ty) ++rowStart[static_cast<std::size_t>(ty) + 1];
+  for (int ty = 0; ty < tilesY; ++ty) rowStart[ty + 1] += rowStart[ty];
+  std::vector<std::int32_t> rowBlocks(static_cast<std::size_t>(rowStart[tilesY]));
+  {
+    std::vector<std::int64_t> fill(rowStart.begin(), rowStart.end() - 1);
+    for (std::size_t i = 0; i < blocks.size(); ++i)
+      for (int ty = blocks[i].ty0; ty <= blocks[i].ty1; ++ty)
+        rowBlocks[static_cast<std::size_t>(fill[ty]++)] = static_cast<std::int32_t>(i);
+  }
+  boxes_.resize(6 * blocks.size());
+  for (std::size_t i = 0; i < blocks.size(); ++i)
+    std::copy(blocks[i].box, blocks[i].box + 6, boxes_.begin() + 6 * std::ptrdiff_t(i));
+  // Per tile, the kDepthBoxes blocks of least nearest distance (the first taken on a tie) are
+  // kept with their boxes; the nearest bound is the least of the others'. Rows of tiles are
+  // independent, so the result does not depend on the threads.
+  tileBoxes_.assign(static_cast<std::size_t>(tiles) * kDepthBoxes, -1);
+  tileKeys_.resize(tileBoxes_.size());
+  tbb::parallel_for(0, tilesY, [&](int ty) {
+    std::int32_t* kept = tileBoxes_.data() + std::int64_t(ty) * tilesX_ * kDepthBoxes;
+    double* rest = nearest_.data() + std::int64_t(ty) * tilesX_;
+    double* greatest = farthest_.data() + std::int64_t(ty) * tilesX_;
+    for (std::int64_t r = rowStart[ty]; r < rowStart[ty + 1]; ++r) {
+      const std::int32_t index = rowBlocks[static_cast<std::size_t>(r)];
+      const BlockFootprint& f = blocks[static_cast<std::size_t>(index)];
+      for (int tx = f.tx0; tx <= f.tx1; ++tx) {
+        greatest[tx] = std::max(greatest[tx], f.farthest);
+        std::int32_t* k = kept + std::int64_t(tx) * kDepthBoxes;
+        double* key = tileKeys_.data() + (std::int64_t(ty) * tilesX_ + tx) * kDepthBoxes;
+        int n = 0;
+        while (n < kDepthBoxes && k[n] >= 0) ++n;
+        if (n == kDepthBoxes) {
+          if (!(f.nearest < key[n - 1])) {
+            rest[tx] = std::min(rest[tx], f.nearest);
+            continue;
+          }
+          rest[tx] = std::min(rest[tx], key[n - 1]);  // the farthest kept block gives way
+          --n;
         }
+        int at = n;
+        for (; at > 0 && f.nearest < key[at - 1]; --at) {
+          key[at] = key[at - 1];
+          k[at] = k[at - 1];
+        }
+        key[at] = f.nearest;
+        k[at] = index;
       }
-  });
-  occupied_ = 0;
-  for (const auto& list : planes) occupied_ += static_cast<std::int64_t>(list.size());
-  for (const Range& copy : local)
-    for (std::size_t i = 0; i < nearest_.size(); ++i) {
-      nearest_[i] = std::min(nearest_[i], copy.least[i]);
-      farthest_[i] = std::max(farthest_[i], copy.greatest[i]);
     }
+  });
 }
 
 }  // namespace mfadvr

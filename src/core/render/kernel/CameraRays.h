@@ -34,10 +34,17 @@ MFADVR_HD MFADVR_INLINE void primaryRay(const CameraRays& c, int x, int y, doubl
   }
 }
 
-// Entry and exit distances of the ray o + t d (d unit) through the box [lo, hi]; false if it
-// misses. Entry may be negative when the origin is inside the box.
-MFADVR_HD MFADVR_INLINE bool intersectBox(const double o[3], const double d[3], const double lo[3],
-                                          const double hi[3], double& tEnter, double& tExit) {
+// The inverse of a ray's direction for intersectBoxInverse: 1 / d per axis, 0 where d is 0.
+MFADVR_HD MFADVR_INLINE void inverseDirection(const double d[3], double inv[3]) {
+  for (int a = 0; a < 3; ++a) inv[a] = d[a] != 0.0 ? 1.0 / d[a] : 0.0;
+}
+
+// intersectBox for a ray whose direction's inverse is known (inverseDirection): many boxes per
+// ray without a division each.
+MFADVR_HD MFADVR_INLINE bool intersectBoxInverse(const double o[3], const double d[3],
+                                                 const double inv[3], const double lo[3],
+                                                 const double hi[3], double& tEnter,
+                                                 double& tExit) {
   tEnter = -INFINITY;
   tExit = INFINITY;
   for (int a = 0; a < 3; ++a) {
@@ -45,8 +52,7 @@ MFADVR_HD MFADVR_INLINE bool intersectBox(const double o[3], const double d[3], 
       if (o[a] < lo[a] || o[a] > hi[a]) return false;
       continue;
     }
-    const double inv = 1.0 / d[a];
-    double t0 = (lo[a] - o[a]) * inv, t1 = (hi[a] - o[a]) * inv;
+    double t0 = (lo[a] - o[a]) * inv[a], t1 = (hi[a] - o[a]) * inv[a];
     if (t0 > t1) {
       const double tmp = t0;
       t0 = t1;
@@ -56,6 +62,15 @@ MFADVR_HD MFADVR_INLINE bool intersectBox(const double o[3], const double d[3], 
     tExit = tExit < t1 ? tExit : t1;
   }
   return tEnter <= tExit;
+}
+
+// Entry and exit distances of the ray o + t d (d unit) through the box [lo, hi]; false if it
+// misses. Entry may be negative when the origin is inside the box.
+MFADVR_HD MFADVR_INLINE bool intersectBox(const double o[3], const double d[3], const double lo[3],
+                                          const double hi[3], double& tEnter, double& tExit) {
+  double inv[3];
+  inverseDirection(d, inv);
+  return intersectBoxInverse(o, d, inv, lo, hi, tEnter, tExit);
 }
 
 }  // namespace mfadvr
