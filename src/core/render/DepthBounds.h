@@ -8,14 +8,13 @@
 // level 0), which holds every cell of it that is not empty: the rays that cross a box are those
 // through the pixels inside its corners' projections when all are in front of the camera (one
 // pixel more on each side for rounding); each tile its projection covers keeps the greatest
-// distance from the camera to a point of such a box, and the kDepthBoxes boxes least distant from
-// the camera (their least distances compared; all distances are those of the boxes grown below)
-// with the least distance of the others. A sample
-// farther than the greatest, or nearer than both the least of the others and the ray's entry
-// into each kept box it crosses, lies in no occupied block, so its cell is empty. (A sample whose
-// location rounds across a block's face into an occupied cell lies within a rounding error of that
-// cell's block: the kept boxes are grown by far more, and the two steps of slack of boundSteps
-// cover the distances.)
+// distance from the camera to a point of such a box, the kDepthBoxes boxes least distant from the
+// camera (by their least distances; every distance is that of the box grown as below) and the
+// least distance of the others. A sample farther than the greatest, or nearer than both the least
+// of the others and the ray's entry into each kept box it crosses, lies in no occupied block, so
+// its cell is empty. (A sample whose location rounds across a block's face into an occupied cell
+// lies within a rounding error of that cell's block: the boxes are grown by far more, and the two
+// steps of slack of boundSteps cover the distances' rounding.)
 //
 // L is the finest level with at most kDepthBlocksPerAxis blocks per axis, coarser while the
 // projections would cover too many tiles (a camera close to the model), so the build stays a

@@ -6,13 +6,14 @@
 // and a ray that passes the visible cells goes on jumping to the box's far face
 // (docs/benchmarks.md). DepthBounds (render/DepthBounds.h) projects the coarse blocks of the
 // empty-space pyramid that are not all empty onto the image, once per frame, and keeps per tile
-// of pixels the greatest distance from the camera to such a block covering the tile, and the
-// boxes of the few such blocks nearest the camera. A ray of the tile has no sample in a cell that
-// is not empty before its entry into the first of those boxes it crosses, nor before the least
-// distance to the tile's other blocks, nor after the greatest: its march may begin at the one and
-// end at the other, every step passed over would have been skipped, and is counted as skipped.
-// Each ray takes its own start from the boxes (a few box tests), rather than the tile's nearest
-// block: the rays of a tile at a leaf's edge that miss the leaf no longer march from its depth.
+// of pixels the greatest distance from the camera to such a block covering the tile, the boxes
+// of the kDepthBoxes such blocks nearest the camera, and the least distance to the others. A ray
+// of the tile has no sample in a cell that is not empty before both its entry into the kept boxes
+// it crosses and that least distance, nor after the greatest distance: its march may begin at
+// the first and end at the last, every step passed over would have been skipped, and is counted
+// as skipped. Each ray takes its own start from the boxes (a box test each), rather than the
+// tile's least distance to any block: a ray at a leaf's edge that misses the leaf no longer
+// marches from the leaf's depth.
 #include <cmath>
 #include <cstdint>
 
@@ -21,10 +22,10 @@
 
 namespace mfadvr {
 
-// Boxes kept per tile: the blocks nearest the camera. More boxes start more rays nearer their first
-// visible cell (4: a fifth fewer jumps on the way in than 1 on a 256^3 bonsai), but the lists
-// cost more to build per frame than the jumps they save, and the box tests slow dense scenes
-// (docs/benchmarks.md, "Each ray's own start").
+// Boxes kept per tile: the blocks nearest the camera. More boxes start more rays nearer their
+// first visible cell (4 instead of 1: a fifth fewer walk steps on the way in on a 256^3 bonsai),
+// but their lists cost more to build per frame than the walks they save, and the box tests slow
+// dense scenes (docs/benchmarks.md, "Each ray's own start").
 inline constexpr int kDepthBoxes = 1;
 
 struct DepthBoundsView {
