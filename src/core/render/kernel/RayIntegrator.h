@@ -156,7 +156,13 @@ MFADVR_HD MFADVR_INLINE void integrateSegment(const RayParams& rp, Sampler& samp
                                               const RaySegment* segment, RayStart start,
                                               float out[4], RayCounters& counters) {
   float red = 0.0f, green = 0.0f, blue = 0.0f, alpha = 0.0f;
-  if (segment) {
+  if (segment && start.k >= segment->steps) {
+    // Nothing left to sample (the depth bounds or the march ahead took the ray to its end):
+    // only the counts, without the ray's shading and sampler set-up, which on a sparse scene
+    // cost a frame more than these rays' bounds did (docs/benchmarks.md).
+    ++counters.hits;
+    counters.skipped += start.skipped + start.tail;
+  } else if (segment) {
     const RaySegment& ray = *segment;
     ++counters.hits;
     const double* o = ray.o;
