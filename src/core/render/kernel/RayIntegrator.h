@@ -156,13 +156,7 @@ MFADVR_HD MFADVR_INLINE void integrateSegment(const RayParams& rp, Sampler& samp
                                               const RaySegment* segment, RayStart start,
                                               float out[4], RayCounters& counters) {
   float red = 0.0f, green = 0.0f, blue = 0.0f, alpha = 0.0f;
-  if (segment && start.k >= segment->steps) {
-    // Nothing left to sample (the depth bounds or the march ahead took the ray to its end):
-    // only the counts, without the ray's shading and sampler set-up (their divisions made a
-    // sparse frame about 3 % slower, docs/benchmarks.md).
-    ++counters.hits;
-    counters.skipped += start.skipped + start.tail;
-  } else if (segment) {
+  if (segment) {
     const RaySegment& ray = *segment;
     ++counters.hits;
     const double* o = ray.o;
@@ -170,15 +164,19 @@ MFADVR_HD MFADVR_INLINE void integrateSegment(const RayParams& rp, Sampler& samp
     const double t0 = ray.t0;
     const std::int64_t steps = ray.steps;
     const double dt = rp.sampleDistance;
+    // A ray with nothing left to sample (the depth bounds or the march ahead took it to its end)
+    // only adds its counts below: its shading and sampler set-up are skipped (their divisions
+    // made a sparse frame about 3 % slower, docs/benchmarks.md).
+    const bool samples = start.k < steps;
     RayShading rayShading;
     if constexpr (Shade) {
       const float df[3] = {float(d[0]), float(d[1]), float(d[2])};
-      prepareRayShading(rp.shading, df, rayShading);
+      if (samples) prepareRayShading(rp.shading, df, rayShading);
     }
 #if MFADVR_EMPTY_SPACE_PROFILE
     const std::int64_t rayStart = cycleCount();
 #endif
-    sampler.beginRay(o, d);
+    if (samples) sampler.beginRay(o, d);
     constexpr int K = Sampler::kBatch;
     std::int64_t k = start.k;
     std::int64_t carried = start.skipped;  // passed over before step k
