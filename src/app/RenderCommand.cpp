@@ -89,6 +89,8 @@ int renderWithVtk(const Options& o, VtkMethod method, Clock::time_point start) {
   const int frames = o.frames > 0 ? o.frames : 3;
 
   if (!o.quiet && !o.json) {
+    if (const std::string w = o.render.transferFunctionWarning(scene); !w.empty())
+      std::cerr << "mfadvr render: warning: " << w << "\n";
     if (settings.shade && !vtkMethodShades(method))
       std::cerr << "mfadvr render: warning: " << name << " does not shade; --shade is ignored\n";
     if (o.render.step && !vtkMethodUsesSampleDistance(method))
@@ -239,6 +241,9 @@ Command addRenderCommand(CLI::App& app) {
     load.streamBlocks = frames == 1;
     const LoadedScene scene = loadScene(o->input, needs, load);
     RenderSettings settings = o->render.settingsFor(scene);
+    if (!o->quiet && !o->json)
+      if (const std::string w = o->render.transferFunctionWarning(scene); !w.empty())
+        std::cerr << "mfadvr render: warning: " << w << "\n";
     if (progress) settings.progress = [](double f) { printProgress("rendering", f); };
     MethodRenderStats stats;
     Image image;

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <fstream>
 #include <set>
+#include <sstream>
 
 #include "app/OptionParsing.h"
 #include "core/util/Error.h"
@@ -65,6 +66,20 @@ void readCameraFile(const std::string& path, Camera& camera) {
       throw Error("camera file " + path + ": 'parallel_projection' must be true or false");
     camera.parallelProjection = j["parallel_projection"].get<bool>();
   }
+}
+
+// The transfer function with its normalized points placed on the scene's value range, or on
+// --range (`range`, empty: none).
+TransferFunction resolvedTransferFunction(const TransferFunction& spec, const LoadedScene& scene,
+                                          const std::string& range) {
+  double lo = scene.valueMin, hi = scene.valueMax;
+  if (!range.empty()) {
+    const auto r = parseNumberList("--range", range, 2, 2);
+    if (!(r[1] > r[0])) throw CLI::ValidationError("--range", "MAX must exceed MIN");
+    lo = r[0];
+    hi = r[1];
+  }
+  return spec.resolved(lo, hi);
 }
 
 }  // namespace
@@ -176,6 +191,29 @@ void RenderOptions::addTo(CLI::App* sub) {
       ->group(sampling);
 }
 
+std::string RenderOptions::transferFunctionWarning(const LoadedScene& scene) const {
+  // A constant field has one opacity whatever the function: nothing to say.
+  if (!(scene.valueMax > scene.valueMin)) return {};
+  const TransferFunction spec = parseTransferFunction(tf, colormap);
+  const auto [least, greatest] =
+      resolvedTransferFunction(spec, scene, range).opacityOver(scene.valueMin, scene.valueMax);
+  if (least != greatest) return {};
+  std::ostringstream m;
+  m << "the transfer function gives every value of the data (" << scene.valueMin << " .. "
+    << scene.valueMax << ") ";
+  if (greatest == 0.0f)
+    m << "opacity 0: the image will be empty";
+  else
+    m << "the same opacity " << greatest << ": the image will show the volume as a uniform "
+      << "block, not its structures";
+  if (spec.space == TfSpace::Data)
+    m << ". Its points are data values (the ct-* presets are in Hounsfield units); the "
+         "normalized forms (ramp, step:ISO, tent:CENTER:WIDTH) follow any data range";
+  else if (!range.empty())
+    m << " (the function is placed on --range " << range << ")";
+  return m.str();
+}
+
 RenderSettings RenderOptions::settingsFor(const LoadedScene& scene) const {
   RenderSettings s;
   parseImageSize(size, s.width, s.height);
@@ -207,16 +245,8 @@ RenderSettings RenderOptions::settingsFor(const LoadedScene& scene) const {
   }
   c.validate();
 
-  // Transfer function, resolved against the common value range.
   const TransferFunction tfSpec = parseTransferFunction(tf, colormap);
-  double lo = scene.valueMin, hi = scene.valueMax;
-  if (!range.empty()) {
-    const auto r = parseNumberList("--range", range, 2, 2);
-    if (!(r[1] > r[0])) throw CLI::ValidationError("--range", "MAX must exceed MIN");
-    lo = r[0];
-    hi = r[1];
-  }
-  s.transferFunction = tfSpec.resolved(lo, hi);
+  s.transferFunction = resolvedTransferFunction(tfSpec, scene, range);
   const double smallestSpacing = scene.spacing.minCoeff();
   if (unitDistance < 0.0 || !std::isfinite(unitDistance))
     throw CLI::ValidationError("--unit-distance", "must be positive");

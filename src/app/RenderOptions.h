@@ -33,6 +33,10 @@ struct RenderOptions {
   // Builds validated settings (throws CLI::ValidationError for malformed values and
   // mfadvr::Error for bad files or impossible scenes).
   RenderSettings settingsFor(const LoadedScene& scene) const;
+  // A sentence for the user when the transfer function gives every value of the scene's value
+  // range one opacity (an empty image, or the whole box equally opaque: typically a preset in
+  // data units, such as ct-skin's Hounsfield units, on data of another scale); empty otherwise.
+  std::string transferFunctionWarning(const LoadedScene& scene) const;
 };
 
 // Adds --device (device/RenderDevice.h) to `sub`, storing into `choice`.

@@ -280,6 +280,9 @@ Command addViewCommand(CLI::App& app) {
 
     // The scene as the render command would draw it, set up in VTK.
     const RenderSettings settings = o->render.settingsFor(scene);
+    if (!o->quiet)
+      if (const std::string w = o->render.transferFunctionWarning(scene); !w.empty())
+        std::cerr << "mfadvr view: warning: " << w << "\n";
     viewer->data->SetModel(std::make_shared<const Model>(*scene.model));
     viewer->mapper->SetInputData(viewer->data.GetPointer());
     viewer->mapper->SetEarlyRayTerminationOpacity(settings.earlyTerminationOpacity);

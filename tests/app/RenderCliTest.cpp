@@ -119,6 +119,30 @@ TEST(CliRender, BadArgumentsFailCleanly) {
   EXPECT_FALSE(std::filesystem::exists(dir / "x.png"));
 }
 
+TEST(CliRender, WarnsWhenTheTransferFunctionGivesTheDataOneOpacity) {
+  const auto dir = test::scratchDir();
+  const std::string common =
+      "render builtin:marschner-lobb:12 --size 16x16 -o " + (dir / "tf.png").string() + " ";
+  // Marschner-Lobb takes values in [0, 1]: all of it above ct-skin's -400 HU.
+  auto r = runMfadvr(common + "--tf ct-skin");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("warning: the transfer function gives every value of the data"),
+            std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("the same opacity 0.6"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("Hounsfield"), std::string::npos) << r.err;
+  r = runMfadvr(common + "--tf ramp --range 2,3");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("opacity 0: the image will be empty"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--range 2,3"), std::string::npos) << r.err;
+  // A function that shows something, and -q, say nothing.
+  for (const char* quiet : {"--tf step:0.5", "--tf ct-skin -q"}) {
+    r = runMfadvr(common + quiet);
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(r.err.find("warning"), std::string::npos) << quiet << ": " << r.err;
+  }
+}
+
 TEST(CliRender, ModelTooLargeForTheMemoryIsRefusedBeforeLoading) {
   const auto dir = test::scratchDir();
   const std::string single = (dir / "one.mfa").string(), blocks = (dir / "blocks.mfa").string();

@@ -54,6 +54,19 @@ TEST(CliVtkRender, EveryBaselineRendersABuiltin) {
   }
 }
 
+TEST(CliVtkRender, WarnsWhenTheTransferFunctionGivesTheDataOneOpacity) {
+  const auto dir = test::scratchDir();
+  const auto r = runMfadvr(
+      "render builtin:gaussian-beam:10 --size 16x16 --method vtk-fixedpoint "
+      "--tf '0:0,0.2:0' -o " +
+      (dir / "empty.png").string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("warning: the transfer function gives every value of the data"),
+            std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("opacity 0: the image will be empty"), std::string::npos) << r.err;
+}
+
 TEST(CliVtkRender, TextOutputReportsFirstAndMedianFrame) {
   const auto dir = test::scratchDir();
   const auto r =

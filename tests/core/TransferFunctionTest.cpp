@@ -45,6 +45,27 @@ TEST(TransferFunction, InterpolatesLinearlyAndClampsOutside) {
   EXPECT_FLOAT_EQ(tf.opacityAt(std::numeric_limits<double>::quiet_NaN()), 0.0f);
 }
 
+TEST(TransferFunction, OpacityOverARangeTakesItsEndsAndInnerPoints) {
+  const auto tf = simple();  // 0 up to 0.2, rising to 0.8 at 0.6, then 0.8
+  EXPECT_EQ(tf.opacityOver(-1.0, 0.1), std::make_pair(0.0f, 0.0f));
+  EXPECT_EQ(tf.opacityOver(0.7, 3.0), std::make_pair(0.8f, 0.8f));
+  EXPECT_EQ(tf.opacityOver(0.0, 1.0), std::make_pair(0.0f, 0.8f));
+  const auto inside = tf.opacityOver(0.3, 0.5);  // the ends only: no point between
+  EXPECT_FLOAT_EQ(inside.first, 0.2f);
+  EXPECT_FLOAT_EQ(inside.second, 0.6f);
+  // A peak between the ends counts, though both ends are transparent.
+  TransferFunction tent = simple();
+  tent.opacity = {{0.4, 0.0f}, {0.5, 0.7f}, {0.6, 0.0f}};
+  EXPECT_EQ(tent.opacityOver(0.0, 1.0), std::make_pair(0.0f, 0.7f));
+  // A jump inside the range: both of its sides; a jump at the range's end: only the side
+  // that the end's value takes.
+  TransferFunction step = simple();
+  step.opacity = {{0.5, 0.0f}, {0.5, 1.0f}};
+  EXPECT_EQ(step.opacityOver(0.0, 1.0), std::make_pair(0.0f, 1.0f));
+  EXPECT_EQ(step.opacityOver(0.5, 1.0), std::make_pair(1.0f, 1.0f));
+  EXPECT_EQ(step.opacityOver(0.0, 0.4), std::make_pair(0.0f, 0.0f));
+}
+
 TEST(TransferFunction, LongListsUseTheSameRules) {
   // More than 8 points takes the binary-search path.
   TransferFunction tf = simple();

@@ -62,6 +62,17 @@ void TransferFunction::validate() const {
                 " must be finite and >= 0 (0 means: the renderer's default)");
 }
 
+std::pair<float, float> TransferFunction::opacityOver(double lo, double hi) const {
+  float least = std::min(opacityAt(lo), opacityAt(hi));
+  float greatest = std::max(opacityAt(lo), opacityAt(hi));
+  for (const OpacityPoint& p : opacity)
+    if (p.x > lo && p.x < hi) {
+      least = std::min(least, p.alpha);
+      greatest = std::max(greatest, p.alpha);
+    }
+  return {least, greatest};
+}
+
 TransferFunction TransferFunction::resolved(double vmin, double vmax) const {
   if (!(std::isfinite(vmin) && std::isfinite(vmax) && vmin <= vmax))
     throw Error("transfer function: bad data range [" + number(vmin) + ", " + number(vmax) + "]");

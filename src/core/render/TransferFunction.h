@@ -9,6 +9,7 @@
 #include <cstddef>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json_fwd.hpp>
@@ -57,6 +58,9 @@ struct TransferFunction {
   TransferFunction resolved(double vmin, double vmax) const;
   Vec3f colorAt(double x) const;  // x in colorPointSpace()
   float opacityAt(double x) const;
+  // The least and greatest opacity over the values [lo, hi] (x as the opacity points'): the
+  // ends' and those of the points between (a jump's both sides).
+  std::pair<float, float> opacityOver(double lo, double hi) const;
 };
 
 // Colour-map and opacity presets; the names and forms the parse functions accept.
