@@ -85,12 +85,12 @@ int renderWithVtk(const Options& o, VtkMethod method, Clock::time_point start) {
   needs.grid = method == VtkMethod::FixedPoint;
   needs.cells = vtkMethodNeedsTetrahedra(method);
   const LoadedScene scene = loadScene(o.input, needs, loadOptions(o, progress));
-  const RenderSettings settings = o.render.settingsFor(scene);
+  std::string tfWarning;
+  const RenderSettings settings = o.render.settingsFor(scene, &tfWarning);
   const int frames = o.frames > 0 ? o.frames : 3;
 
   if (!o.quiet && !o.json) {
-    if (const std::string w = o.render.transferFunctionWarning(scene); !w.empty())
-      std::cerr << "mfadvr render: warning: " << w << "\n";
+    if (!tfWarning.empty()) std::cerr << "mfadvr render: warning: " << tfWarning << "\n";
     if (settings.shade && !vtkMethodShades(method))
       std::cerr << "mfadvr render: warning: " << name << " does not shade; --shade is ignored\n";
     if (o.render.step && !vtkMethodUsesSampleDistance(method))
@@ -240,10 +240,10 @@ Command addRenderCommand(CLI::App& app) {
     // One frame reads every block once either way; one at a time, it holds one.
     load.streamBlocks = frames == 1;
     const LoadedScene scene = loadScene(o->input, needs, load);
-    RenderSettings settings = o->render.settingsFor(scene);
-    if (!o->quiet && !o->json)
-      if (const std::string w = o->render.transferFunctionWarning(scene); !w.empty())
-        std::cerr << "mfadvr render: warning: " << w << "\n";
+    std::string tfWarning;
+    RenderSettings settings = o->render.settingsFor(scene, &tfWarning);
+    if (!o->quiet && !o->json && !tfWarning.empty())
+      std::cerr << "mfadvr render: warning: " << tfWarning << "\n";
     if (progress) settings.progress = [](double f) { printProgress("rendering", f); };
     MethodRenderStats stats;
     Image image;

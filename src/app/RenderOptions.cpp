@@ -68,18 +68,28 @@ void readCameraFile(const std::string& path, Camera& camera) {
   }
 }
 
-// The transfer function with its normalized points placed on the scene's value range, or on
-// --range (`range`, empty: none).
-TransferFunction resolvedTransferFunction(const TransferFunction& spec, const LoadedScene& scene,
-                                          const std::string& range) {
-  double lo = scene.valueMin, hi = scene.valueMax;
-  if (!range.empty()) {
-    const auto r = parseNumberList("--range", range, 2, 2);
-    if (!(r[1] > r[0])) throw CLI::ValidationError("--range", "MAX must exceed MIN");
-    lo = r[0];
-    hi = r[1];
-  }
-  return spec.resolved(lo, hi);
+// The sentence for RenderOptions::settingsFor's warning when `resolved` (the function `spec`
+// placed on the value range; `range`: --range, empty if none) gives every value of the scene's
+// range one opacity; empty otherwise. A constant field has one opacity whatever the function.
+std::string uniformOpacityWarning(const TransferFunction& spec, const TransferFunction& resolved,
+                                  const LoadedScene& scene, const std::string& range) {
+  if (!(scene.valueMax > scene.valueMin)) return {};
+  const auto [least, greatest] = resolved.opacityOver(scene.valueMin, scene.valueMax);
+  if (least != greatest) return {};
+  std::ostringstream m;
+  m << "the transfer function gives every value of the data (" << scene.valueMin << " .. "
+    << scene.valueMax << ") ";
+  if (greatest == 0.0f)
+    m << "opacity 0: the image will be empty";
+  else
+    m << "the same opacity " << greatest << ": the image will show the volume as a uniform "
+      << "block, not its structures";
+  if (spec.space == TfSpace::Data)
+    m << ". Its points are data values (the ct-* presets are in Hounsfield units); the "
+         "normalized forms (ramp, step:ISO, tent:CENTER:WIDTH) follow any data range";
+  else if (!range.empty())
+    m << " (the function is placed on --range " << range << ")";
+  return m.str();
 }
 
 }  // namespace
@@ -191,30 +201,7 @@ void RenderOptions::addTo(CLI::App* sub) {
       ->group(sampling);
 }
 
-std::string RenderOptions::transferFunctionWarning(const LoadedScene& scene) const {
-  // A constant field has one opacity whatever the function: nothing to say.
-  if (!(scene.valueMax > scene.valueMin)) return {};
-  const TransferFunction spec = parseTransferFunction(tf, colormap);
-  const auto [least, greatest] =
-      resolvedTransferFunction(spec, scene, range).opacityOver(scene.valueMin, scene.valueMax);
-  if (least != greatest) return {};
-  std::ostringstream m;
-  m << "the transfer function gives every value of the data (" << scene.valueMin << " .. "
-    << scene.valueMax << ") ";
-  if (greatest == 0.0f)
-    m << "opacity 0: the image will be empty";
-  else
-    m << "the same opacity " << greatest << ": the image will show the volume as a uniform "
-      << "block, not its structures";
-  if (spec.space == TfSpace::Data)
-    m << ". Its points are data values (the ct-* presets are in Hounsfield units); the "
-         "normalized forms (ramp, step:ISO, tent:CENTER:WIDTH) follow any data range";
-  else if (!range.empty())
-    m << " (the function is placed on --range " << range << ")";
-  return m.str();
-}
-
-RenderSettings RenderOptions::settingsFor(const LoadedScene& scene) const {
+RenderSettings RenderOptions::settingsFor(const LoadedScene& scene, std::string* tfWarning) const {
   RenderSettings s;
   parseImageSize(size, s.width, s.height);
   s.threads = threads;
@@ -245,8 +232,17 @@ RenderSettings RenderOptions::settingsFor(const LoadedScene& scene) const {
   }
   c.validate();
 
+  // Transfer function, resolved against the common value range.
   const TransferFunction tfSpec = parseTransferFunction(tf, colormap);
-  s.transferFunction = resolvedTransferFunction(tfSpec, scene, range);
+  double lo = scene.valueMin, hi = scene.valueMax;
+  if (!range.empty()) {
+    const auto r = parseNumberList("--range", range, 2, 2);
+    if (!(r[1] > r[0])) throw CLI::ValidationError("--range", "MAX must exceed MIN");
+    lo = r[0];
+    hi = r[1];
+  }
+  s.transferFunction = tfSpec.resolved(lo, hi);
+  if (tfWarning) *tfWarning = uniformOpacityWarning(tfSpec, s.transferFunction, scene, range);
   const double smallestSpacing = scene.spacing.minCoeff();
   if (unitDistance < 0.0 || !std::isfinite(unitDistance))
     throw CLI::ValidationError("--unit-distance", "must be positive");

@@ -31,12 +31,11 @@ struct RenderOptions {
   // Adds the options to `sub`.
   void addTo(CLI::App* sub);
   // Builds validated settings (throws CLI::ValidationError for malformed values and
-  // mfadvr::Error for bad files or impossible scenes).
-  RenderSettings settingsFor(const LoadedScene& scene) const;
-  // A sentence for the user when the transfer function gives every value of the scene's value
-  // range one opacity (an empty image, or the whole box equally opaque: typically a preset in
-  // data units, such as ct-skin's Hounsfield units, on data of another scale); empty otherwise.
-  std::string transferFunctionWarning(const LoadedScene& scene) const;
+  // mfadvr::Error for bad files or impossible scenes). tfWarning, when given, receives a
+  // sentence for the user when the transfer function gives every value of the scene's value
+  // range one opacity (an empty image, or the whole volume a uniform block: typically a preset in
+  // data units, such as ct-skin's Hounsfield units, on data of another scale), else "".
+  RenderSettings settingsFor(const LoadedScene& scene, std::string* tfWarning = nullptr) const;
 };
 
 // Adds --device (device/RenderDevice.h) to `sub`, storing into `choice`.

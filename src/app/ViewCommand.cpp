@@ -279,10 +279,9 @@ Command addViewCommand(CLI::App& app) {
                                                     : vtkMFAVolumeMapper::DeviceAuto);
 
     // The scene as the render command would draw it, set up in VTK.
-    const RenderSettings settings = o->render.settingsFor(scene);
-    if (!o->quiet)
-      if (const std::string w = o->render.transferFunctionWarning(scene); !w.empty())
-        std::cerr << "mfadvr view: warning: " << w << "\n";
+    std::string tfWarning;
+    const RenderSettings settings = o->render.settingsFor(scene, &tfWarning);
+    if (!o->quiet && !tfWarning.empty()) std::cerr << "mfadvr view: warning: " << tfWarning << "\n";
     viewer->data->SetModel(std::make_shared<const Model>(*scene.model));
     viewer->mapper->SetInputData(viewer->data.GetPointer());
     viewer->mapper->SetEarlyRayTerminationOpacity(settings.earlyTerminationOpacity);

@@ -63,8 +63,8 @@ void TransferFunction::validate() const {
 }
 
 std::pair<float, float> TransferFunction::opacityOver(double lo, double hi) const {
-  float least = std::min(opacityAt(lo), opacityAt(hi));
-  float greatest = std::max(opacityAt(lo), opacityAt(hi));
+  const float atLo = opacityAt(lo), atHi = opacityAt(hi);
+  float least = std::min(atLo, atHi), greatest = std::max(atLo, atHi);
   for (const OpacityPoint& p : opacity)
     if (p.x > lo && p.x < hi) {
       least = std::min(least, p.alpha);
