@@ -334,5 +334,33 @@ TEST(TruncatedInput, ChangedBinaryHeaderBytesAreErrors) {
   expectLoadError(raw, "raw name");
 }
 
+// VTK's DICOM reader assumes an image size of its own where Rows, Columns or Bits Allocated is
+// missing and reads past the pixel data: a slice without one of them (its group byte changed,
+// as the fuzzer did) is refused, as is one where it is 0.
+TEST(TruncatedInput, DicomSlicesWithoutTheirImageSizeAreErrors) {
+  const fs::path series = test::scratchDir() / "series";
+  fs::create_directories(series);
+  for (int k = 0; k < test::kNk; ++k)
+    writeBytes(series / ("s" + std::to_string(k) + ".dcm"), test::dicomSlice(k));
+  const Sample dicom = sample("dicom", series, series / "s1.dcm");
+  const std::string slice = test::dicomSlice(1);
+  for (const char element : {'\x10', '\x11', '\x00'}) {  // (0028,0010), (0028,0011), (0028,0100)
+    const std::string tag =
+        std::string("\x28\x00", 2) + element + (element == '\x00' ? '\x01' : '\x00') + "US";
+    const auto at = slice.find(tag);
+    ASSERT_NE(at, std::string::npos);
+    std::string edited = slice;
+    edited[at] = '\x2F';  // (002F,....): not an attribute VTK's reader knows
+    writeBytes(dicom.data, edited);
+    expectLoadError(dicom, "DICOM tag " + std::to_string(int(element)) + " missing");
+    edited = slice;
+    edited[at + 8] = edited[at + 9] = '\0';
+    writeBytes(dicom.data, edited);
+    expectLoadError(dicom, "DICOM tag " + std::to_string(int(element)) + " of 0");
+  }
+  writeBytes(dicom.data, slice);
+  EXPECT_NO_THROW(load(dicom));
+}
+
 }  // namespace
 }  // namespace mfadvr

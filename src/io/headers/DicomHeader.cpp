@@ -152,15 +152,30 @@ void checkDicomFile(std::istream& in, std::int64_t size, const std::string& path
                 " as DICOM: no pixel data (7FE0,0010) before the end of "
                 "the file; it is truncated or holds no image");
   }
-  if (w.rows > 0 && w.columns > 0 && w.bitsAllocated > 0) {
-    const std::int64_t need =
-        times(times(w.rows, w.columns), times(w.samplesPerPixel, (w.bitsAllocated + 7) / 8));
-    if (w.pixelBytes < need) {
-      throw Error("cannot read " + path + " as DICOM: " + std::to_string(w.rows) + " x " +
-                  std::to_string(w.columns) + " pixels of " + std::to_string(w.bitsAllocated) +
-                  " bits need " + grouped(need) + " bytes, but its pixel data has " +
-                  grouped(w.pixelBytes));
-    }
+  // Without these VTK 9.1's reader assumes sizes of its own and copies that many bytes out of
+  // the pixel data, past its end (found by fuzzing: a file without Bits Allocated). They are
+  // type-1 attributes of every image, so a file that lacks one is refused.
+  const struct {
+    std::int64_t value;
+    const char* name;
+  } required[] = {{w.rows, "Rows (0028,0010)"},
+                  {w.columns, "Columns (0028,0011)"},
+                  {w.bitsAllocated, "Bits Allocated (0028,0100)"},
+                  {w.samplesPerPixel, "Samples per Pixel (0028,0002)"}};
+  for (const auto& r : required)
+    if (r.value <= 0)
+      throw Error("cannot read " + path + " as DICOM: " +
+                  (r.value < 0 ? std::string("its image has no ") + r.name +
+                                     " of two bytes before its pixel data"
+                               : std::string("its ") + r.name + " is 0") +
+                  "; the file is corrupt or holds no image");
+  const std::int64_t need =
+      times(times(w.rows, w.columns), times(w.samplesPerPixel, (w.bitsAllocated + 7) / 8));
+  if (w.pixelBytes < need) {
+    throw Error("cannot read " + path + " as DICOM: " + std::to_string(w.rows) + " x " +
+                std::to_string(w.columns) + " pixels of " + std::to_string(w.bitsAllocated) +
+                " bits need " + grouped(need) + " bytes, but its pixel data has " +
+                grouped(w.pixelBytes));
   }
 }
 
