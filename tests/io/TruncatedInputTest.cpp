@@ -337,7 +337,7 @@ TEST(TruncatedInput, ChangedBinaryHeaderBytesAreErrors) {
 // VTK's DICOM reader assumes an image size of its own where Rows, Columns or Bits Allocated is
 // missing and reads past the pixel data: a slice without one of them (its group byte changed,
 // as the fuzzer did) is refused, as is one where it is 0.
-TEST(TruncatedInput, DicomSlicesWithoutTheirImageSizeAreErrors) {
+TEST(TruncatedInput, DicomSlicesThatVtkWouldMisreadAreErrors) {
   const fs::path series = test::scratchDir() / "series";
   fs::create_directories(series);
   for (int k = 0; k < test::kNk; ++k)
@@ -357,6 +357,26 @@ TEST(TruncatedInput, DicomSlicesWithoutTheirImageSizeAreErrors) {
     edited[at + 8] = edited[at + 9] = '\0';
     writeBytes(dicom.data, edited);
     expectLoadError(dicom, "DICOM tag " + std::to_string(int(element)) + " of 0");
+  }
+  // VTK's reader takes 3 samples a pixel for an RGB image and 1 for any other, whatever Samples
+  // per Pixel says: RGB of one sample (it read past the pixel data) and a monochrome image of
+  // three (it mixed them) are refused.
+  const auto photometric = slice.find("MONOCHROME2 ");
+  const auto samples = slice.find(std::string("\x28\x00\x02\x00US", 6));
+  ASSERT_NE(photometric, std::string::npos);
+  ASSERT_NE(samples, std::string::npos);
+  std::string rgb = slice;
+  rgb.replace(photometric, 12, std::string("RGB \0\0\0\0\0\0\0\0", 12));
+  std::string threeSamples = slice;
+  threeSamples[samples + 8] = 3;
+  for (const std::string& edited : {rgb, threeSamples}) {
+    writeBytes(dicom.data, edited);
+    try {  // refused by the check, not by what VTK's reader made of it
+      load(dicom);
+      ADD_FAILURE() << "DICOM samples per pixel: read without an error";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("Samples per Pixel"), std::string::npos) << e.what();
+    }
   }
   writeBytes(dicom.data, slice);
   EXPECT_NO_THROW(load(dicom));

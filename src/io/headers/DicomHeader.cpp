@@ -24,6 +24,7 @@ namespace {
 struct DicomWalk {
   std::int64_t rows = -1, columns = -1, bitsAllocated = -1, samplesPerPixel = 1;
   std::int64_t pixelBytes = -1;  // length of (7FE0,0010); -1: not reached
+  std::string photometric;       // (0028,0004) up to its first NUL, as VTK's reader keeps it
   std::string problem;           // why the walk stopped early ("" when it did not)
 };
 
@@ -129,6 +130,9 @@ DicomWalk walkDicom(std::istream& in, std::int64_t size) {
       ts = ts.substr(0, ts.find_first_of(std::string("\0 ", 2)));
       explicitVr = ts != "1.2.840.10008.1.2";
       littleEndian = ts != "1.2.840.10008.1.2.2";
+    } else if (group == 0x0028 && element == 0x0004) {
+      w.photometric.assign(reinterpret_cast<char*>(value), small);
+      w.photometric = w.photometric.substr(0, w.photometric.find('\0'));
     } else if (group == 0x0028 && length == 2) {
       if (element == 0x0010) w.rows = u16(value);
       if (element == 0x0011) w.columns = u16(value);
@@ -169,6 +173,19 @@ void checkDicomFile(std::istream& in, std::int64_t size, const std::string& path
                                      " of two bytes before its pixel data"
                                : std::string("its ") + r.name + " is 0") +
                   "; the file is corrupt or holds no image");
+  // VTK 9.1's reader takes its samples per pixel from the photometric interpretation, not from
+  // Samples per Pixel: 3 where it reads exactly "RGB " (the padded value), else 1. Where the two
+  // differ it reads past the pixel data (RGB of one sample) or mixes a pixel's samples.
+  const int vtkSamples = w.photometric == "RGB " ? 3 : 1;
+  if (w.samplesPerPixel != vtkSamples) {
+    std::string shown = w.photometric;
+    shown.erase(shown.find_last_not_of(' ') + 1);
+    throw Error("cannot read " + path + " as DICOM: its Samples per Pixel (0028,0002) is " +
+                std::to_string(w.samplesPerPixel) + ", but with its Photometric Interpretation '" +
+                shown + "' VTK's reader takes " + std::to_string(vtkSamples) +
+                (vtkSamples == 1 ? " sample" : " samples") +
+                " a pixel (3 only for RGB); the file is corrupt or an image VTK cannot read");
+  }
   const std::int64_t need =
       times(times(w.rows, w.columns), times(w.samplesPerPixel, (w.bitsAllocated + 7) / 8));
   if (w.pixelBytes < need) {
