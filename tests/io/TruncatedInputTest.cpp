@@ -369,6 +369,20 @@ TEST(TruncatedInput, DicomSlicesThatVtkWouldMisreadAreErrors) {
   rgb.replace(photometric, 12, std::string("RGB \0\0\0\0\0\0\0\0", 12));
   std::string threeSamples = slice;
   threeSamples[samples + 8] = 3;
+  // A multi-frame image: VTK's reader would read its first frame alone.
+  std::string frames = slice;
+  std::string numberOfFrames(
+      "\x28\x00\x08\x00IS\x02\x00"
+      "3 ",
+      10);
+  frames.insert(slice.find(std::string("\x28\x00\x10\x00US", 6)), numberOfFrames);
+  writeBytes(dicom.data, frames);
+  try {
+    load(dicom);
+    ADD_FAILURE() << "DICOM of 3 frames: read without an error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("3 frames"), std::string::npos) << e.what();
+  }
   for (const std::string& edited : {rgb, threeSamples}) {
     writeBytes(dicom.data, edited);
     try {  // refused by the check, not by what VTK's reader made of it

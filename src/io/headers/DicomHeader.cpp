@@ -25,6 +25,7 @@ struct DicomWalk {
   std::int64_t rows = -1, columns = -1, bitsAllocated = -1, samplesPerPixel = 1;
   std::int64_t pixelBytes = -1;  // length of (7FE0,0010); -1: not reached
   std::string photometric;       // (0028,0004) up to its first NUL, as VTK's reader keeps it
+  std::int64_t frames = 1;       // Number of Frames (0028,0008)
   std::string problem;           // why the walk stopped early ("" when it did not)
 };
 
@@ -133,6 +134,15 @@ DicomWalk walkDicom(std::istream& in, std::int64_t size) {
     } else if (group == 0x0028 && element == 0x0004) {
       w.photometric.assign(reinterpret_cast<char*>(value), small);
       w.photometric = w.photometric.substr(0, w.photometric.find('\0'));
+    } else if (group == 0x0028 && element == 0x0008) {
+      // An integer string, padded with spaces; a value that is not one is left to VTK.
+      std::string text(reinterpret_cast<char*>(value), small);
+      const auto first = text.find_first_not_of(' ');
+      if (first != std::string::npos) {
+        std::int64_t n = 0;
+        const auto [end, ec] = std::from_chars(text.data() + first, text.data() + text.size(), n);
+        if (ec == std::errc()) w.frames = n;
+      }
     } else if (group == 0x0028 && length == 2) {
       if (element == 0x0010) w.rows = u16(value);
       if (element == 0x0011) w.columns = u16(value);
@@ -186,6 +196,11 @@ void checkDicomFile(std::istream& in, std::int64_t size, const std::string& path
                 (vtkSamples == 1 ? " sample" : " samples") +
                 " a pixel (3 only for RGB); the file is corrupt or an image VTK cannot read");
   }
+  // VTK's reader reads the first frame of a file and nothing else.
+  if (w.frames > 1)
+    throw Error("cannot read " + path + " as DICOM: it holds " + std::to_string(w.frames) +
+                " frames (Number of Frames, 0028,0008), and VTK's reader reads one frame per "
+                "file; split the image into single-frame files, one slice each");
   const std::int64_t need =
       times(times(w.rows, w.columns), times(w.samplesPerPixel, (w.bitsAllocated + 7) / 8));
   if (w.pixelBytes < need) {
