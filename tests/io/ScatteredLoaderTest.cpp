@@ -492,6 +492,31 @@ TEST(ScatteredLoader, LegacyWordsInsideNumberBlocksAreErrors) {
   expectError([&] { loadScatteredData(path); }, {"cannot read " + path, "'CELLS' where value 3"});
 }
 
+// A dataset's FIELD block that VTK's reader cannot read ended the program (it sets the field data
+// without checking it); such blocks are refused, wherever they stand among the geometry blocks.
+TEST(ScatteredLoader, LegacyDatasetFieldBlocksAreChecked) {
+  const auto dir = test::scratchDir();
+  std::string text = legacyUnstructured();
+  const std::string field = "FIELD FieldData 1\nTIME 1 1 double\n1.5\n";
+  text.insert(text.find("CELL_TYPES"), field);
+  EXPECT_EQ(loadScatteredData(writeFile(dir / "f.vtk", text)).pointCount(), 8);
+  for (const auto& [bad, expected] : std::vector<std::pair<std::string, std::string>>{
+           {"TIME 1 1 strng", "FIELD array 'TIME'"}, {"TIME 3 1 double", "where value 2"}}) {
+    std::string broken = text;
+    broken.replace(broken.find("TIME 1 1 double"), 15, bad);
+    const auto path = writeFile(dir / "f.vtk", broken);
+    expectError([&] { loadScatteredData(path); }, {"cannot read " + path, expected});
+  }
+  const auto rect = writeFile(dir / "r.vtk",
+                              "# vtk DataFile Version 3.0\nr\nASCII\nDATASET RECTILINEAR_GRID\n"
+                              "DIMENSIONS 2 2 3\nX_COORDINATES 2 float\n0 1\n"
+                              "Y_COORDINATES 2 float\n0 2\nFIELD FieldData 1\nT 1 1 strng\nx\n"
+                              "Z_COORDINATES 3 float\n0 1 5\n"
+                              "POINT_DATA 12\nSCALARS t float 1\nLOOKUP_TABLE default\n"
+                              "0 1 2 3 4 5 6 7 8 9 10 11\n");
+  expectError([&] { loadScatteredData(rect); }, {"cannot read " + rect, "FIELD"});
+}
+
 // Two cells on five points (connectivity 0 1 2 3 | 1 2 3 4) with the given offsets and types.
 std::string twoCellGrid(const std::filesystem::path& path, const std::string& offsets,
                         const std::string& types) {

@@ -369,6 +369,18 @@ TEST(TruncatedInput, DicomSlicesThatVtkWouldMisreadAreErrors) {
   rgb.replace(photometric, 12, std::string("RGB \0\0\0\0\0\0\0\0", 12));
   std::string threeSamples = slice;
   threeSamples[samples + 8] = 3;
+  // Samples of 12 bits: VTK's reader copied twice the bytes it had kept.
+  const auto bitsAllocated = slice.find(std::string("\x28\x00\x00\x01US", 6));
+  ASSERT_NE(bitsAllocated, std::string::npos);
+  std::string twelveBits = slice;
+  twelveBits[bitsAllocated + 8] = 12;
+  writeBytes(dicom.data, twelveBits);
+  try {
+    load(dicom);
+    ADD_FAILURE() << "DICOM of 12-bit samples: read without an error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("8 or 16 bits"), std::string::npos) << e.what();
+  }
   // A multi-frame image: VTK's reader would read its first frame alone.
   std::string frames = slice;
   std::string numberOfFrames(

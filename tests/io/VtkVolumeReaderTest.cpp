@@ -447,6 +447,38 @@ TEST(LegacyVtkReader, HeaderLayoutsThatVtkReads) {
   expectDensityGrid(loadStructuredVolume(writeFile(test::scratchDir() / "a.vtk", ascii)));
 }
 
+// A dataset's FIELD block is set by VTK's readers without checking that it was read: one that
+// cannot be read ended the program (a null dereference, found by fuzzing). Well-formed blocks,
+// as VTK's writer makes them (with METADATA and a NULL_ARRAY), still load.
+TEST(LegacyVtkReader, DatasetFieldBlocksAreCheckedBeforeVtkReadsThem) {
+  const std::string points = "DATASET STRUCTURED_POINTS\n";
+  const auto withField = [&](const std::string& field) {
+    std::string text = legacyHeader("ASCII") + "SCALARS density float 1\nLOOKUP_TABLE default\n" +
+                       asciiDensity() + "\n";
+    return text.insert(text.find(points) + points.size(), field);
+  };
+  const std::string wellFormed =
+      "FIELD FieldData 3\nTIME 1 1 double\n1.5\nCYCLE 2 2 int\n3 4 5 6\nMETADATA\n"
+      "COMPONENT_NAMES\na\nb\n\nNULL_ARRAY\n";
+  const auto good = writeFile(test::scratchDir() / "field.vtk", withField(wellFormed));
+  expectDensityGrid(loadStructuredVolume(good));
+
+  for (const auto& [field, expected] : std::vector<std::pair<std::string, std::string>>{
+           {"fieldSIONS 10 4 3\n", "FIELD line has 3 fields"},
+           {"FIELD FieldData 1\nNAMES 1 1 string\nabc\n", "numeric type"},
+           {"FIELD FieldData 1\nTIME 2 1 double\n1.5\n", "where value 2"},
+           {"FIELD FieldData 1\nTIME 1 double\n1.5\n", "not 4"},
+           {"FIELD FieldData x\n", "not an array count"}}) {
+    const auto path = writeFile(test::scratchDir() / "field.vtk", withField(field));
+    expectError([&] { loadStructuredVolume(path); }, {path, expected});
+  }
+  // Values VTK reads across a line end: the walk must not lose its place.
+  std::string split = withField("");
+  split.replace(split.find("SPACING 0.5 0.25 2"), 18, "SPACING 0.5 0.25\n2");
+  const auto path = writeFile(test::scratchDir() / "field.vtk", split);
+  expectError([&] { loadStructuredVolume(path); }, {path, "SPACING line has 2 fields"});
+}
+
 TEST(LegacyVtkReader, CutBinaryDataIsStillAnError) {
   const std::string text =
       "# vtk DataFile Version 1.0\nIron protein\n\nBINARY\n\n"

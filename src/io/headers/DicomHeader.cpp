@@ -196,6 +196,14 @@ void checkDicomFile(std::istream& in, std::int64_t size, const std::string& path
                 (vtkSamples == 1 ? " sample" : " samples") +
                 " a pixel (3 only for RGB); the file is corrupt or an image VTK cannot read");
   }
+  // VTK 9.1's reader reads samples of 8 and 16 bits; it refuses most other sizes, but takes 9 to
+  // 15 bits as one byte when it copies the pixel data and as two when it copies them out (an
+  // overflow, found with a slice of 12).
+  if (w.bitsAllocated != 8 && w.bitsAllocated != 16)
+    throw Error("cannot read " + path + " as DICOM: its Bits Allocated (0028,0100) is " +
+                std::to_string(w.bitsAllocated) +
+                ", and VTK's reader reads samples of 8 or 16 "
+                "bits only");
   // VTK's reader reads the first frame of a file and nothing else.
   if (w.frames > 1)
     throw Error("cannot read " + path + " as DICOM: it holds " + std::to_string(w.frames) +

@@ -51,8 +51,9 @@ std::string legacyRawType(const std::string& type) {
 // Words that start with no keyword of the geometry blocks are returned in lower case.
 std::string legacyKeyword(const std::string& word) {
   const std::string w = lower(word);
-  for (const char* keyword :
-       {"dataset", "points", "cells", "cell_types", "offsets", "connectivity"})
+  for (const char* keyword : {"dataset", "points", "cells", "cell_types", "offsets", "connectivity",
+                              "field", "dimensions", "spacing", "origin", "aspect_ratio", "extent",
+                              "metadata", "x_coordinates", "y_coordinates", "z_coordinates"})
     if (w.rfind(keyword, 0) == 0) return keyword;
   return w;
 }
@@ -166,9 +167,11 @@ DeclaredPayload checkLegacyVtkHeaderText(const std::string& header, const std::s
 
 namespace {
 
-// Walks the geometry blocks of a legacy file (POINTS, CELLS / OFFSETS / CONNECTIVITY,
-// CELL_TYPES), skipping their data, and checks the counts VTK's reader trusts: it dereferences
-// null for a CELLS block whose size cannot hold its cells. Stops at the first other keyword.
+// Walks the dataset's blocks of a legacy file before its point or cell data (POINTS, CELLS /
+// OFFSETS / CONNECTIVITY, CELL_TYPES, FIELD, X/Y/Z_COORDINATES; the structured points'
+// DIMENSIONS, SPACING, ORIGIN, ASPECT_RATIO, EXTENT), skipping their data, and checks what VTK's
+// readers trust: they dereference null for a CELLS block whose size cannot hold its cells, and for
+// a dataset's FIELD block that they could not read. Stops at the first other keyword.
 void checkLegacyCells(std::istream& in, const std::string& path) {
   const auto fail = [&](const std::string& why) {
     throw Error("cannot read " + path + " as legacy VTK: " + why +
@@ -198,12 +201,76 @@ void checkLegacyCells(std::istream& in, const std::string& path) {
     }
     return static_cast<bool>(in);
   };
+  // A METADATA block (after an array) runs to the next empty line.
+  const auto skipMetadata = [&] {
+    while (std::getline(in, line) && !words(line).empty()) {
+    }
+  };
+  // FIELD name arrays, then per array "name components tuples type" and its values, or
+  // NULL_ARRAY. VTK's readers set a dataset's field data without checking that it was read (found
+  // by fuzzing: a null dereference in the structured points reader), so every array must be
+  // what VTK can read. Arrays of strings or other non-numeric types are refused here.
+  const auto checkField = [&](const std::vector<std::string>& w) {
+    if (w.size() != 3)
+      fail("the FIELD line has " + std::to_string(w.size() - 1) + " fields, not 2");
+    const std::int64_t arrays = parseCount(w[2]);
+    if (arrays < 0) fail("FIELD '" + w[2] + "' is not an array count");
+    for (std::int64_t i = 0; i < arrays;) {
+      std::string header;
+      while (std::getline(in, header) && words(header).empty()) {
+      }
+      if (!in)
+        fail("the FIELD block ends before its array " + std::to_string(i + 1) + " of " +
+             std::to_string(arrays));
+      const auto a = words(header);
+      if (legacyKeyword(a[0]) == "metadata") {
+        skipMetadata();
+        continue;
+      }
+      ++i;
+      if (a.size() == 1 && a[0] == "NULL_ARRAY") continue;
+      if (a.size() != 4)
+        fail("FIELD array " + std::to_string(i) + "'s line has " + std::to_string(a.size()) +
+             " fields, not 4 (name, components, tuples, type)");
+      const std::int64_t components = parseCount(a[1]), tuples = parseCount(a[2]);
+      const std::int64_t bytes = legacyTypeBytes(a[3]);
+      if (components < 1 || tuples < 0 || bytes == 0)
+        fail("FIELD array '" + a[0].substr(0, 40) + "' declares '" + a[1] + " " + a[2] + " " +
+             a[3].substr(0, 20) + "', not a component count, a tuple count and a numeric type");
+      if (!skip(times(components, tuples), bytes))
+        fail("the values of FIELD array '" + a[0].substr(0, 40) + "' are cut off");
+    }
+  };
+  // The structured points' keywords and how many numbers follow each on its line.
+  const auto structuredValues = [](const std::string& key) {
+    return key == "extent" ? 6
+           : (key == "dimensions" || key == "spacing" || key == "origin" || key == "aspect_ratio")
+               ? 3
+               : 0;
+  };
   std::int64_t cells = -1;
-  for (int guard = 0; guard < 16 && std::getline(in, line); ++guard) {
+  // Keyword lines are few in a valid file; the bound only keeps a malformed one's walk short.
+  for (int guard = 0; guard < 4096 && std::getline(in, line); ++guard) {
     const auto w = words(line);
     if (w.empty()) continue;
     const std::string key = legacyKeyword(w[0]);
     if (key == "dataset") continue;
+    if (key == "field") {
+      checkField(w);
+      continue;
+    }
+    if (key == "metadata") {
+      skipMetadata();
+      continue;
+    }
+    // VTK reads these values across line ends too: they must be on the keyword's line, so that
+    // the walk stays where VTK's reader is.
+    if (const int n = structuredValues(key)) {
+      if (static_cast<int>(w.size()) != n + 1)
+        fail("the " + w[0].substr(0, key.size()) + " line has " + std::to_string(w.size() - 1) +
+             " fields, not " + std::to_string(n));
+      continue;
+    }
     // A keyword line is text; VTK's stream reads stop early at some other bytes (0xff) and
     // leave counts unset (found by fuzzing: an allocation of 0xf5f5... bytes).
     const bool geometry = key == "points" || key == "cells" || key == "cell_types";
@@ -218,7 +285,12 @@ void checkLegacyCells(std::istream& in, const std::string& path) {
            " fields, not 2");
     if (key == "cell_types" && w.size() != 2)
       fail("the CELL_TYPES line has " + std::to_string(w.size() - 1) + " fields, not 1");
-    if (key == "points" && w.size() >= 3) {
+    if (key.size() == 13 && key.compare(1, 12, "_coordinates") == 0) {
+      // A rectilinear grid's coordinates along one axis: a count and a type, then the values.
+      if (w.size() != 3 || parseCount(w[1]) < 0 || legacyTypeBytes(w[2]) == 0)
+        fail("the " + w[0].substr(0, key.size()) + " line is not a count and a VTK data type");
+      if (!skip(parseCount(w[1]), legacyTypeBytes(w[2]))) return;
+    } else if (key == "points" && w.size() >= 3) {
       if (parseCount(w[1]) < 0 || legacyTypeBytes(w[2]) == 0)
         fail("POINTS '" + w[1] + " " + w[2] + "' is not a count and a VTK data type");
       if (!skip(times(parseCount(w[1]), 3), legacyTypeBytes(w[2]))) return;
