@@ -12,6 +12,7 @@
 #include <limits>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -470,6 +471,18 @@ TEST(LegacyVtkReader, DatasetFieldBlocksAreCheckedBeforeVtkReadsThem) {
            {"FIELD FieldData 1\nTIME 1 double\n1.5\n", "not 4"},
            {"FIELD FieldData x\n", "not an array count"}}) {
     const auto path = writeFile(test::scratchDir() / "field.vtk", withField(field));
+    expectError([&] { loadStructuredVolume(path); }, {path, expected});
+  }
+  // VTK reads words, not lines: a FIELD block on the DATASET line or after ASCII is read too.
+  for (const auto& [from, to, expected] :
+       std::vector<std::tuple<std::string, std::string, std::string>>{
+           {"STRUCTURED_POINTS\n", "STRUCTURED_POINTS FIELD f 1\nT 1 1 strng\nx\n",
+            "DATASET line has 4 fields"},
+           {"ASCII\n", "ASCII FIELD f 1\n", "ASCII or BINARY line"},
+           {"ORIGIN", "ORIGIN" + std::string(300, 'x'), "word of 306 characters"}}) {
+    std::string text = withField("");
+    text.replace(text.find(from), from.size(), to);
+    const auto path = writeFile(test::scratchDir() / "field.vtk", text);
     expectError([&] { loadStructuredVolume(path); }, {path, expected});
   }
   // Values VTK reads across a line end: the walk must not lose its place.

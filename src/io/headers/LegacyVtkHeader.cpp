@@ -66,6 +66,9 @@ struct LegacyPreamble {
   bool valid = false;  // a legacy header with a known file type
   bool binary = false;
   std::string version;  // "3.0", "5.1", ...
+  // Words after ASCII or BINARY on its line: VTK's reader reads words, not lines, so they would
+  // be the dataset's first keywords.
+  bool moreOnTypeLine = false;
 };
 
 LegacyPreamble readLegacyPreamble(std::istream& in) {
@@ -80,6 +83,7 @@ LegacyPreamble readLegacyPreamble(std::istream& in) {
   type = lower(type);
   if (type != "ascii" && type != "binary") return p;
   std::getline(in, line);  // the rest of the file type's line
+  p.moreOnTypeLine = !words(line).empty();
   p.binary = type == "binary";
   p.valid = static_cast<bool>(in);
   return p;
@@ -179,6 +183,9 @@ void checkLegacyCells(std::istream& in, const std::string& path) {
   };
   const LegacyPreamble preamble = readLegacyPreamble(in);
   if (!preamble.valid) return;
+  // The walk goes line by line where VTK's reader reads words: every keyword line must hold its
+  // keyword's words and nothing else (found by fuzzing: a FIELD block on the DATASET line).
+  if (preamble.moreOnTypeLine) fail("the ASCII or BINARY line holds more words");
   const bool binary = preamble.binary;
   const bool newCells = preamble.version.rfind("5.", 0) == 0;  // 5.x: offsets + connectivity
   std::string line;
@@ -254,7 +261,16 @@ void checkLegacyCells(std::istream& in, const std::string& path) {
     const auto w = words(line);
     if (w.empty()) continue;
     const std::string key = legacyKeyword(w[0]);
-    if (key == "dataset") continue;
+    // VTK's reader reads at most 255 characters a word and takes the rest as the next word.
+    for (const std::string& word : w)
+      if (word.size() > 255)
+        fail("a keyword line holds a word of " + std::to_string(word.size()) +
+             " characters, more than VTK's reader reads as one");
+    if (key == "dataset") {
+      if (w.size() != 2)
+        fail("the DATASET line has " + std::to_string(w.size() - 1) + " fields, not 1");
+      continue;
+    }
     if (key == "field") {
       checkField(w);
       continue;
