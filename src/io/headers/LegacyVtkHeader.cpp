@@ -220,8 +220,10 @@ void checkLegacyCells(std::istream& in, const std::string& path) {
   const auto checkField = [&](const std::vector<std::string>& w) {
     if (w.size() != 3)
       fail("the FIELD line has " + std::to_string(w.size() - 1) + " fields, not 2");
+    // VTK reads the counts as int: a larger one fails its read and leaves the block unread.
+    constexpr std::int64_t kIntMax = std::numeric_limits<int>::max();
     const std::int64_t arrays = parseCount(w[2]);
-    if (arrays < 0) fail("FIELD '" + w[2] + "' is not an array count");
+    if (arrays < 0 || arrays > kIntMax) fail("FIELD '" + w[2] + "' is not an array count");
     for (std::int64_t i = 0; i < arrays;) {
       std::string header;
       while (std::getline(in, header) && words(header).empty()) {
@@ -239,9 +241,13 @@ void checkLegacyCells(std::istream& in, const std::string& path) {
       if (a.size() != 4)
         fail("FIELD array " + std::to_string(i) + "'s line has " + std::to_string(a.size()) +
              " fields, not 4 (name, components, tuples, type)");
+      if (a[0].size() > 255 || a[3].size() > 255)
+        fail("FIELD array " + std::to_string(i) +
+             "'s line holds a word of more than the 255 "
+             "characters VTK's reader reads as one");
       const std::int64_t components = parseCount(a[1]), tuples = parseCount(a[2]);
       const std::int64_t bytes = legacyTypeBytes(a[3]);
-      if (components < 1 || tuples < 0 || bytes == 0)
+      if (components < 1 || components > kIntMax || tuples < 0 || tuples > kIntMax || bytes == 0)
         fail("FIELD array '" + a[0].substr(0, 40) + "' declares '" + a[1] + " " + a[2] + " " +
              a[3].substr(0, 20) + "', not a component count, a tuple count and a numeric type");
       if (!skip(times(components, tuples), bytes))
