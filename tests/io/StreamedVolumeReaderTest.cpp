@@ -1,6 +1,8 @@
 // Header formats whose samples are read a box at a time (io/StreamedVolumeReader.h): the
 // streamed grid must be the one VTK's reader gives, placement, names, notes and every sample,
 // and the formats it cannot stand for must be left to the in-memory read.
+#include <stdlib.h>
+
 #include <algorithm>
 #include <bit>
 #include <cstdint>
@@ -44,6 +46,15 @@ std::string samples(std::endian order) {
 std::string write(const fs::path& path, const std::string& content) {
   std::ofstream(path, std::ios::binary) << content;
   return path.string();
+}
+
+// A temporary folder of the test's own (TMPDIR, where the inflation writes its copies), so that
+// the check below sees no copy of a test or program running beside it (ctest -j2 ran the two
+// inflating tests together, and one saw the other's copy).
+void useOwnTemporaryFolder(const fs::path& dir) {
+  const fs::path folder = dir / "tmp";
+  fs::create_directories(folder);
+  ::setenv("TMPDIR", folder.c_str(), 1);
 }
 
 // No inflated copy is left in the temporary folder.
@@ -139,6 +150,7 @@ TEST(StreamedVolumeReader, NiftiCalibratedAndPlacedInItsStoredOrder) {
 // Gzip data is inflated once to a temporary file, which is gone when the source is opened.
 TEST(StreamedVolumeReader, GzipPayloadsAreInflatedToATemporaryFile) {
   const fs::path dir = test::scratchDir();
+  useOwnTemporaryFolder(dir);
   const auto inflate = GzipPayloads::kInflateToTemporaryFile;
   expectSameAsVtk(write(dir / "a.nrrd",
                         "NRRD0004\ntype: ushort\ndimension: 3\nsizes: 12 5 4\n"
@@ -187,6 +199,7 @@ TEST(StreamedVolumeReader, GzipPayloadsAreInflatedToATemporaryFile) {
 // and a listener that throws stops it, leaving no temporary file behind.
 TEST(StreamedVolumeReader, InflationTellsItsProgressAndCanBeStopped) {
   const fs::path dir = test::scratchDir();
+  useOwnTemporaryFolder(dir);
   std::string data(size_t{256} * 128 * 40 * 2, '\0');  // 2.6 MB of ushort: 3 inflated buffers
   for (size_t n = 0; n < data.size(); ++n) data[n] = static_cast<char>(n * 7 % 251);
   const std::string path = write(dir / "large.nrrd",
