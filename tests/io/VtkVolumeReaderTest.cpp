@@ -471,7 +471,8 @@ TEST(LegacyVtkReader, DatasetFieldBlocksAreCheckedBeforeVtkReadsThem) {
            {"FIELD FieldData 1\nTIME 1 double\n1.5\n", "not 4"},
            {"FIELD FieldData x\n", "not an array count"},
            {"FIELD FieldData 1\nTIME 4294967297 0 double\n", "not a component count"},
-           {"FIELD FieldData 1\n" + std::string(300, 'n') + " 1 1 double\n1\n", "255"}}) {
+           {"FIELD FieldData 1\n" + std::string(300, 'n') + " 1 1 double\n1\n",
+            "word of 300 characters"}}) {
     const auto path = writeFile(test::scratchDir() / "field.vtk", withField(field));
     expectError([&] { loadStructuredVolume(path); }, {path, expected});
   }

@@ -202,8 +202,7 @@ void checkDicomFile(std::istream& in, std::int64_t size, const std::string& path
   if (w.bitsAllocated != 8 && w.bitsAllocated != 16)
     throw Error("cannot read " + path + " as DICOM: its Bits Allocated (0028,0100) is " +
                 std::to_string(w.bitsAllocated) +
-                ", and VTK's reader reads samples of 8 or 16 "
-                "bits only");
+                ", and VTK's reader reads samples of 8 or 16 bits only");
   // VTK's reader reads the first frame of a file and nothing else.
   if (w.frames > 1)
     throw Error("cannot read " + path + " as DICOM: it holds " + std::to_string(w.frames) +

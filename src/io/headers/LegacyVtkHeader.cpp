@@ -208,6 +208,13 @@ void checkLegacyCells(std::istream& in, const std::string& path) {
     }
     return static_cast<bool>(in);
   };
+  // VTK's reader reads at most 255 characters a word and takes the rest as the next word.
+  const auto checkWordLengths = [&](const std::vector<std::string>& w) {
+    for (const std::string& word : w)
+      if (word.size() > 255)
+        fail("a line holds a word of " + std::to_string(word.size()) +
+             " characters, more than VTK's reader reads as one");
+  };
   // A METADATA block (after an array) runs to the next empty line.
   const auto skipMetadata = [&] {
     while (std::getline(in, line) && !words(line).empty()) {
@@ -241,10 +248,7 @@ void checkLegacyCells(std::istream& in, const std::string& path) {
       if (a.size() != 4)
         fail("FIELD array " + std::to_string(i) + "'s line has " + std::to_string(a.size()) +
              " fields, not 4 (name, components, tuples, type)");
-      if (a[0].size() > 255 || a[3].size() > 255)
-        fail("FIELD array " + std::to_string(i) +
-             "'s line holds a word of more than the 255 "
-             "characters VTK's reader reads as one");
+      checkWordLengths(a);
       const std::int64_t components = parseCount(a[1]), tuples = parseCount(a[2]);
       const std::int64_t bytes = legacyTypeBytes(a[3]);
       if (components < 1 || components > kIntMax || tuples < 0 || tuples > kIntMax || bytes == 0)
@@ -267,11 +271,7 @@ void checkLegacyCells(std::istream& in, const std::string& path) {
     const auto w = words(line);
     if (w.empty()) continue;
     const std::string key = legacyKeyword(w[0]);
-    // VTK's reader reads at most 255 characters a word and takes the rest as the next word.
-    for (const std::string& word : w)
-      if (word.size() > 255)
-        fail("a keyword line holds a word of " + std::to_string(word.size()) +
-             " characters, more than VTK's reader reads as one");
+    checkWordLengths(w);
     if (key == "dataset") {
       if (w.size() != 2)
         fail("the DATASET line has " + std::to_string(w.size() - 1) + " fields, not 1");
