@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -28,7 +29,8 @@ std::string writeByteVolume(const std::filesystem::path& dir, std::vector<std::u
         values->push_back(static_cast<std::uint8_t>(std::lround(v)));
       }
   std::ofstream(path, std::ios::binary)
-      .write(reinterpret_cast<const char*>(values->data()), static_cast<std::streamsize>(values->size()));
+      .write(reinterpret_cast<const char*>(values->data()),
+             static_cast<std::streamsize>(values->size()));
   return path.string();
 }
 
@@ -74,6 +76,52 @@ TEST(CompressionCli, IntegerScansAreCodedByDefaultAndDecodeBackExactly) {
   const auto l = runMfadvr("encode " + raw + " --lossless --json -q");
   ASSERT_EQ(l.status, 0) << l.err;
   EXPECT_EQ(jsonOf(l)["coding"]["method"], "lossless");
+}
+
+// ZFP in a process that has CFITSIO loaded first, as every ParaView process has: its functions
+// named stream_open, stream_close, ... take the global names, and ZFP must still decode
+// (ZfpLibrary.h). Preloading it puts it first; the sanitizers' runtime must come first instead.
+TEST(CompressionCli, ZfpModelsDecodeWithCfitsioLoadedFirst) {
+#if defined(__SANITIZE_ADDRESS__)
+  GTEST_SKIP() << "LD_PRELOAD ahead of the AddressSanitizer runtime is refused by it; the "
+                  "release build runs this test, and mfadvr_zfp_isolation_tests covers both";
+#endif
+  const char* cfitsio = "/usr/lib/x86_64-linux-gnu/libcfitsio.so.10";
+  if (!std::filesystem::exists(cfitsio)) GTEST_SKIP() << cfitsio << " is not installed";
+  const auto dir = test::scratchDir();
+  std::vector<std::uint8_t> input;
+  const std::string raw = writeByteVolume(dir, &input);
+  const std::string model = (dir / "scan.mfa").string();
+  const std::string preload = std::string("LD_PRELOAD=") + cfitsio;
+  const auto e = runMfadvr("encode " + raw + " -q -o " + model, preload);
+  ASSERT_EQ(e.status, 0) << e.err;
+  const std::string out = (dir / "back.raw").string();
+  const auto d = runMfadvr("decode " + model + " -q -o " + out, preload);
+  ASSERT_EQ(d.status, 0) << d.err;
+  const std::string back = test::slurp(out);
+  ASSERT_EQ(back.size(), input.size());
+  EXPECT_EQ(std::memcmp(back.data(), input.data(), input.size()), 0);
+}
+
+// A ZFP that cannot be loaded is an error that says so and what to do, with no output.
+TEST(CompressionCli, AnUnusableZfpIsAClearError) {
+  const auto dir = test::scratchDir();
+  std::vector<std::uint8_t> input;
+  const std::string raw = writeByteVolume(dir, &input);
+  const std::string model = (dir / "scan.mfa").string();
+  ASSERT_EQ(runMfadvr("encode " + raw + " -q -o " + model).status, 0);
+  const std::string out = (dir / "back.raw").string();
+  const auto d = runMfadvr("decode " + model + " -q -o " + out,
+                           "MFADVR_ZFP_LIBRARY=" + (dir / "no-such-libzfp.so").string());
+  EXPECT_NE(d.status, 0);
+  EXPECT_NE(d.err.find("ZFP"), std::string::npos) << d.err;
+  EXPECT_NE(d.err.find("no-such-libzfp.so"), std::string::npos) << d.err;
+  EXPECT_FALSE(std::filesystem::exists(out));
+  // Models without zfp-coded control points need no ZFP.
+  const std::string plain = (dir / "plain.mfa").string();
+  const auto f = runMfadvr("encode " + raw + " --coding float32 -q -o " + plain,
+                           "MFADVR_ZFP_LIBRARY=/nonexistent");
+  EXPECT_EQ(f.status, 0) << f.err;
 }
 
 TEST(CompressionCli, BudgetsAreRespectedAndReported) {

@@ -9,7 +9,10 @@
 //                            uint8 NRRD file (scan.nrrd) for MFA Encode;
 //   head.mfa                 the model docs/paraview.md's examples open (default encoding of
 //                            builtin:ct-head:64).
-// Interpolating quadratic fits throughout.
+// Interpolating quadratic fits throughout. The scan's samples are 8-bit integers, so its models
+// are coded as `mfadvr encode` codes an integer scan by default: zfp control points that round
+// back to every sample (ParaView's process also holds CFITSIO, whose stream_* functions once
+// took ZFP's calls: ZfpLibrary.h).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -36,7 +39,9 @@ mfadvr::StructuredGrid scanGrid() {
   grid.source = "scan";
   // Hounsfield units -1000..1000 to the 0..255 of an 8-bit scan.
   for (float& v : grid.values)
-    v = static_cast<float>(std::clamp((v + 1000.0) * 255.0 / 2000.0, 0.0, 255.0));
+    v = static_cast<float>(std::lround(std::clamp((v + 1000.0) * 255.0 / 2000.0, 0.0, 255.0)));
+  grid.sampleType = "uint8";
+  grid.inputBytes = grid.sampleCount();
   return grid;
 }
 
@@ -88,11 +93,16 @@ int main(int argc, char** argv) {
                             dir / "blocks.mfa");
 
     const mfadvr::StructuredGrid scan = scanGrid();
-    mfadvr::saveModel(mfadvr::encodeStructured(scan, options), dir / "scan-1.mfa");
+    mfadvr::EncodeOptions scanOptions = options;
+    scanOptions.coding.coder = mfadvr::ControlCoder::kZfp;  // the default of integer samples
+    const mfadvr::Model scanModel = mfadvr::encodeStructured(scan, scanOptions);
+    if (scanModel.controlCoding().coder != mfadvr::ControlCoder::kZfp)
+      throw std::runtime_error("the scan's model is not zfp-coded");
+    mfadvr::saveModel(scanModel, dir / "scan-1.mfa");
     const std::pair<const char*, mfadvr::Index3> splits[] = {
         {"x", {2, 1, 1}}, {"y", {1, 2, 1}}, {"z", {1, 1, 2}}, {"xy", {2, 2, 1}}};
     for (const auto& [name, blocks] : splits)
-      mfadvr::saveBlockModels(mfadvr::encodeStructuredBlocks(scan, blocks, -1, options), blocks,
+      mfadvr::saveBlockModels(mfadvr::encodeStructuredBlocks(scan, blocks, -1, scanOptions), blocks,
                               dir / ("scan-" + std::string(name) + ".mfa"));
     writeVti(scan, dir / "scan.vti");
     writeNrrd(scan, dir / "scan.nrrd");

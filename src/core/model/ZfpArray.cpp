@@ -1,11 +1,10 @@
 #include "core/model/ZfpArray.h"
 
-#include <zfp.h>
-
 #include <cmath>
 #include <cstring>
 #include <memory>
 
+#include "core/model/ZfpLibrary.h"
 #include "core/util/Error.h"
 
 namespace mfadvr {
@@ -15,9 +14,10 @@ namespace {
 class ZfpCodec {
  public:
   ZfpCodec(float* data, const Index3& dims, const ZfpSettings& settings)
-      : field_(zfp_field_3d(data, zfp_type_float, static_cast<size_t>(dims[0]),
-                            static_cast<size_t>(dims[1]), static_cast<size_t>(dims[2]))),
-        stream_(zfp_stream_open(nullptr)) {
+      : zfp_(zfpLibrary()),
+        field_(zfp_.field_3d(data, zfp_type_float, static_cast<size_t>(dims[0]),
+                             static_cast<size_t>(dims[1]), static_cast<size_t>(dims[2]))),
+        stream_(zfp_.stream_open(nullptr)) {
     if (!field_ || !stream_) {
       release();
       throw Error("cannot set up the zfp coder");
@@ -29,9 +29,9 @@ class ZfpCodec {
                   " must be a positive number");
     }
     if (settings.mode == ZfpSettings::Mode::kRate)
-      zfp_stream_set_rate(stream_, settings.parameter, zfp_type_float, 3, zfp_false);
+      zfp_.set_rate(stream_, settings.parameter, zfp_type_float, 3, zfp_false);
     else
-      zfp_stream_set_accuracy(stream_, settings.parameter);
+      zfp_.set_accuracy(stream_, settings.parameter);
   }
   ~ZfpCodec() { release(); }
   ZfpCodec(const ZfpCodec&) = delete;
@@ -39,34 +39,35 @@ class ZfpCodec {
 
   // Bytes of the longest stream ZFP writes for the field in this mode. Its decoder, whatever the
   // bits, reads no more per block than this bound allows.
-  size_t maximumBytes() const { return zfp_stream_maximum_size(stream_, field_); }
+  size_t maximumBytes() const { return zfp_.maximum_size(stream_, field_); }
 
   // Runs ZFP over `words` (64-bit words: ZFP reads and writes whole words) of `bytes` bytes.
   size_t compress(void* words, size_t bytes) {
     attach(words, bytes);
-    return zfp_compress(stream_, field_);
+    return zfp_.compress(stream_, field_);
   }
   size_t decompress(void* words, size_t bytes) {
     attach(words, bytes);
-    return zfp_decompress(stream_, field_);
+    return zfp_.decompress(stream_, field_);
   }
 
  private:
   void attach(void* words, size_t bytes) {
-    if (bits_) stream_close(bits_);
-    bits_ = stream_open(words, bytes);
+    if (bits_) zfp_.bitstream_close(bits_);
+    bits_ = zfp_.bitstream_open(words, bytes);
     if (!bits_) throw Error("cannot set up the zfp coder");
-    zfp_stream_set_bit_stream(stream_, bits_);
-    zfp_stream_rewind(stream_);
+    zfp_.set_bit_stream(stream_, bits_);
+    zfp_.rewind(stream_);
   }
   void release() {
-    if (bits_) stream_close(bits_);
-    if (stream_) zfp_stream_close(stream_);
-    if (field_) zfp_field_free(field_);
+    if (bits_) zfp_.bitstream_close(bits_);
+    if (stream_) zfp_.stream_close(stream_);
+    if (field_) zfp_.field_free(field_);
     bits_ = nullptr;
     stream_ = nullptr;
     field_ = nullptr;
   }
+  const ZfpLibrary& zfp_;
   zfp_field* field_ = nullptr;
   zfp_stream* stream_ = nullptr;
   bitstream* bits_ = nullptr;
