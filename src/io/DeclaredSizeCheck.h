@@ -36,16 +36,28 @@ struct DeclaredPayload {
   std::string arrayName;            // where the header names the samples (legacy SCALARS)
 };
 
-// NRRD, attached (.nrrd) or detached (.nhdr + data file): sizes, type, encoding. For ASCII
-// data, returns the file that holds it and the data's byte offset there: VTK 9.1's reader
-// parses attached ASCII data from the file's first byte (the header included) and stops at a
-// comma, leaving the samples unset, so the volume reader reads such data itself. Otherwise an
-// empty file name.
-struct NrrdAsciiData {
-  std::string file;
-  std::int64_t offset = 0;
+// NRRD, attached (.nrrd) or detached (.nhdr + data file), as mfadvr reads it (NrrdVolumeReader.h):
+// the header in full (type, sizes, encoding, endianness, skips, data file, kinds, spacings,
+// space directions and origin, axis mins, labels), checked against what the file holds.
+// The grid such a header describes: three spatial axes (size-1 axes of other kinds dropped),
+// placed by its spacings or the lengths of its space directions and by its space origin or
+// axis mins.
+struct NrrdGrid {
+  std::int64_t dims[3] = {0, 0, 0};
+  double spacing[3] = {1, 1, 1};
+  double origin[3] = {0, 0, 0};
+  std::string sampleType;  // uint8, int8, uint16, int16, uint32, int32, float32, float64
+  bool bigEndian = false;
+  std::string label;  // the first of "labels", or empty
+  std::vector<std::string> notes;
 };
-NrrdAsciiData checkNrrdDeclaredSize(const std::string& path, DeclaredPayload* payload = nullptr);
+struct NrrdFile {
+  NrrdGrid grid;
+  DeclaredPayload payload;  // raw and gzip encodings: where the samples are (file set)
+  std::string asciiFile;    // ascii encoding: the file that holds the values, and where they start
+  std::int64_t asciiOffset = 0;
+};
+NrrdFile checkNrrdDeclaredSize(const std::string& path);
 
 // The first `count` numbers of the whitespace- or comma-separated ASCII text at byte `offset` of
 // `path`; an Error (naming `path`) when one is not a number or fewer are there.
@@ -90,6 +102,7 @@ struct NrrdDataLocation {
   bool gzip = false;        // else ASCII
   std::string declared;     // "40 x 40 x 40 uint8 samples"
   DeclaredPayload raw;      // raw encoding: file as the header names it (the header's own: path)
+  NrrdGrid grid;
 };
 NrrdDataLocation checkNrrdHeaderText(const std::string& header, const std::string& path,
                                      std::int64_t fileBytes, const DataFileSize& dataFileBytes);

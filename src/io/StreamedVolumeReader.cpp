@@ -5,7 +5,6 @@
 #include <vtkInformation.h>
 #include <vtkMetaImageReader.h>
 #include <vtkNIFTIImageReader.h>
-#include <vtkNrrdReader.h>
 #include <vtkSmartPointer.h>
 #include <vtkStreamingDemandDrivenPipeline.h>
 #include <vtkStructuredPointsReader.h>
@@ -19,6 +18,7 @@
 #include "io/InflatedPayload.h"
 #include "io/InputFile.h"
 #include "io/NiftiPlacement.h"
+#include "io/NrrdVolumeReader.h"
 #include "io/RawVolumeReader.h"
 #include "io/VtkSupport.h"
 
@@ -109,12 +109,15 @@ std::optional<HeaderVolume> readHeaderVolume(const std::string& path) {
   size_t axes = 3;        // the payload's axes VTK reads as one volume
   std::string arrayName;  // the name VTK's reader gives the samples (tested)
   if (ext == ".nrrd" || ext == ".nhdr") {
-    checkNrrdDeclaredSize(path, &payload);
-    arrayName = payload.gzipAt >= 0 ? "ImageScalars" : "ImageFile";
-    auto r = vtkSmartPointer<vtkNrrdReader>::New();
-    r->SetFileName(path.c_str());
-    reader = r;
-  } else if (ext == ".mha" || ext == ".mhd") {
+    // Read by mfadvr alone (NrrdVolumeReader.h): the header gives the whole layout.
+    NrrdVolume nrrd = describeNrrdVolume(path);
+    if (nrrd.payload.file.empty()) return std::nullopt;  // ascii values
+    return HeaderVolume{
+        std::move(nrrd.layout),
+        {nrrd.payload.file, nrrd.payload.offset, nrrd.payload.dtype, nrrd.payload.bigEndian},
+        nrrd.payload.gzipAt};
+  }
+  if (ext == ".mha" || ext == ".mhd") {
     payload = checkMetaImageDeclaredSize(path);
     arrayName = "MetaImage";
     auto r = vtkSmartPointer<vtkMetaImageReader>::New();

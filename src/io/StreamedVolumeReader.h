@@ -3,9 +3,10 @@
 // headerless .raw files, and NRRD (raw or gzip encoding), MetaImage (uncompressed), NIfTI
 // (.nii, .nii.gz, .hdr/.img) and legacy VTK structured points (binary) whose single-component
 // samples lie in one file from a known byte on. The header is checked as for the in-memory read
-// (DeclaredSizeCheck.h); the grid's dims and placement come from VTK's reader of the format
-// reading the header only, so that a streamed volume is the same grid, sample for sample, as
-// loadStructuredVolume reads (tested).
+// (DeclaredSizeCheck.h); the grid's dims and placement come from mfadvr's own NRRD reader
+// (NrrdVolumeReader.h), or from VTK's reader of the other formats reading the header only, so
+// that a streamed volume is the same grid, sample for sample, as loadStructuredVolume reads
+// (tested).
 #include <cstdint>
 #include <memory>
 #include <optional>

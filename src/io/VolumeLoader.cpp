@@ -5,6 +5,7 @@
 #include "core/analytic/BuiltinFunction.h"
 #include "core/util/Error.h"
 #include "io/InputFile.h"
+#include "io/NrrdVolumeReader.h"
 #include "io/RawVolumeReader.h"
 #include "io/StreamedVolumeReader.h"
 #include "io/VtkVolumeReader.h"
@@ -29,7 +30,7 @@ StructuredGrid readFile(const std::string& path, const FieldSelection& field) {
                   " not apply to it");
     return readRawVolume(path);
   }
-  if (ext == ".nrrd" || ext == ".nhdr") return readVtkVolume(path, VtkVolumeFormat::kNrrd, field);
+  if (ext == ".nrrd" || ext == ".nhdr") return readNrrdVolume(path, field);
   if (ext == ".vti") return readVtkVolume(path, VtkVolumeFormat::kXmlImageData, field);
   if (ext == ".vtk") return readVtkVolume(path, VtkVolumeFormat::kLegacyStructuredPoints, field);
   if (ext == ".mha" || ext == ".mhd")
@@ -60,8 +61,7 @@ StructuredGrid loadStructuredVolume(const std::string& input, const VolumeLoadOp
   std::error_code ec;
   StructuredGrid grid;
   // Samples stored plainly in one file are read directly into float32, without VTK's copy in
-  // the file's type; gzip data too, inflated once (VTK 9.1's NRRD reader leaves big-endian gzip
-  // samples unswapped).
+  // the file's type; gzip data too, inflated once.
   if (auto streamed = openStreamedVolume(input, options, GzipPayloads::kInflateToTemporaryFile)) {
     grid = streamed->readUnchecked(wholeRange(streamed->layout().dims));
     grid.notes = streamed->layout().notes;
@@ -82,7 +82,7 @@ std::string supportedVolumeFormats() {
   return "  NAME_XxYxZ_TYPE.raw  headerless raw, x fastest, little-endian; TYPE: uint8, int8,\n"
          "                       uint16, int16, uint32, int32, float32, float64\n"
          "                       (e.g. fuel_64x64x64_uint8.raw)\n"
-         "  .nrrd, .nhdr         NRRD (raw, ascii or gzip encoding)\n"
+         "  .nrrd, .nhdr         NRRD (raw, ascii or gzip encoding; 3 spatial axes, one scalar)\n"
          "  .vti                 VTK XML image data\n"
          "  .vtk                 legacy VTK, DATASET STRUCTURED_POINTS only\n"
          "  .mha, .mhd           MetaImage\n"

@@ -18,7 +18,6 @@
 #include <vtkNIFTIImageHeader.h>
 #include <vtkNIFTIImageReader.h>
 #include <vtkNew.h>
-#include <vtkNrrdReader.h>
 #include <vtkPointData.h>
 #include <vtkSmartPointer.h>
 #include <vtkStructuredPoints.h>
@@ -40,8 +39,6 @@ namespace {
 
 const char* formatName(VtkVolumeFormat format) {
   switch (format) {
-    case VtkVolumeFormat::kNrrd:
-      return "NRRD";
     case VtkVolumeFormat::kXmlImageData:
       return "VTK XML image data (.vti)";
     case VtkVolumeFormat::kLegacyStructuredPoints:
@@ -59,9 +56,6 @@ const char* formatName(VtkVolumeFormat format) {
 // What a readable file of each format looks like, for the end of a read error.
 const char* formatExpectation(VtkVolumeFormat format) {
   switch (format) {
-    case VtkVolumeFormat::kNrrd:
-      return "a NRRD header (first line NRRD0001..NRRD0005) with type, dimension, sizes and "
-             "raw, ascii or gzip encoding";
     case VtkVolumeFormat::kXmlImageData:
       return "a VTK XML file <VTKFile type=\"ImageData\"> with point data";
     case VtkVolumeFormat::kLegacyStructuredPoints:
@@ -123,15 +117,7 @@ vtkSmartPointer<vtkImageData> runReader(const std::string& path, VtkVolumeFormat
                                         const VtkMessageCapture& capture,
                                         vtkSmartPointer<vtkAlgorithm>& reader) {
   int dicomFiles = 0;
-  NrrdAsciiData nrrdAscii;
   switch (format) {
-    case VtkVolumeFormat::kNrrd: {
-      nrrdAscii = checkNrrdDeclaredSize(path);
-      auto r = vtkSmartPointer<vtkNrrdReader>::New();
-      r->SetFileName(path.c_str());
-      reader = r;
-      break;
-    }
     case VtkVolumeFormat::kXmlImageData: {
       checkXmlVtkDeclaredSize(path);
       auto r = vtkSmartPointer<vtkXMLImageDataReader>::New();
@@ -177,19 +163,6 @@ vtkSmartPointer<vtkImageData> runReader(const std::string& path, VtkVolumeFormat
     throwReadFailure(path, format, capture, reader, "the reader produced no image");
   if (image->GetNumberOfPoints() == 0)
     throwReadFailure(path, format, capture, reader, "the file holds no samples");
-  if (!nrrdAscii.file.empty()) {
-    // VTK 9.1 leaves attached or comma-separated ASCII samples unset (checkNrrdDeclaredSize):
-    // they are read here, in the file's order (x fastest), which is the array's.
-    vtkDataArray* samples = image->GetPointData()->GetScalars();
-    if (!samples) throwReadFailure(path, format, capture, reader, "the reader produced no samples");
-    const std::int64_t count = samples->GetNumberOfValues();
-    const std::vector<double> values = readAsciiValues(nrrdAscii.file, nrrdAscii.offset, count);
-    const int components = samples->GetNumberOfComponents();
-    for (std::int64_t i = 0; i < count; ++i)
-      samples->SetComponent(i / components, static_cast<int>(i % components),
-                            values[static_cast<size_t>(i)]);
-    samples->Modified();
-  }
   // VTK's DICOM reader leaves out files it cannot parse, without a word.
   if (format == VtkVolumeFormat::kDicomSeries && image->GetDimensions()[2] != dicomFiles) {
     throw Error("cannot read " + path + " as a DICOM series: it holds " +
@@ -198,26 +171,6 @@ vtkSmartPointer<vtkImageData> runReader(const std::string& path, VtkVolumeFormat
                 " slices from them (files it cannot parse are left out)");
   }
   return image;
-}
-
-// NRRD has no notion of components; VTK's reader guesses them from the axis sizes, so a
-// multi-component array here is a misread volume, whatever --component says.
-void requireNrrdScalars(const std::string& path, VtkVolumeFormat format, vtkImageData* image) {
-  vtkDataArray* scalars = image->GetPointData()->GetScalars();
-  const int components = scalars ? scalars->GetNumberOfComponents() : 1;
-  if (components != 1 && format == VtkVolumeFormat::kNrrd) {
-    int dims[3];
-    image->GetDimensions(dims);
-    const bool flat = dims[0] < 2 || dims[1] < 2 || dims[2] < 2;
-    throw Error(path + ": VTK's NRRD reader takes the first axis (" + std::to_string(components) +
-                " samples) for vector components, as it does for a first axis of 9 samples or "
-                "fewer and for a 4th axis; a scalar volume needs 3 axes and at least 10 samples "
-                "along x" +
-                (flat ? " (read so, the file is 2-D data: an image of " + std::to_string(dims[0]) +
-                            " x " + std::to_string(dims[1]) + " x " + std::to_string(dims[2]) +
-                            " points, e.g. an RGB picture)"
-                      : std::string()));
-  }
 }
 
 std::string axesText(const Index3& dims) {
@@ -241,13 +194,12 @@ GridSamples viewOf(vtkDataArray* a, const Index3& dims) {
 
 // With `inPlace`, a plain scalar array is not copied: *inPlace views it and grid.values stays
 // empty (a copy is made, and *inPlace left empty, for components and magnitudes).
-StructuredGrid toGrid(const std::string& path, VtkVolumeFormat format, vtkImageData* image,
-                      const FieldSelection& field, GridSamples* inPlace = nullptr) {
+StructuredGrid toGrid(const std::string& path, vtkImageData* image, const FieldSelection& field,
+                      GridSamples* inPlace = nullptr) {
   if (vtkMatrix3x3* direction = image->GetDirectionMatrix(); direction && !direction->IsIdentity())
     throw Error(path +
                 ": the grid axes are rotated or flipped (direction matrix is not the "
                 "identity); only axis-aligned grids are supported");
-  requireNrrdScalars(path, format, image);
   int dims[3];
   image->GetDimensions(dims);
   if (dims[0] < 2 || dims[1] < 2 || dims[2] < 2) {
@@ -332,7 +284,7 @@ StructuredGrid readVtkVolume(const std::string& path, VtkVolumeFormat format,
     VtkMessageCapture capture;
     image = runReader(path, format, capture, reader);
   }
-  StructuredGrid grid = toGrid(path, format, image, field);
+  StructuredGrid grid = toGrid(path, image, field);
   if (auto* nifti = vtkNIFTIImageReader::SafeDownCast(reader)) applyNiftiHeader(*nifti, grid);
   if (format == VtkVolumeFormat::kDicomSeries) fixDicomSeries(grid);
   return grid;
@@ -343,10 +295,9 @@ StructuredGrid gridFromVtkImage(vtkImageData* image, const std::string& field,
   if (inPlace) *inPlace = GridSamples();
   if (!image || image->GetNumberOfPoints() == 0)
     throw Error(source + ": the image data holds no samples");
-  // The NRRD-specific advice never applies to in-memory images.
   FieldSelection selection;
   selection.name = field;
-  StructuredGrid grid = toGrid(source, VtkVolumeFormat::kXmlImageData, image, selection, inPlace);
+  StructuredGrid grid = toGrid(source, image, selection, inPlace);
   grid.source = source;
   return grid;
 }

@@ -1,5 +1,6 @@
 #pragma once
-// Image-data formats read through VTK's own readers. The header stays free of VTK types so
+// Image-data formats read through VTK's own readers (NRRD is read by mfadvr itself:
+// NrrdVolumeReader.h). The header stays free of VTK types so
 // that code using mfadvr_io does not need VTK's include paths.
 #include <string>
 
@@ -9,7 +10,6 @@
 namespace mfadvr {
 
 enum class VtkVolumeFormat {
-  kNrrd,                    // .nrrd / .nhdr (vtkNrrdReader: raw, ascii and gzip encodings)
   kXmlImageData,            // .vti (vtkXMLImageDataReader)
   kLegacyStructuredPoints,  // .vtk with DATASET STRUCTURED_POINTS (vtkStructuredPointsReader)
   kMetaImage,               // .mha / .mhd (vtkMetaImageReader)

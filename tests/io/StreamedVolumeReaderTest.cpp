@@ -14,11 +14,16 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <vtkImageData.h>
+#include <vtkNew.h>
+#include <vtkNrrdReader.h>
 
 #include "MedicalTestFiles.h"
 #include "TestSupport.h"
 #include "core/grid/SampleRange.h"
+#include "io/NrrdVolumeReader.h"
 #include "io/StreamedVolumeReader.h"
+#include "io/VtkDataConversion.h"
 #include "io/VtkVolumeReader.h"
 
 namespace mfadvr {
@@ -64,27 +69,48 @@ void expectNoInflatedFiles() {
         << entry.path();
 }
 
-// The streamed grid against VTK's: everything a model records, and every sample; then a box
-// read against the same box of the whole grid.
-void expectSameAsVtk(const std::string& path, VtkVolumeFormat format,
-                     GzipPayloads gzip = GzipPayloads::kLeaveToVtk) {
+// The streamed grid against `reference`: everything a model records, and every sample; then a
+// box read against the same box of the whole grid.
+void expectSameAs(const std::string& path, const StructuredGrid& reference, GzipPayloads gzip) {
   SCOPED_TRACE(path);
   const auto source = openStreamedVolume(path, {}, gzip);
   ASSERT_NE(source, nullptr);
   const StructuredGrid streamed = source->read(wholeRange(source->layout().dims));
-  const StructuredGrid vtk = readVtkVolume(path, format, {});
-  EXPECT_EQ(streamed.dims, vtk.dims);
-  EXPECT_EQ(streamed.origin, vtk.origin);
-  EXPECT_EQ(streamed.spacing, vtk.spacing);
-  EXPECT_EQ(streamed.fieldName, vtk.fieldName);
-  EXPECT_EQ(streamed.fieldAssociation, vtk.fieldAssociation);
-  EXPECT_EQ(streamed.sampleType, vtk.sampleType);
-  EXPECT_EQ(streamed.inputBytes, vtk.inputBytes);
-  EXPECT_EQ(source->layout().notes, vtk.notes);
-  EXPECT_EQ(streamed.values, vtk.values);
-  const Index3& d = vtk.dims;
+  EXPECT_EQ(streamed.dims, reference.dims);
+  EXPECT_EQ(streamed.origin, reference.origin);
+  EXPECT_EQ(streamed.spacing, reference.spacing);
+  EXPECT_EQ(streamed.fieldName, reference.fieldName);
+  EXPECT_EQ(streamed.fieldAssociation, reference.fieldAssociation);
+  EXPECT_EQ(streamed.sampleType, reference.sampleType);
+  EXPECT_EQ(streamed.inputBytes, reference.inputBytes);
+  EXPECT_EQ(source->layout().notes, reference.notes);
+  EXPECT_EQ(streamed.values, reference.values);
+  const Index3& d = reference.dims;
   const SampleRange box{{1, 1, 1}, {d[0] - 2, d[1] - 1, d[2] - 1}};
-  EXPECT_EQ(source->read(box).values, subGrid(vtk, box).values);
+  EXPECT_EQ(source->read(box).values, subGrid(reference, box).values);
+}
+
+void expectSameAsVtk(const std::string& path, VtkVolumeFormat format,
+                     GzipPayloads gzip = GzipPayloads::kLeaveToVtk) {
+  expectSameAs(path, readVtkVolume(path, format, {}), gzip);
+}
+
+// NRRD, which mfadvr reads itself: the streamed grid is the in-memory one, and on these valid
+// files both are the grid VTK's own NRRD reader gives.
+void expectSameAsVtkNrrd(const std::string& path, GzipPayloads gzip = GzipPayloads::kLeaveToVtk) {
+  SCOPED_TRACE(path);
+  const StructuredGrid ours = readNrrdVolume(path);
+  expectSameAs(path, ours, gzip);
+  vtkNew<vtkNrrdReader> vtk;
+  vtk->SetFileName(path.c_str());
+  vtk->Update();
+  const StructuredGrid theirs = gridFromVtkImage(vtk->GetOutput(), "", path);
+  EXPECT_EQ(ours.dims, theirs.dims);
+  EXPECT_EQ(ours.origin, theirs.origin);
+  EXPECT_EQ(ours.spacing, theirs.spacing);
+  EXPECT_EQ(ours.fieldName, theirs.fieldName);
+  EXPECT_EQ(ours.sampleType, theirs.sampleType);
+  EXPECT_EQ(ours.values, theirs.values);
 }
 
 TEST(StreamedVolumeReader, NrrdRawAttachedAndDetached) {
@@ -93,15 +119,13 @@ TEST(StreamedVolumeReader, NrrdRawAttachedAndDetached) {
       "NRRD0004\ntype: float\ndimension: 3\nsizes: 12 5 4\nspace: 3D-right-handed\n"
       "space directions: (0.5,0,0) (0,0.25,0) (0,0,2)\nspace origin: (1.5,-2,3)\n"
       "encoding: raw\n";
-  expectSameAsVtk(
-      write(dir / "a.nrrd", head + "endian: little\n\n" + samples<float>(std::endian::little)),
-      VtkVolumeFormat::kNrrd);
+  expectSameAsVtkNrrd(
+      write(dir / "a.nrrd", head + "endian: little\n\n" + samples<float>(std::endian::little)));
   // Big-endian 16-bit samples in a data file of their own.
   write(dir / "b.raw", samples<std::int16_t>(std::endian::big));
-  expectSameAsVtk(write(dir / "b.nhdr",
-                        "NRRD0004\ntype: short\ndimension: 3\nsizes: 12 5 4\nspacings: 1 2 3\n"
-                        "encoding: raw\nendian: big\ndata file: b.raw\n"),
-                  VtkVolumeFormat::kNrrd);
+  expectSameAsVtkNrrd(write(dir / "b.nhdr",
+                            "NRRD0004\ntype: short\ndimension: 3\nsizes: 12 5 4\nspacings: 1 2 3\n"
+                            "encoding: raw\nendian: big\ndata file: b.raw\n"));
 }
 
 TEST(StreamedVolumeReader, MetaImageLocalAndDetached) {
@@ -152,11 +176,11 @@ TEST(StreamedVolumeReader, GzipPayloadsAreInflatedToATemporaryFile) {
   const fs::path dir = test::scratchDir();
   useOwnTemporaryFolder(dir);
   const auto inflate = GzipPayloads::kInflateToTemporaryFile;
-  expectSameAsVtk(write(dir / "a.nrrd",
-                        "NRRD0004\ntype: ushort\ndimension: 3\nsizes: 12 5 4\n"
-                        "encoding: gzip\nendian: little\n\n" +
-                            test::gzipBytes(samples<std::uint16_t>(std::endian::little))),
-                  VtkVolumeFormat::kNrrd, inflate);
+  expectSameAsVtkNrrd(write(dir / "a.nrrd",
+                            "NRRD0004\ntype: ushort\ndimension: 3\nsizes: 12 5 4\n"
+                            "encoding: gzip\nendian: little\n\n" +
+                                test::gzipBytes(samples<std::uint16_t>(std::endian::little))),
+                      inflate);
   // Big-endian gzip data: VTK 9.1's reader leaves its bytes unswapped; the streamed read
   // gives the samples of the same data stored raw.
   const std::string big = "NRRD0004\ntype: short\ndimension: 3\nsizes: 12 5 4\nendian: big\n";
@@ -170,10 +194,10 @@ TEST(StreamedVolumeReader, GzipPayloadsAreInflatedToATemporaryFile) {
   EXPECT_EQ(gz->read(wholeRange(gz->layout().dims)).values,
             raw->read(wholeRange(raw->layout().dims)).values);
   write(dir / "b.raw.gz", test::gzipBytes(samples<float>(std::endian::little)));
-  expectSameAsVtk(write(dir / "b.nhdr",
-                        "NRRD0005\ntype: float\ndimension: 3\nsizes: 12 5 4\n"
-                        "encoding: gzip\ndata file: b.raw.gz\n"),
-                  VtkVolumeFormat::kNrrd, inflate);
+  expectSameAsVtkNrrd(write(dir / "b.nhdr",
+                            "NRRD0005\ntype: float\ndimension: 3\nsizes: 12 5 4\n"
+                            "encoding: gzip\ndata file: b.raw.gz\n"),
+                      inflate);
   test::NiftiHeader h;
   h.slope = 0.5f;
   h.timePoints = 2;

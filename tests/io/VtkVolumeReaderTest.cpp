@@ -1,5 +1,6 @@
-// Formats read through VTK (.vti, legacy .vtk, .mha/.mhd, .nrrd/.nhdr): small files written
-// here by hand, so that the tests pin the formats themselves rather than VTK's writers.
+// Formats read through VTK (.vti, legacy .vtk, .mha/.mhd) and NRRD (.nrrd/.nhdr, read by
+// mfadvr itself: NrrdVolumeReader.h): small files written here by hand, so that the tests pin the
+// formats themselves rather than VTK's writers.
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -701,12 +702,115 @@ TEST(NrrdReader, MissingDetachedDataIsAnError) {
   expectError([&] { loadStructuredVolume(path); }, {"cannot read " + path, "nowhere.raw"});
 }
 
-TEST(NrrdReader, ShortFastestAxisIsAnError) {
-  std::string header = nrrdHeader("short", "raw");
+// The header's kinds say what an axis is: a fastest axis of 4 samples is a spatial axis (VTK's
+// reader took any of 9 or fewer for vector components and refused the volume).
+TEST(NrrdReader, ShortFastestAxisIsSpatial) {
+  std::string header = nrrdHeader("short", "raw", "kinds: space space space\n");
   header.replace(header.find("sizes: 10 4 3"), 13, "sizes: 4 10 3");
   const auto path =
       writeFile(test::scratchDir() / "v.nrrd", header + "\n" + labelBytes(std::endian::little));
-  expectError([&] { loadStructuredVolume(path); }, {path, "4 samples", "at least 10"});
+  const StructuredGrid g = loadStructuredVolume(path);
+  EXPECT_EQ(g.dims, (Index3{4, 10, 3}));
+  EXPECT_TRUE(g.notes.empty());
+  ASSERT_EQ(g.values.size(), static_cast<size_t>(kCount));
+  for (int n = 0; n < kCount; ++n) EXPECT_EQ(g.values[n], label(n)) << n;
+  // Without kinds too, with a note that says how the axis was taken.
+  const auto bare = writeFile(test::scratchDir() / "w.nrrd",
+                              "NRRD0004\ntype: short\ndimension: 3\nsizes: 4 10 3\nencoding: raw\n"
+                              "endian: little\n\n" +
+                                  labelBytes(std::endian::little));
+  const StructuredGrid b = loadStructuredVolume(bare);
+  EXPECT_EQ(b.dims, (Index3{4, 10, 3}));
+  ASSERT_EQ(b.notes.size(), 1u);
+  EXPECT_NE(b.notes[0].find("no kinds"), std::string::npos) << b.notes[0];
+}
+
+// An axis of one sample that is not spatial (a scalar 'vector' axis, a direction of 'none') is
+// dropped; the labels name the field.
+TEST(NrrdReader, AxesOfOneValueAreDropped) {
+  const auto path = writeFile(
+      test::scratchDir() / "v.nrrd",
+      "NRRD0005\ntype: float\ndimension: 4\nsizes: 1 10 4 3\nkinds: scalar domain domain domain\n"
+      "space: right-anterior-superior\n"
+      "space directions: none (0.5, 0, 0) (0,0.25,0) (0,0,2)\nspace origin: (1.5, -2, 3)\n"
+      "labels: \"density\" \"x\" \"y\" \"z\"\nencoding: raw\nendian: little\n\n" +
+          densityBytes(std::endian::little));
+  const StructuredGrid g = loadStructuredVolume(path);
+  expectDensityGrid(g);
+  EXPECT_EQ(g.fieldName, "density");
+  VolumeLoadOptions other;
+  other.field.name = "pressure";
+  expectError([&] { loadStructuredVolume(path, other); }, {path, "'density'", "'pressure'"});
+}
+
+// What mfadvr does not read is refused with the reason, before any data is read.
+TEST(NrrdReader, UnreadLayoutsAreErrors) {
+  const auto dir = test::scratchDir();
+  const std::string data = densityBytes(std::endian::little);
+  const auto refused = [&](const std::string& name, const std::string& fields,
+                           const std::vector<std::string>& parts) {
+    SCOPED_TRACE(name);
+    const auto path = writeFile(
+        dir / name, "NRRD0004\ntype: float\nencoding: raw\n" + fields + "\n" + data + data + data);
+    std::vector<std::string> all = parts;
+    all.push_back("cannot read " + path + " as NRRD");
+    expectError([&] { loadStructuredVolume(path); }, all);
+  };
+  refused("vector.nrrd", "dimension: 4\nsizes: 3 10 4 3\nkinds: 3-vector space space space\n",
+          {"axis 0", "kind 3-vector", "3 samples", "scalar volumes"});
+  refused("time.nrrd", "dimension: 4\nsizes: 10 4 3 2\nkinds: space space space time\n",
+          {"axis 3", "time axis of 2 samples"});
+  refused("flat.nrrd", "dimension: 2\nsizes: 40 3\n", {"2 spatial axes", "a volume has 3"});
+  refused("list.nhdr", "dimension: 3\nsizes: 10 4 3\ndata file: LIST 2\na.raw\nb.raw\n",
+          {"several files"});
+  refused("pattern.nhdr", "dimension: 3\nsizes: 10 4 3\ndata file: s%03d.raw 1 3 1 2\n",
+          {"several files"});
+  refused("lineskip.nrrd", "dimension: 3\nsizes: 10 4 3\nline skip: 2\n", {"line skip 2"});
+  refused("int64.nrrd", "dimension: 3\nsizes: 10 4 3\ntype: int64\n", {"'type' appears twice"});
+  refused("endian.nrrd", "dimension: 3\nsizes: 10 4 3\nendian: middle\n", {"endian 'middle'"});
+  refused("directions.nrrd",
+          "dimension: 3\nsizes: 10 4 3\nspace dimension: 3\n"
+          "space directions: (1,0,0) (0,1) (0,0,1)\n",
+          {"space directions", "'(0,1)'"});
+  refused("origin.nrrd", "dimension: 3\nsizes: 10 4 3\nspace origin: 1 2 3\n",
+          {"space origin '1 2 3'"});
+  refused("spacing.nrrd", "dimension: 3\nsizes: 10 4 3\nspacings: 1 0 1\n",
+          {"spacing 0", "positive"});
+  const auto wide = writeFile(dir / "wide.nrrd",
+                              "NRRD0004\ntype: int64\nencoding: raw\n"
+                              "dimension: 3\nsizes: 10 4 3\n\n" +
+                                  data + data);
+  expectError([&] { loadStructuredVolume(wide); }, {"64-bit integers", "unu convert"});
+}
+
+// byte skip: the samples after that many bytes of the data file, or (-1) its last bytes.
+TEST(NrrdReader, ByteSkip) {
+  const auto dir = test::scratchDir();
+  writeFile(dir / "skip.raw", "junk!!!" + densityBytes(std::endian::little));
+  expectDensityGrid(loadStructuredVolume(writeFile(
+      dir / "skip.nhdr", nrrdHeader("float", "raw", "data file: skip.raw\nbyte skip: 7\n"))));
+  expectDensityGrid(loadStructuredVolume(writeFile(
+      dir / "end.nhdr", nrrdHeader("float", "raw", "data file: skip.raw\nbyte skip: -1\n"))));
+  // Attached data with a skip after the header's blank line.
+  expectDensityGrid(loadStructuredVolume(writeFile(
+      dir / "attached.nrrd",
+      nrrdHeader("float", "raw", "byte skip: 3\n") + "\nabc" + densityBytes(std::endian::little))));
+  // gzip: the skip counts bytes of the inflated stream.
+  expectDensityGrid(loadStructuredVolume(writeFile(
+      dir / "skip.nrrd", nrrdHeader("float", "gzip", "byte skip: 5\n") + "\n" +
+                             test::gzipBytes("12345" + densityBytes(std::endian::little)))));
+}
+
+// Directions that flip an axis are not applied: their lengths space the samples, a note says so.
+TEST(NrrdReader, FlippedDirectionsArePlacedInIndexAxes) {
+  std::string header = nrrdHeader("float", "raw");
+  header.replace(header.find("(0.5,0,0)"), 9, "(-0.5,0,0)");
+  const auto path =
+      writeFile(test::scratchDir() / "v.nrrd", header + "\n" + densityBytes(std::endian::little));
+  const StructuredGrid g = loadStructuredVolume(path);
+  expectDensityGrid(g);
+  ASSERT_EQ(g.notes.size(), 1u);
+  EXPECT_NE(g.notes[0].find("rotate or flip"), std::string::npos) << g.notes[0];
 }
 
 TEST(NrrdReader, TruncatedGzipIsAnError) {
