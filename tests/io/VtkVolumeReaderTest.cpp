@@ -728,8 +728,9 @@ TEST(NrrdReader, ShortFastestAxisIsSpatial) {
 // An axis of one sample that is not spatial (a scalar 'vector' axis, a direction of 'none') is
 // dropped; the labels name the field.
 TEST(NrrdReader, AxesOfOneValueAreDropped) {
+  const auto dir = test::scratchDir();
   const auto path = writeFile(
-      test::scratchDir() / "v.nrrd",
+      dir / "v.nrrd",
       "NRRD0005\ntype: float\ndimension: 4\nsizes: 1 10 4 3\nkinds: scalar domain domain domain\n"
       "space: right-anterior-superior\n"
       "space directions: none (0.5, 0, 0) (0,0.25,0) (0,0,2)\nspace origin: (1.5, -2, 3)\n"
@@ -738,6 +739,12 @@ TEST(NrrdReader, AxesOfOneValueAreDropped) {
   const StructuredGrid g = loadStructuredVolume(path);
   expectDensityGrid(g);
   EXPECT_EQ(g.fieldName, "density");
+  // A fourth axis of one sample and no kinds: one step of a series.
+  expectDensityGrid(loadStructuredVolume(
+      writeFile(dir / "w.nrrd",
+                "NRRD0004\ntype: float\ndimension: 4\nsizes: 10 4 3 1\nspacings: 0.5 0.25 2 1\n"
+                "axis mins: 1.5 -2 3 0\nencoding: raw\nendian: little\n\n" +
+                    densityBytes(std::endian::little))));
   VolumeLoadOptions other;
   other.field.name = "pressure";
   expectError([&] { loadStructuredVolume(path, other); }, {path, "'density'", "'pressure'"});
@@ -761,6 +768,7 @@ TEST(NrrdReader, UnreadLayoutsAreErrors) {
   refused("time.nrrd", "dimension: 4\nsizes: 10 4 3 2\nkinds: space space space time\n",
           {"axis 3", "time axis of 2 samples"});
   refused("flat.nrrd", "dimension: 2\nsizes: 40 3\n", {"2 spatial axes", "a volume has 3"});
+  refused("thin.nrrd", "dimension: 3\nsizes: 40 3 1\n", {"40 x 3 x 1", "2-D data"});
   refused("list.nhdr", "dimension: 3\nsizes: 10 4 3\ndata file: LIST 2\na.raw\nb.raw\n",
           {"several files"});
   refused("pattern.nhdr", "dimension: 3\nsizes: 10 4 3\ndata file: s%03d.raw 1 3 1 2\n",

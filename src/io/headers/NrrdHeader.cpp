@@ -338,12 +338,22 @@ NrrdDataLocation checkNrrdHeaderText(const std::string& header, const std::strin
     if (component || kind == "time") continue;
     spatial.push_back(a);
   }
+  // More than three: axes of one sample are not the volume's (a 4-D header of one time step).
+  if (spatial.size() > 3)
+    spatial.erase(
+        std::remove_if(spatial.begin(), spatial.end(), [&](size_t a) { return sizes[a] == 1; }),
+        spatial.end());
   if (spatial.size() != 3) {
     std::string k;
     for (const auto& w : kinds) k += (k.empty() ? "" : " ") + w;
     fail(std::to_string(spatial.size()) + " spatial axes (sizes " + dimsText(sizes) +
          (k.empty() ? std::string() : ", kinds " + k) + "): a volume has 3");
   }
+  if (std::any_of(spatial.begin(), spatial.end(), [&](size_t a) { return sizes[a] < 2; }))
+    fail("its spatial axes span " +
+         dimsText({sizes[spatial[0]], sizes[spatial[1]], sizes[spatial[2]]}) +
+         " samples: 2-D data (a volume needs at least 2 samples along every axis)");
+  bool flipped = false;
   for (int i = 0; i < 3; ++i) {
     const size_t a = spatial[size_t(i)];
     grid.dims[i] = sizes[a];
@@ -354,6 +364,11 @@ NrrdDataLocation checkNrrdHeaderText(const std::string& header, const std::strin
       step = std::sqrt(sum);
     }
     if (std::isnan(step)) step = 1.0;
+    // A negative spacing flips its axis, which is not applied (as flipping directions).
+    if (step < 0.0) {
+      step = -step;
+      flipped = true;
+    }
     if (!(step > 0.0))
       fail("axis " + std::to_string(a) + " has spacing " + std::to_string(step) +
            ": sample spacings must be positive");
@@ -364,7 +379,7 @@ NrrdDataLocation checkNrrdHeaderText(const std::string& header, const std::strin
       grid.origin[i] = minOf[a];
   }
   // Directions that are not along the axes, or flip them, are not applied (only their lengths).
-  bool aligned = true;
+  bool aligned = !flipped;
   for (int i = 0; i < 3; ++i) {
     const auto& d = directions[spatial[size_t(i)]];
     if (!d) continue;
