@@ -24,6 +24,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <random>
 #include <string>
 
@@ -33,6 +34,7 @@
 #include "core/encode/PieceEncoder.h"
 #include "core/encode/StructuredEncoder.h"
 #include "core/model/BlockModelFile.h"
+#include "core/model/ControlCoding.h"
 #include "core/model/ModelFile.h"
 #include "vtkMFAEncoder.h"
 #include "vtkMFAReader.h"
@@ -130,6 +132,43 @@ TEST(MFAReader, RefusesModelsTheMemoryCannotHold) {
   const Limit roomy("1G");
   EXPECT_TRUE(read(single, false, 0, 1).first);
   EXPECT_TRUE(read(blocks, true, 1, 2).first);
+}
+
+// zfp-coded blocks, as `mfadvr encode` writes an integer scan, read piece by piece; a block whose
+// bytes are damaged is an error of the reader for the piece that reads it, never a crash.
+TEST(MFAReader, ReadsZfpBlocksAndReportsADamagedOne) {
+  const auto dir = scratchDir();
+  const auto path = dir / "zfp-blocks.mfa";
+  EncodeOptions options;
+  options.coding.coder = ControlCoder::kZfp;
+  const std::vector<ModelBlock> blocks = encodeStructuredBlocks(mlGrid(33), {2, 1, 1}, -1, options);
+  ASSERT_EQ(blocks.size(), 2u);
+  saveBlockModels(blocks, {2, 1, 1}, path);
+  const auto read = [](const std::filesystem::path& file, int piece) {
+    vtkNew<vtkMFAReader> reader;
+    ErrorLog log(reader);
+    reader->SetFileName(file.string().c_str());
+    reader->SetOutputImageData(true);
+    reader->UpdatePiece(piece, 2, 0);
+    auto* image = vtkImageData::SafeDownCast(reader->GetOutputDataObject(0));
+    return std::make_pair(image->GetFieldData()->GetNumberOfArrays() > 0, log.text);
+  };
+  for (int piece : {0, 1}) {
+    const auto [model, errors] = read(path, piece);
+    EXPECT_TRUE(model) << "piece " << piece << ": " << errors;
+    EXPECT_TRUE(errors.empty()) << errors;
+  }
+  // The last block's bytes, near the end of the file, damaged.
+  std::ifstream in(path, std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const auto damaged = dir / "damaged.mfa";
+  for (size_t i = bytes.size() - 200; i < bytes.size() - 100; ++i)
+    bytes[i] = static_cast<char>(~bytes[i]);
+  std::ofstream(damaged, std::ios::binary)
+      .write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  const auto [model, errors] = read(damaged, 1);
+  EXPECT_FALSE(model);
+  EXPECT_NE(errors.find(damaged.string()), std::string::npos) << errors;
 }
 
 TEST(MFAEncoder, FitsImageDataWithTheGivenControlCounts) {
