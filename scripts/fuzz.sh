@@ -4,6 +4,8 @@
 # corpus that grows in build/fuzz/campaign/corpus/TARGET and any crashing input in
 # build/fuzz/campaign/crashes/TARGET. Prints one line per target: runs, corpus size, findings.
 # Usage: scripts/fuzz.sh [SECONDS] [TARGET ...]
+# ASAN_OPTIONS from the environment are passed on (e.g. quarantine_size_mb=1024, so that heap
+# damage done by uninstrumented code is caught nearer the input that did it).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-300}
@@ -31,7 +33,7 @@ run() {
   set +e
   local leaks=1
   [ "$t" = fuzz_file_loaders ] && leaks=0  # VTK's legacy reader leaks on malformed files
-  ASAN_OPTIONS=detect_leaks=$leaks "build/fuzz/fuzz/$t" -max_total_time="$seconds" "${extra[@]}" \
+  ASAN_OPTIONS="detect_leaks=$leaks${ASAN_OPTIONS:+:$ASAN_OPTIONS}" "build/fuzz/fuzz/$t" -max_total_time="$seconds" "${extra[@]}" \
     -artifact_prefix="$out/crashes/$t/" "$out/corpus/$t" "$seeds/$t" > "$out/$t.log" 2>&1
   local rc=$?
   set -e

@@ -23,7 +23,7 @@ for arg in "$@"; do
 done
 
 packages=(
-  build-essential cmake ninja-build pkg-config git
+  build-essential cmake ninja-build pkg-config git ccache mold
   libeigen3-dev libtbb-dev libcli11-dev nlohmann-json3-dev
   libpng-dev zlib1g-dev libzstd-dev libzfp-dev python3-zfpy python3-scipy
   libgtest-dev libgmock-dev libbenchmark-dev
