@@ -2,6 +2,7 @@
 // written here by hand so that the tests pin the formats themselves rather than VTK's writers;
 // then the shared real meshes when they are present.
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -515,6 +516,31 @@ TEST(ScatteredLoader, LegacyDatasetFieldBlocksAreChecked) {
                               "POINT_DATA 12\nSCALARS t float 1\nLOOKUP_TABLE default\n"
                               "0 1 2 3 4 5 6 7 8 9 10 11\n");
   expectError([&] { loadScatteredData(rect); }, {"cannot read " + rect, "FIELD"});
+}
+
+// The cells of a CELLS (or poly data's POLYGONS) block must fill it exactly: VTK's reader walks
+// the block by the cells' point counts and read past its end where they added up to more (found
+// by a valgrind replay of a fuzzing corpus).
+TEST(ScatteredLoader, LegacyCellCountsMustFillTheirBlock) {
+  const auto dir = test::scratchDir();
+  const std::string good = legacyUnstructured();
+  for (const auto& [from, to, expected] : std::vector<std::array<std::string, 3>>{
+           {"CELLS 5 25\n4", "CELLS 5 25\n9", "CELLS block's 25 integers end after cell 4 of 5"},
+           {"CELLS 5 25\n4", "CELLS 5 25\n29", "cell 1 of CELLS declares 29 points"},
+           {"CELLS 5 25", "CELLS 5 26", "5 cells of CELLS take 25 of its 26 integers"},
+           {"CELLS 5 25\n4 ", "CELLS 5 25\n4.5 ", "'4.5' where integer 1 of 25 belongs"},
+           {"CELLS 5 25\n4", "CELLS 5 25\n-4", "declares -4 points"}}) {
+    std::string broken = good;
+    broken.replace(broken.find(from), from.size(), to);
+    const auto path = writeFile(dir / "c.vtk", broken);
+    expectError([&] { loadScatteredData(path); }, {"cannot read " + path, expected});
+  }
+  const std::string head =
+      "# vtk DataFile Version 3.0\np\nASCII\nDATASET POLYDATA\nPOINTS 4 float\n"
+      "0 0 0 1 0 0 0 1 0 0 0 1\n";
+  const auto poly = writeFile(dir / "p.vtk", head + "POLYGONS 2 8\n3 0 1 2\n5 1 2 3\n");
+  expectError([&] { loadScatteredData(poly); },
+              {"cannot read " + poly, "cell 2 of POLYGONS declares 5 points"});
 }
 
 // Two cells on five points (connectivity 0 1 2 3 | 1 2 3 4) with the given offsets and types.

@@ -1,6 +1,7 @@
 // legacy VTK: the declared-size check (io/DeclaredSizeCheck.h).
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <charconv>
 #include <cstdlib>
 #include <filesystem>
@@ -51,9 +52,11 @@ std::string legacyRawType(const std::string& type) {
 // Words that start with no keyword of the geometry blocks are returned in lower case.
 std::string legacyKeyword(const std::string& word) {
   const std::string w = lower(word);
-  for (const char* keyword : {"dataset", "points", "cells", "cell_types", "offsets", "connectivity",
-                              "field", "dimensions", "spacing", "origin", "aspect_ratio", "extent",
-                              "metadata", "x_coordinates", "y_coordinates", "z_coordinates"})
+  for (const char* keyword :
+       {"dataset",       "points",   "cells",      "cell_types",    "offsets",
+        "connectivity",  "field",    "dimensions", "spacing",       "origin",
+        "aspect_ratio",  "extent",   "metadata",   "x_coordinates", "y_coordinates",
+        "z_coordinates", "vertices", "lines",      "polygons",      "triangle_strips"})
     if (w.rfind(keyword, 0) == 0) return keyword;
   return w;
 }
@@ -208,6 +211,52 @@ void checkLegacyCells(std::istream& in, const std::string& path) {
     }
     return static_cast<bool>(in);
   };
+  // The cells of a CELLS n size block: each a point count, then that many point ids, n cells in
+  // exactly `size` integers. VTK's reader walks the block by the counts and reads past its end
+  // when they add up to more (found by a valgrind replay of a fuzzing corpus: an invalid read in
+  // vtkCellArray::AppendLegacyFormat).
+  const auto walkCells = [&](const std::string& name, std::int64_t cellCount, std::int64_t size) {
+    std::int64_t read = 0;  // integers of the block read so far
+    const auto next = [&](std::int64_t& value) {
+      if (binary) {
+        unsigned char b[4];
+        if (!in.read(reinterpret_cast<char*>(b), 4)) return false;
+        value =
+            static_cast<std::int32_t>((std::uint32_t(b[0]) << 24) | (std::uint32_t(b[1]) << 16) |
+                                      (std::uint32_t(b[2]) << 8) | std::uint32_t(b[3]));
+      } else {
+        std::string token;
+        if (!(in >> token)) return false;
+        char* end = nullptr;
+        errno = 0;
+        value = std::strtoll(token.c_str(), &end, 10);
+        if (end == token.c_str() || *end != '\0' || errno == ERANGE)
+          fail("the " + name + " block holds '" + token.substr(0, 20) + "' where integer " +
+               std::to_string(read + 1) + " of " + std::to_string(size) + " belongs");
+      }
+      ++read;
+      return true;
+    };
+    for (std::int64_t c = 0; c < cellCount; ++c) {
+      if (read == size)
+        fail("the " + name + " block's " + grouped(size) + " integers end after cell " +
+             std::to_string(c) + " of " + grouped(cellCount));
+      std::int64_t points = 0;
+      if (!next(points)) return false;
+      if (points < 0 || points > size - read)
+        fail("cell " + std::to_string(c + 1) + " of " + name + " declares " +
+             std::to_string(points) + " points, but its block of " + grouped(size) +
+             " integers has " + grouped(size - read) + " left");
+      for (std::int64_t i = 0; i < points; ++i) {
+        std::int64_t id = 0;
+        if (!next(id)) return false;
+      }
+    }
+    if (read != size)
+      fail("the " + grouped(cellCount) + " cells of " + name + " take " + grouped(read) +
+           " of its " + grouped(size) + " integers");
+    return true;
+  };
   // VTK's reader reads at most 255 characters a word and takes the rest as the next word.
   const auto checkWordLengths = [&](const std::vector<std::string>& w) {
     for (const std::string& word : w)
@@ -295,14 +344,17 @@ void checkLegacyCells(std::istream& in, const std::string& path) {
     }
     // A keyword line is text; VTK's stream reads stop early at some other bytes (0xff) and
     // leave counts unset (found by fuzzing: an allocation of 0xf5f5... bytes).
-    const bool geometry = key == "points" || key == "cells" || key == "cell_types";
+    // Poly data's cell blocks have the layout of CELLS.
+    const bool cellBlock = key == "cells" || key == "vertices" || key == "lines" ||
+                           key == "polygons" || key == "triangle_strips";
+    const bool geometry = key == "points" || cellBlock || key == "cell_types";
     if (geometry && (hasControlCharacters(line) ||
                      std::any_of(line.begin(), line.end(),
                                  [](char c) { return static_cast<unsigned char>(c) >= 0x80; })))
       fail("the " + w[0].substr(0, key.size()) + " line holds bytes that are not text");
     // VTK reads a keyword's counts across line ends: a short line takes its numbers from the
     // data that follows.
-    if ((key == "points" || key == "cells") && w.size() != 3)
+    if ((key == "points" || cellBlock) && w.size() != 3)
       fail("the " + w[0].substr(0, key.size()) + " line has " + std::to_string(w.size() - 1) +
            " fields, not 2");
     if (key == "cell_types" && w.size() != 2)
@@ -316,22 +368,23 @@ void checkLegacyCells(std::istream& in, const std::string& path) {
       if (parseCount(w[1]) < 0 || legacyTypeBytes(w[2]) == 0)
         fail("POINTS '" + w[1] + " " + w[2] + "' is not a count and a VTK data type");
       if (!skip(times(parseCount(w[1]), 3), legacyTypeBytes(w[2]))) return;
-    } else if (key == "cells" && w.size() >= 3) {
+    } else if (cellBlock && w.size() >= 3) {
+      const std::string name = w[0].substr(0, key.size());
       const std::int64_t a = parseCount(w[1]), b = parseCount(w[2]);
-      if (a < 0 || b < 0) fail("CELLS '" + w[1] + " " + w[2] + "' are not counts");
+      if (a < 0 || b < 0) fail(name + " '" + w[1] + " " + w[2] + "' are not counts");
       if (newCells) {
         // CELLS offsets connectivity: cells + 1 offsets, at least one point per cell.
         if (a > 0 && b < a - 1)
-          fail("CELLS declares " + grouped(a) + " offsets but only " + grouped(b) +
+          fail(name + " declares " + grouped(a) + " offsets but only " + grouped(b) +
                " connectivity entries");
-        cells = a > 0 ? a - 1 : 0;
+        if (key == "cells") cells = a > 0 ? a - 1 : 0;
       } else {
         // CELLS n size: each cell is its point count and at least one point.
         if (b < times(a, 2))
-          fail("CELLS declares " + grouped(a) + " cells in " + grouped(b) +
+          fail(name + " declares " + grouped(a) + " cells in " + grouped(b) +
                " integers, fewer than 2 per cell");
-        cells = a;
-        if (!skip(b, 4)) return;
+        if (key == "cells") cells = a;
+        if (!walkCells(name, a, b)) return;
       }
     } else if ((key == "offsets" || key == "connectivity") && w.size() >= 2) {
       return;  // their lengths are CELLS' counts; VTK checks the rest
