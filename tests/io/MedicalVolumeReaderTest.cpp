@@ -162,6 +162,14 @@ TEST(NiftiReader, RejectsBrokenFilesWithTheReason) {
   std::ofstream(sized, std::ios::binary) << wrongSize;
   expectError([&] { loadStructuredVolume(sized); },
               {"cannot read " + sized, "sizeof_hdr is 788529500", "348"});
+  // Found by fuzzing: sizeof_hdr 540 (NIfTI-2) with NIfTI-1's magic, in a file shorter than a
+  // NIfTI-2 header, reached VTK's reader, which goes by the magic and dereferenced null.
+  std::string mixed = good;
+  mixed.replace(0, 4, std::string("\x1c\x02\x00\x00", 4));
+  const std::string mixedPath = (dir / "mixed.nii").string();
+  std::ofstream(mixedPath, std::ios::binary) << mixed.substr(0, 473);
+  expectError([&] { loadStructuredVolume(mixedPath); },
+              {"cannot read " + mixedPath, "sizeof_hdr is 540", "NIfTI-2's magic"});
   const std::string other = (dir / "notes.gz").string();
   std::ofstream(other, std::ios::binary) << "x";
   expectError([&] { loadStructuredVolume(other); }, {"unknown volume format '.gz'", ".nii.gz"});

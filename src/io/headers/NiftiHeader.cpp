@@ -62,7 +62,24 @@ std::int64_t checkNiftiHeaderBytes(const std::string& header, const std::string&
   if (version == 0)
     fail("sizeof_hdr is " + std::to_string(readAt<std::int32_t>(header, 0, false)) +
          ", not 348 (NIfTI-1, Analyze) or 540 (NIfTI-2)");
-  if (version == 2 && header.size() < 540) return -1;
+  // The magic must say the same as sizeof_hdr: VTK's reader takes a header for NIfTI-1 by its
+  // magic at byte 344 whatever sizeof_hdr says (fuzzing found it dereferencing null on a file of
+  // 473 bytes with sizeof_hdr 540 and NIfTI-1's magic).
+  const auto magicAt = [&](size_t at, char digit) {
+    return header.size() >= at + 4 && (header[at] == 'n') &&
+           (header[at + 1] == '+' || header[at + 1] == 'i') && header[at + 2] == digit &&
+           header[at + 3] == '\0';
+  };
+  const bool magic1 = magicAt(344, '1'), magic2 = magicAt(4, '2');
+  if (version == 2 && !magic2)
+    fail(std::string("sizeof_hdr is 540 (NIfTI-2), but the header lacks NIfTI-2's magic "
+                     "(n+2 or ni2 at byte 4)") +
+         (magic1 ? " and has NIfTI-1's" : ""));
+  if (version == 1 && magic2)
+    fail("sizeof_hdr is 348 (NIfTI-1), but the header has NIfTI-2's magic");
+  if (version == 2 && header.size() < 540)
+    fail("the header is cut off: the file holds " + std::to_string(header.size()) +
+         " of its 540 bytes");
   std::vector<std::int64_t> dims;
   std::int64_t bitpix = 0, voxOffset = 0, datatype = 0, rank = 0;
   if (version == 1) {
