@@ -483,7 +483,10 @@ TEST(LegacyVtkReader, DatasetFieldBlocksAreCheckedBeforeVtkReadsThem) {
            {"STRUCTURED_POINTS\n", "STRUCTURED_POINTS FIELD f 1\nT 1 1 strng\nx\n",
             "DATASET line has 4 fields"},
            {"ASCII\n", "ASCII FIELD f 1\n", "ASCII or BINARY line"},
-           {"ORIGIN", "ORIGIN" + std::string(300, 'x'), "word of 306 characters"}}) {
+           {"ORIGIN", "ORIGIN" + std::string(300, 'x'), "word of 306 characters"},
+           // VTK reads "3" and takes "field" for the next keyword (found by fuzzing).
+           {"DIMENSIONS 10 4 3", "DIMENSIONS 10 4 3field",
+            "holds '3field', which is not a number"}}) {
     std::string text = withField("");
     text.replace(text.find(from), from.size(), to);
     const auto path = writeFile(test::scratchDir() / "field.vtk", text);

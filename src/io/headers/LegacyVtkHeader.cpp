@@ -340,6 +340,16 @@ void checkLegacyCells(std::istream& in, const std::string& path) {
       if (static_cast<int>(w.size()) != n + 1)
         fail("the " + w[0].substr(0, key.size()) + " line has " + std::to_string(w.size() - 1) +
              " fields, not " + std::to_string(n));
+      // Each a number as a whole: VTK reads the number at a word's start and takes the rest of
+      // the word for the next keyword (found by fuzzing: "DIMENSIONS 10 4 3field" read a FIELD
+      // block that was not there).
+      for (size_t i = 1; i < w.size(); ++i) {
+        char* end = nullptr;
+        std::strtod(w[i].c_str(), &end);
+        if (end == w[i].c_str() || *end != '\0')
+          fail("the " + w[0].substr(0, key.size()) + " line holds '" + w[i].substr(0, 20) +
+               "', which is not a number");
+      }
       continue;
     }
     // A keyword line is text; VTK's stream reads stop early at some other bytes (0xff) and
