@@ -20,7 +20,8 @@ namespace mfadvr {
 
 // What to do with samples stored as one gzip stream (NRRD's gzip encoding, .nii.gz).
 enum class GzipPayloads {
-  kLeaveToVtk,              // nullptr: VTK's reader inflates them in memory
+  kLeaveToVtk,              // nullptr: the in-memory read inflates them (NRRD: mfadvr's own
+                            // reader; NIfTI: VTK's)
   kInflateToTemporaryFile,  // inflated once to a temporary file (InflatedPayload.h), then read
                             // box by box: for volumes that do not fit in memory
 };

@@ -69,22 +69,26 @@ void expectNoInflatedFiles() {
         << entry.path();
 }
 
+// Everything a model records of a grid, and every sample.
+void expectSameGrid(const StructuredGrid& a, const StructuredGrid& b) {
+  EXPECT_EQ(a.dims, b.dims);
+  EXPECT_EQ(a.origin, b.origin);
+  EXPECT_EQ(a.spacing, b.spacing);
+  EXPECT_EQ(a.fieldName, b.fieldName);
+  EXPECT_EQ(a.fieldAssociation, b.fieldAssociation);
+  EXPECT_EQ(a.sampleType, b.sampleType);
+  EXPECT_EQ(a.inputBytes, b.inputBytes);
+  EXPECT_EQ(a.values, b.values);
+}
+
 // The streamed grid against `reference`: everything a model records, and every sample; then a
 // box read against the same box of the whole grid.
 void expectSameAs(const std::string& path, const StructuredGrid& reference, GzipPayloads gzip) {
   SCOPED_TRACE(path);
   const auto source = openStreamedVolume(path, {}, gzip);
   ASSERT_NE(source, nullptr);
-  const StructuredGrid streamed = source->read(wholeRange(source->layout().dims));
-  EXPECT_EQ(streamed.dims, reference.dims);
-  EXPECT_EQ(streamed.origin, reference.origin);
-  EXPECT_EQ(streamed.spacing, reference.spacing);
-  EXPECT_EQ(streamed.fieldName, reference.fieldName);
-  EXPECT_EQ(streamed.fieldAssociation, reference.fieldAssociation);
-  EXPECT_EQ(streamed.sampleType, reference.sampleType);
-  EXPECT_EQ(streamed.inputBytes, reference.inputBytes);
+  expectSameGrid(source->read(wholeRange(source->layout().dims)), reference);
   EXPECT_EQ(source->layout().notes, reference.notes);
-  EXPECT_EQ(streamed.values, reference.values);
   const Index3& d = reference.dims;
   const SampleRange box{{1, 1, 1}, {d[0] - 2, d[1] - 1, d[2] - 1}};
   EXPECT_EQ(source->read(box).values, subGrid(reference, box).values);
@@ -104,13 +108,7 @@ void expectSameAsVtkNrrd(const std::string& path, GzipPayloads gzip = GzipPayloa
   vtkNew<vtkNrrdReader> vtk;
   vtk->SetFileName(path.c_str());
   vtk->Update();
-  const StructuredGrid theirs = gridFromVtkImage(vtk->GetOutput(), "", path);
-  EXPECT_EQ(ours.dims, theirs.dims);
-  EXPECT_EQ(ours.origin, theirs.origin);
-  EXPECT_EQ(ours.spacing, theirs.spacing);
-  EXPECT_EQ(ours.fieldName, theirs.fieldName);
-  EXPECT_EQ(ours.sampleType, theirs.sampleType);
-  EXPECT_EQ(ours.values, theirs.values);
+  expectSameGrid(ours, gridFromVtkImage(vtk->GetOutput(), "", path));
 }
 
 TEST(StreamedVolumeReader, NrrdRawAttachedAndDetached) {

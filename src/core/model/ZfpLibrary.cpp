@@ -2,7 +2,6 @@
 
 #include <dlfcn.h>
 
-#include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -118,7 +117,10 @@ Loaded load() {
   if (overridden) {
     files.push_back(override);
   } else {
-    for (const char* const* f = zfpLibraryCandidates(); *f; ++f) files.push_back(*f);
+    // The library mfadvr was built against (its full path), then its soname through the dynamic
+    // linker's search (LD_LIBRARY_PATH, the cache).
+    files.push_back(MFADVR_ZFP_LIBRARY);
+    if (std::string_view(MFADVR_ZFP_LIBRARY) != kSoname) files.push_back(kSoname);
   }
   for (const char* file : files) {
     const std::string why = loadFrom(file, out.library);
@@ -135,12 +137,6 @@ Loaded load() {
 }
 
 }  // namespace
-
-const char* const* zfpLibraryCandidates() {
-  static const std::array<const char*, 3> kCandidates = {MFADVR_ZFP_LIBRARY, kSoname, nullptr};
-  // The soname alone when it is what the build recorded.
-  return std::string_view(kCandidates[0]) == kSoname ? kCandidates.data() + 1 : kCandidates.data();
-}
 
 const ZfpLibrary& zfpLibrary() {
   static const Loaded loaded = load();

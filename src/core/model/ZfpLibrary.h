@@ -40,8 +40,4 @@ struct ZfpLibrary {
 // The loaded and checked library; throws mfadvr::Error saying why ZFP is not usable.
 const ZfpLibrary& zfpLibrary();
 
-// The files tried, in order: the library mfadvr was built against (its full path), then its
-// soname through the dynamic linker's search (LD_LIBRARY_PATH, the cache).
-const char* const* zfpLibraryCandidates();
-
 }  // namespace mfadvr

@@ -248,18 +248,18 @@ NrrdDataLocation checkNrrdHeaderText(const std::string& header, const std::strin
   perAxis(spacings, "spacings");
   perAxis(kinds, "kinds");
   perAxis(axisMins, "axis mins");
-  std::vector<double> spacingOf(axes, std::numeric_limits<double>::quiet_NaN());
-  std::vector<double> minOf(axes, std::numeric_limits<double>::quiet_NaN());
-  for (size_t a = 0; a < spacings.size(); ++a) {
-    const auto v = parseAxisNumber(spacings[a]);
-    if (!v) fail("spacings holds '" + spacings[a] + "', which is not a number");
-    spacingOf[a] = *v;
-  }
-  for (size_t a = 0; a < axisMins.size(); ++a) {
-    const auto v = parseAxisNumber(axisMins[a]);
-    if (!v) fail("axis mins holds '" + axisMins[a] + "', which is not a number");
-    minOf[a] = *v;
-  }
+  // "spacings" and "axis mins" as numbers per axis (nan where absent or given as nan).
+  const auto numbersOf = [&](const std::vector<std::string>& values, const char* name) {
+    std::vector<double> out(axes, std::numeric_limits<double>::quiet_NaN());
+    for (size_t a = 0; a < values.size(); ++a) {
+      const auto v = parseAxisNumber(values[a]);
+      if (!v) fail(std::string(name) + " holds '" + values[a] + "', which is not a number");
+      out[a] = *v;
+    }
+    return out;
+  };
+  const std::vector<double> spacingOf = numbersOf(spacings, "spacings");
+  const std::vector<double> minOf = numbersOf(axisMins, "axis mins");
   // Space: its dimension from "space dimension" or the named space, the axes' directions and
   // the origin as vectors of that many numbers.
   std::int64_t spaceDims = -1;
