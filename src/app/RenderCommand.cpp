@@ -45,7 +45,7 @@ std::string methodList(const std::vector<std::string>& names) {
 }
 
 struct Options {
-  std::string input, output, floatOutput, method, gradientFrom, gradient = "analytic";
+  std::string input, output, floatOutput, depthOutput, method, gradientFrom, gradient = "analytic";
   std::string device = "auto";
   std::string spacing, origin;
   FieldOptionTexts field;
@@ -72,8 +72,10 @@ int renderWithVtk(const Options& o, VtkMethod method, Clock::time_point start) {
                                "the gradient test runs on our ray caster, not on " + name);
   if (o.gradient != "analytic")
     throw CLI::ValidationError("--gradient", name + " computes its own gradients");
-  if (o.alpha || !o.floatOutput.empty())
-    throw CLI::ValidationError(o.alpha ? "--alpha" : "--float",
+  if (o.alpha || !o.floatOutput.empty() || !o.depthOutput.empty())
+    throw CLI::ValidationError(o.alpha                 ? "--alpha"
+                               : o.floatOutput.empty() ? "--depth"
+                                                       : "--float",
                                name + " gives an 8-bit RGB image only (read back from VTK)");
   if (method == VtkMethod::FixedPoint && !isModelFile(o.input) && isScatteredInput(o.input))
     throw Error(name + " (" + vtkMapperClassName(method) + ") renders regular grids; " + o.input +
@@ -194,6 +196,10 @@ Command addRenderCommand(CLI::App& app) {
   sub->add_flag("--alpha", o->alpha, "Write RGBA (alpha = accumulated opacity)");
   sub->add_option("--float", o->floatOutput,
                   "Also write the linear float RGBA image as NRRD (for analysis)");
+  sub->add_option("--depth", o->depthOutput,
+                  "Also write a float32 NRRD of ray distances from the camera position: where "
+                  "the opacity first reaches 0.5 (composite), to the extreme sample (max, min), "
+                  "to the first sample that counts (average, additive); NaN where none");
   o->render.addTo(sub);
   o->encode.addTo(sub, "Encoding (non-model inputs rendered with mfa)");
   const char* in = "Input";
@@ -242,6 +248,7 @@ Command addRenderCommand(CLI::App& app) {
     const LoadedScene scene = loadScene(o->input, needs, load);
     std::string tfWarning;
     RenderSettings settings = o->render.settingsFor(scene, &tfWarning);
+    settings.depth = !o->depthOutput.empty();
     if (!o->quiet && !o->json && !tfWarning.empty())
       std::cerr << "mfadvr render: warning: " << tfWarning << "\n";
     if (progress) settings.progress = [](double f) { printProgress("rendering", f); };
@@ -275,6 +282,7 @@ Command addRenderCommand(CLI::App& app) {
             : medianSeconds(std::vector<double>(frameSeconds.begin() + 1, frameSeconds.end()));
     writePng(o->output, toImage8(image, o->alpha));
     if (!o->floatOutput.empty()) writeFloatImage(o->floatOutput, image);
+    if (!o->depthOutput.empty()) writeDepthImage(o->depthOutput, image, depthRule(settings.blend));
     const double total = secondsSince(start);
 
     std::string label = methodName(spec.method);

@@ -195,6 +195,22 @@ void RenderOptions::addTo(CLI::App* sub) {
   sub->add_option("--ert", ert, "Early ray termination opacity (>= 1 disables it)")
       ->capture_default_str()
       ->group(sampling);
+  const char* blending = "Blending and clipping";
+  sub->add_option("--blend", blend,
+                  "How samples become a pixel: " + blendModeChoices() +
+                      " (VTK's blend modes; max/min classify the extreme value, average/additive "
+                      "give a grey level: docs/rendering.md)")
+      ->capture_default_str()
+      ->group(blending);
+  sub->add_option("--average-range", averageRange,
+                  "--blend average: only values in MIN,MAX count (default: all)")
+      ->group(blending);
+  sub->add_option("--clip-plane", clipPlanes,
+                  "Keep the side of the plane through PX,PY,PZ that the normal NX,NY,NZ points "
+                  "to: PX,PY,PZ,NX,NY,NZ (repeatable, up to 8)")
+      ->group(blending);
+  sub->add_option("--crop", crop, "Render only inside the box X0,X1,Y0,Y1,Z0,Z1 (world units)")
+      ->group(blending);
   sub->add_flag("--no-skip", noSkip,
                 "MFA models: sample every step instead of skipping knot-span cells the transfer "
                 "function makes invisible (the image is the same; for timing what skipping saves)")
@@ -265,6 +281,44 @@ RenderSettings RenderOptions::settingsFor(const LoadedScene& scene, std::string*
     throw CLI::ValidationError("--step", m);
   }
   s.earlyTerminationOpacity = ert;
+
+  const auto mode = parseBlendMode(blend);
+  if (!mode)
+    throw CLI::ValidationError("--blend",
+                               "expected " + blendModeChoices() + ", got '" + blend + "'");
+  s.blend = *mode;
+  if (!averageRange.empty()) {
+    if (s.blend != BlendMode::Average)
+      throw CLI::ValidationError("--average-range", "applies to --blend average only");
+    const auto r = parseNumberList("--average-range", averageRange, 2, 2);
+    if (!(r[1] >= r[0])) throw CLI::ValidationError("--average-range", "MAX must be >= MIN");
+    s.averageRange = std::pair(r[0], r[1]);
+  }
+  if (clipPlanes.size() > static_cast<size_t>(kMaxClipPlanes))
+    throw CLI::ValidationError("--clip-plane", "at most " + std::to_string(kMaxClipPlanes) +
+                                                   " planes, got " +
+                                                   std::to_string(clipPlanes.size()));
+  for (const auto& text : clipPlanes) {
+    const auto v = parseNumberList("--clip-plane", text, 6, 6);
+    ClipPlane c;
+    c.point = Vec3d(v[0], v[1], v[2]);
+    c.normal = Vec3d(v[3], v[4], v[5]);
+    if (!(c.normal.norm() > 0.0))
+      throw CLI::ValidationError("--clip-plane", "the normal NX,NY,NZ must not be zero: " + text);
+    s.clipPlanes.push_back(c);
+  }
+  if (!crop.empty()) {
+    const auto v = parseNumberList("--crop", crop, 6, 6);
+    DomainBox b;
+    for (int a = 0; a < 3; ++a) {
+      if (!(v[2 * a + 1] >= v[2 * a]))
+        throw CLI::ValidationError("--crop",
+                                   "each axis needs MIN <= MAX (X0,X1,Y0,Y1,Z0,Z1): " + crop);
+      b.min[a] = v[2 * a];
+      b.max[a] = v[2 * a + 1];
+    }
+    s.crop = b;
+  }
 
   s.shade = shade;
   s.lighting.ambient = ambient;

@@ -27,6 +27,8 @@ struct RenderOptions {
   std::vector<std::string> lights;
   int threads = 0;
   bool noSkip = false;
+  std::string blend = "composite", averageRange, crop;
+  std::vector<std::string> clipPlanes;
 
   // Adds the options to `sub`.
   void addTo(CLI::App* sub);

@@ -1,6 +1,8 @@
 #include "gpu/CudaRenderer.h"
 
 #include <chrono>
+#include <limits>
+#include <vector>
 
 #include "core/field/PaddedGrid.h"
 #include "core/render/ModelRenderSetup.h"
@@ -58,7 +60,7 @@ struct CudaRenderer::Buffers {
   DeviceArray grid;
   // Per frame.
   std::vector<DeviceArray> frame;
-  DeviceArray image, counters;
+  DeviceArray image, depth, counters;
 };
 
 CudaRenderer::CudaRenderer() : status_(cudaDeviceStatus()), buffers_(std::make_unique<Buffers>()) {
@@ -111,14 +113,25 @@ void readBack(const RayParams& params, DeviceArray& image, const DeviceArray& co
 
 // One frame: its arrays up, `launch(params, image, counters)` on the relocated parameters, the
 // image and counters back.
+// With `keepDepth` (RenderSettings::depth) the rays' depths too, in `depth`.
 template <class Launch>
-Image renderFrame(const RayParams& hostParams, std::vector<DeviceArray>& frame, DeviceArray& image,
-                  DeviceArray& counters, Launch&& launch, RenderStats* stats,
-                  double& kernelSeconds) {
-  const RayParams params = uploadFrame(hostParams, frame, image, counters);
+Image renderFrame(const RayParams& hostParams, bool keepDepth, std::vector<DeviceArray>& frame,
+                  DeviceArray& image, DeviceArray& depth, DeviceArray& counters, Launch&& launch,
+                  RenderStats* stats, double& kernelSeconds) {
+  RayParams params = uploadFrame(hostParams, frame, image, counters);
+  const std::size_t pixels = std::size_t(params.camera.width) * params.camera.height;
+  if (keepDepth) {
+    const std::vector<float> none(pixels, std::numeric_limits<float>::quiet_NaN());
+    depth.upload(none.data(), pixels * sizeof(float), "the depth image");
+    params.depth = depth.as<float>();
+  }
   kernelSeconds = launch(params, image.as<float>(), counters.as<DeviceRayCounters>());
   Image out(params.camera.width, params.camera.height);
   readBack(params, image, counters, out, stats);
+  if (keepDepth) {
+    out.depth.resize(pixels);
+    depth.download(out.depth.data(), pixels * sizeof(float));
+  }
   return out;
 }
 
@@ -152,7 +165,7 @@ Image CudaRenderer::renderModel(const ModelField& field, const RenderSettings& s
     view = relocateFlags(view, b.flagAddresses);
   }
   Image image = renderFrame(
-      setup.params(), b.frame, b.image, b.counters,
+      setup.params(), settings.depth, b.frame, b.image, b.depth, b.counters,
       [&](const RayParams& params, float* pixels, DeviceRayCounters* counters) {
         ModelLaunch l;
         l.params = params;
@@ -186,7 +199,7 @@ Image CudaRenderer::renderTrilinear(const PaddedGrid& grid, const RenderSettings
       OpacityCorrection(settings.sampleDistance / settings.opacityUnitDistance));
   const RayParams params = compileRayParams(settings, table, grid.boxMin(), grid.boxMax());
   Image image = renderFrame(
-      params, b.frame, b.image, b.counters,
+      params, settings.depth, b.frame, b.image, b.depth, b.counters,
       [&](const RayParams& relocated, float* pixels, DeviceRayCounters* counters) {
         GridLaunch l;
         l.params = relocated;

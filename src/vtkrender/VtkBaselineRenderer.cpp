@@ -6,6 +6,7 @@
 #include <vtkFixedPointVolumeRayCastMapper.h>
 #include <vtkImageData.h>
 #include <vtkNew.h>
+#include <vtkPlane.h>
 #include <vtkPointData.h>
 #include <vtkProjectedTetrahedraMapper.h>
 #include <vtkRenderWindow.h>
@@ -95,6 +96,44 @@ struct VtkBaselineRenderer::Impl {
   double preparationSeconds = 0.0;
 };
 
+namespace {
+
+// The blend mode, clipping planes and cropping box of `settings` on the mapper. VTK 9.1's
+// fixed-point ray caster has composite, MIP and MinIP (its "additive" composites with
+// uncorrected opacities: not an additive blend), clipping planes and cropping; its tetrahedral
+// mappers have none of them.
+void applyBlendAndClipping(VtkMethod method, const RenderSettings& settings,
+                           vtkAbstractVolumeMapper* mapper) {
+  const std::string name = vtkMethodName(method);
+  const bool fixedPoint = method == VtkMethod::FixedPoint;
+  if (settings.blend != BlendMode::Composite &&
+      !(fixedPoint &&
+        (settings.blend == BlendMode::Maximum || settings.blend == BlendMode::Minimum)))
+    throw Error(name + " has no " + blendModeName(settings.blend) + " blend" +
+                (fixedPoint ? " (VTK 9.1's fixed-point ray caster blends composite, max and min)"
+                            : " (it blends composite only)"));
+  if (!fixedPoint && (!settings.clipPlanes.empty() || settings.crop))
+    throw Error(name + " takes no clipping planes or cropping box; vtk-fixedpoint does");
+  if (!fixedPoint) return;
+  auto* m = vtkVolumeMapper::SafeDownCast(mapper);
+  if (settings.blend == BlendMode::Maximum) m->SetBlendModeToMaximumIntensity();
+  if (settings.blend == BlendMode::Minimum) m->SetBlendModeToMinimumIntensity();
+  for (const ClipPlane& c : settings.clipPlanes) {
+    vtkNew<vtkPlane> plane;
+    plane->SetOrigin(c.point.data());
+    plane->SetNormal(c.normal.data());
+    m->AddClippingPlane(plane);
+  }
+  if (settings.crop) {
+    const DomainBox& b = *settings.crop;
+    m->CroppingOn();
+    m->SetCroppingRegionPlanes(b.min[0], b.max[0], b.min[1], b.max[1], b.min[2], b.max[2]);
+    m->SetCroppingRegionFlagsToSubVolume();
+  }
+}
+
+}  // namespace
+
 VtkBaselineRenderer::VtkBaselineRenderer(VtkMethod method, const VtkBaselineInput& input,
                                          const RenderSettings& settings)
     : impl_(std::make_unique<Impl>()) {
@@ -162,6 +201,7 @@ VtkBaselineRenderer::VtkBaselineRenderer(VtkMethod method, const VtkBaselineInpu
     }
   }
   d.mapper->AddObserver(vtkCommand::ErrorEvent, d.errors);
+  applyBlendAndClipping(method, settings, d.mapper);
 
   // The tetrahedral renderers read the TF's opacity as attenuation; give them the coefficient of
   // the optical model every other renderer here uses (VtkSceneSetup.h).

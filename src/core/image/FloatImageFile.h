@@ -15,4 +15,8 @@ namespace mfadvr {
 // Atomic write (temporary file renamed over the target); mfadvr::Error naming the path on failure.
 void writeFloatImage(const std::string& path, const Image& image);
 
+// image.depth as a float32 NRRD of sizes W H (x fastest, row 0 at the top), NaN where a ray has
+// no depth; `rule` (one line) says what the distances are, in the header's comment. Atomic.
+void writeDepthImage(const std::string& path, const Image& image, const std::string& rule);
+
 }  // namespace mfadvr

@@ -16,6 +16,8 @@ inline constexpr std::int64_t kMaxImagePixels = std::int64_t{1} << 28;
 struct Image {
   int width = 0, height = 0;
   std::vector<float> rgba;  // 4 * width * height
+  // width * height ray distances (RenderSettings::depth), NaN where none; empty when not asked.
+  std::vector<float> depth;
 
   Image() = default;
   // Zero-filled; throws mfadvr::Error on w <= 0, h <= 0 or more than kMaxImagePixels pixels.

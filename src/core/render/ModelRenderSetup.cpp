@@ -28,7 +28,9 @@ ModelRenderSetup::ModelRenderSetup(const ModelField& field, const RenderSettings
   view_.mask = model.mask().view();
   // The flags' (re)build is part of the frame: its time is added to the ray casting's.
   const auto start = std::chrono::steady_clock::now();
-  if (settings.skipEmptySpace) {
+  // Only composite renders skip: in the other blend modes a transparent value still sets the
+  // extreme or the average.
+  if (settings.skipEmptySpace && settings.blend == BlendMode::Composite) {
     if (EmptySpaceCache* cache = field.emptySpaceCache()) {
       flags_ = cache->flags(model.spline(), table_);
     } else {

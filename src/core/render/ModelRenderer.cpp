@@ -17,12 +17,14 @@ namespace mfadvr {
 Image renderModelView(const RenderSettings& settings, const RayParams& params,
                       const ModelView& view, RenderStats* stats) {
   Image image(settings.width, settings.height);
+  RayParams frame = params;
+  keepDepth(settings, image, frame);
   // Where the rays may begin and end their march through empty space: a pass over the coarse
   // blocks, timed as part of the frame. A masked model's march counts the steps outside its mask
   // apart.
   const auto start = std::chrono::steady_clock::now();
   std::optional<DepthBounds> depth;
-  if (view.empty && !view.mask.nodes) {
+  if (view.empty && !view.mask.nodes && params.blend == BlendMode::Composite) {
     auto build = [&] { depth.emplace(params.camera, view); };
     if (settings.threads > 0)
       tbb::task_arena(settings.threads).execute(build);
@@ -33,7 +35,7 @@ Image renderModelView(const RenderSettings& settings, const RayParams& params,
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   modelKernelSwitch(view, settings.shade, [&]<int P, bool Masked, bool Shade, bool Skip>() {
     castRays<Masked, Shade>(
-        settings, params, [&] { return SplineRaySampler<P, Skip, Shade>(view); }, image, stats,
+        settings, frame, [&] { return SplineRaySampler<P, Skip, Shade>(view); }, image, stats,
         depth ? depth->view() : DepthBoundsView{});
   });
   if (stats) stats->seconds += boundsSeconds;

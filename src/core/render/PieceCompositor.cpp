@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <string>
 #include <utility>
 
 #include <Eigen/LU>
@@ -170,6 +171,15 @@ bool anyRayCrosses(const CameraRays& rays, const std::vector<float>& ends,
 
 Image renderPieces(const RenderSettings& settings, const std::vector<DomainBox>& regions,
                    const PieceRenderer& renderPiece, RenderStats* stats) {
+  // The pieces' images are composited front to back: only composite renders combine so, and
+  // a depth would need the pieces' opacities in order.
+  if (regions.size() > 1 && settings.blend != BlendMode::Composite)
+    throw Error(std::string("the ") + blendModeName(settings.blend) +
+                " blend renders one-piece models only (this one has " +
+                std::to_string(regions.size()) + " pieces); use the composite blend");
+  if (regions.size() > 1 && settings.depth)
+    throw Error("a depth image is made for one-piece models only (this one has " +
+                std::to_string(regions.size()) + " pieces)");
   RenderSettings piece = settings;
   piece.alignSamplesToCamera = true;
   piece.background = Vec3f::Zero();

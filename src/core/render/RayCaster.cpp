@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <limits>
 #include <mutex>
 
 namespace mfadvr {
@@ -18,6 +19,10 @@ RayParams compileRayParams(const RenderSettings& s, const TransferFunctionTable&
   for (int a = 0; a < 3; ++a) {
     p.boxMin[a] = s.clipBox ? std::max(boxMin[a], s.clipBox->min[a]) : boxMin[a];
     p.boxMax[a] = s.clipBox ? std::min(boxMax[a], s.clipBox->max[a]) : boxMax[a];
+    if (s.crop) {
+      p.boxMin[a] = std::max(p.boxMin[a], s.crop->min[a]);
+      p.boxMax[a] = std::min(p.boxMax[a], s.crop->max[a]);
+    }
     // A clip box beside the field leaves a box of zero width, which no ray samples.
     if (p.boxMax[a] < p.boxMin[a]) p.boxMax[a] = p.boxMin[a];
     p.background[a] = s.background[a];
@@ -29,7 +34,30 @@ RayParams compileRayParams(const RenderSettings& s, const TransferFunctionTable&
   p.rayEnd = s.rayEnd.empty() ? nullptr : s.rayEnd.data();
   p.tf = table.view();
   if (s.shade) p.shading = makeShadingParams(s.lighting, s.camera.directionOfProjection());
+  p.blend = s.blend;
+  // v' = (v - lo) / (hi - lo) over the table's span (its entries' index is (v - lo) * scale).
+  p.valueLo = p.tf.lo;
+  p.valueScale = p.tf.scale / static_cast<float>(p.tf.count - 1);
+  if (s.averageRange) {
+    p.averageLo = static_cast<float>(s.averageRange->first);
+    p.averageHi = static_cast<float>(s.averageRange->second);
+  }
+  p.additiveScale = 1.0 / s.opacityUnitDistance;
+  p.clipPlaneCount = static_cast<int>(s.clipPlanes.size());
+  for (int i = 0; i < p.clipPlaneCount; ++i) {
+    const ClipPlane& c = s.clipPlanes[i];
+    const Vec3d n = c.normal.normalized();
+    for (int a = 0; a < 3; ++a) p.clipPlane[i][a] = n[a];
+    p.clipPlane[i][3] = -n.dot(c.point);
+  }
   return p;
+}
+
+void keepDepth(const RenderSettings& settings, Image& image, RayParams& params) {
+  if (!settings.depth) return;
+  image.depth.assign(static_cast<size_t>(image.width) * image.height,
+                     std::numeric_limits<float>::quiet_NaN());
+  params.depth = image.depth.data();
 }
 
 void forEachTile(const RenderSettings& s, const TileFunction& tile, RenderStats* stats) {

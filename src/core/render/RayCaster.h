@@ -38,6 +38,9 @@ namespace mfadvr {
 RayParams compileRayParams(const RenderSettings& settings, const TransferFunctionTable& table,
                            const Vec3d& boxMin, const Vec3d& boxMax);
 
+// With settings.depth: image.depth filled with NaN and params.depth pointed at it.
+void keepDepth(const RenderSettings& settings, Image& image, RayParams& params);
+
 // The tile loop: calls tile(x0, y0, x1, y1, counters) for every 16x16 tile (clipped to the
 // image) on settings.threads threads, reports progress, and fills stats (optional).
 using TileFunction = std::function<void(int, int, int, int, RayCounters&)>;
@@ -49,6 +52,10 @@ void forEachTile(const RenderSettings& settings, const TileFunction& tile, Rende
 template <bool Masked, bool Shade, class MakeSampler>
 void castRays(const RenderSettings& settings, const RayParams& params, const MakeSampler& make,
               Image& image, RenderStats* stats, DepthBoundsView depth = {}) {
+  // Packets and the march ahead serve composite renders (the other blend modes sample every
+  // step); packets keep no depth.
+  const bool composite = params.blend == BlendMode::Composite;
+  const bool packets = composite && !params.depth;
   forEachTile(
       settings,
       [&](int x0, int y0, int x1, int y1, RayCounters& counters) {
@@ -58,7 +65,7 @@ void castRays(const RenderSettings& settings, const RayParams& params, const Mak
 #if defined(MFADVR_SPLINE_LANE_KERNEL)
           // Eight rays at a time where the sampler takes packets; the same pixels either way.
           if constexpr (!Masked && takesRayPackets<decltype(sampler)>()) {
-            for (; x + kRayPacket <= x1; x += kRayPacket) {
+            for (; packets && x + kRayPacket <= x1; x += kRayPacket) {
               float rgba[kRayPacket][4];
               integratePacket<Shade>(params, sampler, x, y, rgba, counters);
               for (int l = 0; l < kRayPacket; ++l)
@@ -69,7 +76,7 @@ void castRays(const RenderSettings& settings, const RayParams& params, const Mak
           if constexpr (marchesRaysApart<decltype(sampler)>()) {
             // The way in through empty space, kMarchGroup rays at a time.
             constexpr int G = kMarchGroup;
-            for (; x + G <= x1; x += G) {
+            for (; composite && x + G <= x1; x += G) {
               RaySegment segment[G];
               const RaySegment* rays[G];
               RayStart start[G];
@@ -88,7 +95,7 @@ void castRays(const RenderSettings& settings, const RayParams& params, const Mak
             RaySegment ray;
             const bool hits = raySegment(params, x, y, ray);
             RayStart start;
-            if (!Masked && hits && decltype(sampler)::kSkipsEmptySpace)
+            if (!Masked && hits && composite && decltype(sampler)::kSkipsEmptySpace)
               start = boundSteps(depth, x, y, ray, params.sampleDistance);
             integrateSegment<Masked, Shade>(params, sampler, hits ? &ray : nullptr, start,
                                             image.pixel(x, y), counters);
@@ -118,8 +125,9 @@ Image renderVolume(const F& field, const RenderSettings& settings, RenderStats* 
     const TransferFunctionTable table(
         settings.transferFunction,
         OpacityCorrection(settings.sampleDistance / settings.opacityUnitDistance));
-    const RayParams params = compileRayParams(settings, table, field.boxMin(), field.boxMax());
+    RayParams params = compileRayParams(settings, table, field.boxMin(), field.boxMax());
     Image image(settings.width, settings.height);
+    keepDepth(settings, image, params);
     using S = decltype(field.sampler());
     const bool masked = FieldRaySampler<S, false>(field.sampler()).canBeOutside();
     auto run = [&]<bool Masked, bool Shade>() {

@@ -34,6 +34,18 @@ void RenderSettings::validate() const {
   if (clipBox && !(clipBox->min.allFinite() && clipBox->max.allFinite() &&
                    (clipBox->min.array() <= clipBox->max.array()).all()))
     throw Error("the clip box must be finite with min <= max on every axis");
+  if (clipPlanes.size() > static_cast<size_t>(kMaxClipPlanes))
+    throw Error("at most " + std::to_string(kMaxClipPlanes) + " clipping planes, got " +
+                std::to_string(clipPlanes.size()));
+  for (const ClipPlane& c : clipPlanes)
+    if (!c.point.allFinite() || !c.normal.allFinite() || !(c.normal.norm() > 0.0))
+      throw Error("a clipping plane needs a finite point and a non-zero normal");
+  if (crop && !(crop->min.allFinite() && crop->max.allFinite() &&
+                (crop->min.array() <= crop->max.array()).all()))
+    throw Error("the cropping box must be finite with min <= max on every axis");
+  if (averageRange && !(std::isfinite(averageRange->first) && std::isfinite(averageRange->second) &&
+                        averageRange->first <= averageRange->second))
+    throw Error("the average range must be finite with min <= max");
   if (threads < 0) throw Error("thread count must be >= 0 (0: all cores)");
   if (shade) lighting.validate();
 }

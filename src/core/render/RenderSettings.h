@@ -3,15 +3,25 @@
 // sampling and compositing. The same settings render every reconstruction method.
 #include <functional>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "core/model/DomainBox.h"
+#include "core/render/BlendMode.h"
 #include "core/render/Camera.h"
 #include "core/render/Lighting.h"
 #include "core/render/TransferFunction.h"
 #include "core/render/kernel/CameraRays.h"
+#include "core/render/kernel/RayParams.h"  // kMaxClipPlanes
 
 namespace mfadvr {
+
+// A clipping plane: points x with normal . (x - point) >= 0 are kept (the side the normal points
+// to, as VTK's mappers keep it).
+struct ClipPlane {
+  Vec3d point = Vec3d::Zero();
+  Vec3d normal = Vec3d::UnitZ();
+};
 
 struct RenderSettings {
   int width = 512, height = 512;
@@ -44,6 +54,18 @@ struct RenderSettings {
   // distributed volume renders its own region and a compositor blends the pieces. None (the
   // default): the whole field.
   std::optional<DomainBox> clipBox;
+  // How samples become a pixel (BlendMode.h).
+  BlendMode blend = BlendMode::Composite;
+  // Average blend: only values in [first, second] count (VTK's AverageIPScalarRange); none: all.
+  std::optional<std::pair<double, double>> averageRange;
+  // The user's clipping planes and cropping box (world units): rays are clipped to them
+  // analytically, for every method, so that the images compare.
+  std::vector<ClipPlane> clipPlanes;
+  std::optional<DomainBox> crop;
+  // Also compute, per pixel, a ray distance from the camera position (Image::depth): where the
+  // ray's opacity first reaches 0.5 (composite), the extreme sample if it is visible (max,
+  // min), the first sample that adds to the pixel (average, additive); NaN where there is none.
+  bool depth = false;
   // Steps start at multiples of the sample distance along each ray (from its origin) instead of
   // where the ray enters the box, so that pieces of a partitioned volume sample the same points
   // as the whole volume; the first and last steps of a ray are shorter. Off by default (the

@@ -4,7 +4,8 @@
 // pixel from its tiles (integrateSegment from where a march ahead stopped, with skipping); a
 // GPU driver calls it per thread.
 //
-// A ray from the camera through the pixel centre is clipped to the box (and to its ray end);
+// A ray from the camera through the pixel centre is clipped to the box, to the clipping planes
+// and to its ray end (RaySteps.h);
 // the clipped segment is cut into steps of the sample distance (the last one shorter when the
 // length is not a multiple) and the field is sampled at the middle of each step. With
 // rp.alignSteps the steps are instead the multiples of the sample distance along the ray that
@@ -33,122 +34,15 @@
 // batch has evaluated at most kBatch - 1 samples it does not use; the counters and the image
 // are those of one sample at a time. Skipped samples are exactly those that would have been
 // transparent, so the image is the same with and without skipping.
-#include <type_traits>
-
-#include "core/render/kernel/OpacityCorrectionKernel.h"
-#include "core/render/kernel/RayParams.h"
+//
+// This is the composite blend; the other blend modes reduce the same samples (RayReduction.h),
+// chosen per ray from rp.blend. With rp.depth, each ray records where its opacity first
+// reaches 0.5 (the midpoint of that sample's step).
+#include "core/render/kernel/RayReduction.h"
+#include "core/render/kernel/RaySteps.h"
 #include "core/render/kernel/SampleBatch.h"
 
 namespace mfadvr {
-
-// The formulas of one ray step and one compositing step, written once for a ray (D = double,
-// F = float) and for a packet of rays as SIMD lanes (vector types, RayPacketIntegrator.h), so
-// both compute every sample operation for operation alike.
-
-// Step k of a ray whose steps start at t0 (before tEnter for an aligned ray: its first step is
-// cut to begin at tEnter) and end at tExit: returns the step's start; length: its length (the
-// last one cut to tExit; not above zero: the ray has no step k).
-template <class D>
-MFADVR_HD MFADVR_INLINE D rayStep(D k, D t0, D tEnter, D tExit, double dt, D& length) {
-  const D t = t0 + k * dt;
-  const D rest = tExit - t;
-  const D full = dt < rest ? dt : rest;
-  if constexpr (std::is_arithmetic_v<D>) {
-    if (!(t < tEnter)) {  // one ray: all steps but an aligned ray's first take this branch
-      length = full;
-      return t;
-    }
-  }
-  const D room = tExit - tEnter;
-  D cut = t + dt - tEnter;
-  cut = cut > room ? room : cut;
-  const auto first = t < tEnter;
-  length = first ? cut : full;
-  return first ? tEnter : t;
-}
-
-// Front-to-back compositing of a sample of colour c and step opacity a (zero: no change), with
-// explicit multiply-adds: a ray and a lane round alike whatever the compiler would fuse.
-template <class F>
-MFADVR_HD MFADVR_INLINE void compositeSample(F& red, F& green, F& blue, F& alpha, F a,
-                                             const F c[3]) {
-  const F w = (1.0f - alpha) * a;
-  red = fusedMultiplyAdd(w, c[0], red);
-  green = fusedMultiplyAdd(w, c[1], green);
-  blue = fusedMultiplyAdd(w, c[2], blue);
-  alpha += w;
-}
-
-// The part of the ray through pixel (x, y) that is sampled: origin o, unit direction d, the
-// segment [tEnter, tExit] inside the box (and before the pixel's ray end), where step 0 starts
-// (t0) and the number of steps. False when the ray does not cross the box.
-struct RaySegment {
-  double o[3], d[3];
-  double tEnter = 0.0, tExit = 0.0, t0 = 0.0;
-  std::int64_t steps = 0;
-};
-
-MFADVR_HD MFADVR_INLINE bool raySegment(const RayParams& rp, int x, int y, RaySegment& r) {
-  primaryRay(rp.camera, x, y, r.o, r.d);
-  double tEnter, tExit;
-  const bool crosses = intersectBox(r.o, r.d, rp.boxMin, rp.boxMax, tEnter, tExit);
-  if (crosses && rp.rayEnd) {
-    const double end = rp.rayEnd[static_cast<std::int64_t>(y) * rp.camera.width + x];
-    if (end < tExit) tExit = end;
-  }
-  if (!(crosses && tExit > (tEnter > 0.0 ? tEnter : 0.0))) return false;
-  if (tEnter < 0.0) tEnter = 0.0;
-  const double dt = rp.sampleDistance;
-  r.tEnter = tEnter;
-  r.tExit = tExit;
-  // Where step 0 starts (before tEnter when aligned: that step is cut to begin at tEnter).
-  r.t0 = rp.alignSteps ? floor(tEnter / dt) * dt : tEnter;
-  // The tolerance keeps a rounding error from adding a step of zero length.
-  r.steps = static_cast<std::int64_t>(ceil((tExit - r.t0) / dt - 1e-6));
-  return true;
-}
-
-// The composited colour over the background: the pixel's RGBA.
-MFADVR_HD MFADVR_INLINE void overBackground(const RayParams& rp, float red, float green, float blue,
-                                            float alpha, float out[4]) {
-  const float behind = 1.0f - alpha;
-  out[0] = red + behind * rp.background[0];
-  out[1] = green + behind * rp.background[1];
-  out[2] = blue + behind * rp.background[2];
-  out[3] = alpha;
-}
-
-// The sample of step k of `ray`: the step's midpoint p and its length. False when the ray has
-// no step k (its length would not be above zero). Samplers clamp their own lookups, so a sample
-// a rounding error outside the box is fine.
-MFADVR_HD MFADVR_INLINE bool stepSample(const RaySegment& ray, std::int64_t k, double dt,
-                                        double p[3], double& length) {
-  const double t = rayStep(static_cast<double>(k), ray.t0, ray.tEnter, ray.tExit, dt, length);
-  if (!(length > 0.0)) return false;
-  const double m = t + 0.5 * length;
-  for (int a = 0; a < 3; ++a) p[a] = ray.o[a] + m * ray.d[a];
-  return true;
-}
-
-// The ray's sample k - 1 lay in an empty region that the ray leaves at tLeave (the sampler's
-// emptyAt): samples j >= k with midpoints t0 + (j + 1/2) dt <= tLeave lie in it too. Returns
-// the first step after the last of them (steps: none left).
-MFADVR_HD MFADVR_INLINE std::int64_t stepAfterEmpty(std::int64_t k, double tLeave, double t0,
-                                                    double dt, std::int64_t steps) {
-  const double last = floor((tLeave - t0) / dt - 0.5);
-  if (!(last >= static_cast<double>(k))) return k;
-  return last < static_cast<double>(steps - 1) ? static_cast<std::int64_t>(last) + 1 : steps;
-}
-
-// Where the walk of a ray's steps begins: at step k, `skipped` samples already passed over as
-// empty (by a march that went ahead of the integration, InterleavedMarch.h); RayStart{}: the
-// whole ray. tail: samples after the ray's last step (its steps cut short, DepthBoundsView.h),
-// all empty: counted as skipped unless the ray terminates first.
-struct RayStart {
-  std::int64_t k = 0;
-  std::int64_t skipped = 0;
-  std::int64_t tail = 0;
-};
 
 // Integrates the segment (raySegment; null: the ray misses the box) from `start` into out.
 template <bool Masked, bool Shade, class Sampler>
@@ -156,6 +50,12 @@ MFADVR_HD MFADVR_INLINE void integrateSegment(const RayParams& rp, Sampler& samp
                                               const RaySegment* segment, RayStart start,
                                               float out[4], RayCounters& counters) {
   float red = 0.0f, green = 0.0f, blue = 0.0f, alpha = 0.0f;
+  if (segment && rp.blend != BlendMode::Composite) {
+    ++counters.hits;
+    reduceSegment<Masked>(rp, sampler, *segment, out, counters);
+    return;
+  }
+  float depth = NAN;  // where alpha first reaches 0.5 (rp.depth)
   if (segment) {
     const RaySegment& ray = *segment;
     ++counters.hits;
@@ -182,7 +82,7 @@ MFADVR_HD MFADVR_INLINE void integrateSegment(const RayParams& rp, Sampler& samp
     std::int64_t carried = start.skipped;  // passed over before step k
     bool done = false, terminated = false;
     while (!done && k < steps) {
-      double lengths[K];
+      double lengths[K], mids[K];
       // Samples skipped before each lane, counted as the lanes are used (and those after the
       // last lane unless the ray stops first), so that the counters do not depend on the batch
       // size.
@@ -194,8 +94,8 @@ MFADVR_HD MFADVR_INLINE void integrateSegment(const RayParams& rp, Sampler& samp
       const std::int64_t marchStart = cycleCount();
 #endif
       while (n < K && k < steps) {
-        double length, p[3];
-        if (!stepSample(ray, k, dt, p, length)) {
+        double length, mid, p[3];
+        if (!stepSample(ray, k, dt, p, length, mid)) {
           done = true;
           break;
         }
@@ -220,6 +120,7 @@ MFADVR_HD MFADVR_INLINE void integrateSegment(const RayParams& rp, Sampler& samp
         }
         sampler.stage(n, p);
         lengths[n] = length;
+        mids[n] = mid;
         skippedBefore[n] = skipped;
         skipped = 0;
         ++n;
@@ -256,7 +157,9 @@ MFADVR_HD MFADVR_INLINE void integrateSegment(const RayParams& rp, Sampler& samp
           sampler.gradient(i, g);
           shadeSample(rp.shading, rayShading, unshaded, g, c);
         }
+        const bool below = alpha < 0.5f;
         compositeSample(red, green, blue, alpha, a, c);
+        if (below && alpha >= 0.5f) depth = static_cast<float>(mids[i]);
         if (alpha >= rp.stopOpacity) {
           ++counters.terminated;
           stopped = done = terminated = true;
@@ -272,6 +175,7 @@ MFADVR_HD MFADVR_INLINE void integrateSegment(const RayParams& rp, Sampler& samp
 #if MFADVR_EMPTY_SPACE_PROFILE
     counters.cycles.ray += cycleCount() - rayStart;
 #endif
+    if (rp.depth) rp.depth[ray.pixel] = depth;
   }
   overBackground(rp, red, green, blue, alpha, out);
 }

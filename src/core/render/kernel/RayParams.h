@@ -5,12 +5,16 @@
 // arrays it points to (table entries, ray ends) are owned by the caller.
 #include <cstdint>
 
+#include "core/render/BlendMode.h"
 #include "core/render/kernel/CameraRays.h"
 #include "core/render/kernel/EmptySpaceProfile.h"
 #include "core/render/kernel/ShadingKernel.h"
 #include "core/render/kernel/TransferFunctionView.h"
 
 namespace mfadvr {
+
+// At most this many clipping planes per render (VTK's GPU mapper takes six).
+inline constexpr int kMaxClipPlanes = 8;
 
 struct RayParams {
   CameraRays camera;
@@ -25,6 +29,19 @@ struct RayParams {
   const float* rayEnd = nullptr;  // width * height distances along the rays, or null
   TransferFunctionView tf;
   ShadingParams shading;  // filled for shaded renders (integrateRay<..., Shade = true>)
+  BlendMode blend = BlendMode::Composite;
+  // Average and additive blends: v' = (v - valueLo) * valueScale, the value normalized over the
+  // transfer function's range; average: values in [averageLo, averageHi] count.
+  float valueLo = 0.0f, valueScale = 1.0f;
+  float averageLo = -INFINITY, averageHi = INFINITY;
+  // Additive blend: a step of length dt adds a v' dt * additiveScale (1 / opacity unit distance).
+  double additiveScale = 1.0;
+  // Clipping planes: a point x is kept where n . x + w >= 0, plane i = {n0, n1, n2, w}.
+  int clipPlaneCount = 0;
+  double clipPlane[kMaxClipPlanes][4];
+  // width * height ray distances (RenderSettings::depth), written by every ray that hits the
+  // box; the driver fills it with NaN first. Null: no depth.
+  float* depth = nullptr;
 };
 
 // Per-thread counts, summed by the driver.
