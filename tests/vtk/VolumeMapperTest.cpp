@@ -8,6 +8,7 @@
 #include <vtkCallbackCommand.h>
 #include <vtkCommand.h>
 #include <vtkDataSetTriangleFilter.h>
+#include <vtkPlane.h>
 #include <vtkPolyDataMapper.h>
 #include <vtkProperty.h>
 #include <vtkSphereSource.h>
@@ -15,6 +16,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <functional>
 
 #include "TestSupport.h"
 #include "VtkSceneFixture.h"
@@ -63,6 +65,68 @@ TEST(VolumeMapper, UnshadedImageMatchesTheCoreRenderer) {
   EXPECT_GT(compareImages(mapped, coreImage(*marschnerLobbModel(), scene.coreSettings())).psnr,
             40.0);
   EXPECT_GT(scene.mapper->GetTimeToDraw(), 0.0);
+}
+
+// VTK's blend modes, clipping planes and cropping box reach the ray caster: each mapped image
+// matches the core renderer given the same mode, planes or box, and differs from the plain one.
+TEST(VolumeMapper, HonoursBlendModesClippingAndCropping) {
+  VtkVolumeScene scene(marschnerLobbModel(), false);
+  const Image8 plain = scene.render();
+  struct Case {
+    const char* what;
+    std::function<void(VtkVolumeScene&, RenderSettings&)> set;
+  };
+  const Case cases[] = {
+      {"max",
+       [](VtkVolumeScene& v, RenderSettings& s) {
+         v.mapper->SetBlendModeToMaximumIntensity();
+         s.blend = BlendMode::Maximum;
+       }},
+      {"min",
+       [](VtkVolumeScene& v, RenderSettings& s) {
+         v.mapper->SetBlendModeToMinimumIntensity();
+         s.blend = BlendMode::Minimum;
+       }},
+      {"average in [0.3, 0.9]",
+       [](VtkVolumeScene& v, RenderSettings& s) {
+         v.mapper->SetBlendModeToAverageIntensity();
+         v.mapper->SetAverageIPScalarRange(0.3, 0.9);
+         s.blend = BlendMode::Average;
+         s.averageRange = std::pair(0.3, 0.9);
+       }},
+      {"additive",
+       [](VtkVolumeScene& v, RenderSettings& s) {
+         v.mapper->SetBlendModeToAdditive();
+         s.blend = BlendMode::Additive;
+       }},
+      {"clipping plane",
+       [](VtkVolumeScene& v, RenderSettings& s) {
+         vtkNew<vtkPlane> plane;
+         plane->SetOrigin(0.1, 0.0, 0.0);
+         plane->SetNormal(-1.0, 0.2, 0.3);
+         v.mapper->AddClippingPlane(plane);
+         s.clipPlanes.push_back({Vec3d(0.1, 0, 0), Vec3d(-1.0, 0.2, 0.3)});
+       }},
+      {"cropping",
+       [](VtkVolumeScene& v, RenderSettings& s) {
+         v.mapper->CroppingOn();
+         v.mapper->SetCroppingRegionPlanes(-0.8, 0.6, -1.0, 0.4, -0.5, 1.0);
+         v.mapper->SetCroppingRegionFlagsToSubVolume();
+         s.crop = DomainBox{Vec3d(-0.8, -1.0, -0.5), Vec3d(0.6, 0.4, 1.0)};
+       }},
+  };
+  for (const Case& c : cases) {
+    VtkVolumeScene v(marschnerLobbModel(), false);
+    RenderSettings s = v.coreSettings();
+    c.set(v, s);
+    const Image8 mapped = v.render();
+    const double withCore = compareImages(mapped, coreImage(*marschnerLobbModel(), s)).psnr;
+    const double effect = compareImages(mapped, plain).psnr;
+    std::printf("mapper vs core, %s: PSNR %.2f dB (against the plain image %.2f dB)\n", c.what,
+                withCore, effect);
+    EXPECT_GT(withCore, 40.0) << c.what;
+    EXPECT_LT(effect, 30.0) << c.what;
+  }
 }
 
 // An opaque sphere half inside the volume: the volume in front of it is composited over it,

@@ -13,6 +13,7 @@
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkOpenGLState.h"
+#include "vtkPlane.h"
 #include "vtkPlaneCollection.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
@@ -28,6 +29,8 @@
 #include <exception>
 #include <set>
 #include <stdexcept>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "VtkModelImage.h"
@@ -256,6 +259,61 @@ double vtkMFAVolumeMapper::ChooseImageSampleDistance(vtkVolume* vol) {
   return std::clamp(wanted, lo, hi);
 }
 
+namespace {
+
+// The mapper's blend mode, clipping planes and cropping box in `s`, in model coordinates.
+void applyBlendAndClipping(vtkVolumeMapper* m, mfadvr::RenderSettings& s,
+                           const mfadvr::vtkglue::WorldToModel& toModel) {
+  switch (m->GetBlendMode()) {
+    case vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND:
+      s.blend = mfadvr::BlendMode::Maximum;
+      break;
+    case vtkVolumeMapper::MINIMUM_INTENSITY_BLEND:
+      s.blend = mfadvr::BlendMode::Minimum;
+      break;
+    case vtkVolumeMapper::AVERAGE_INTENSITY_BLEND: {
+      s.blend = mfadvr::BlendMode::Average;
+      const double* r = m->GetAverageIPScalarRange();
+      // VTK's default range is the whole of double's: all values count.
+      if (std::isfinite(r[0]) && std::isfinite(r[1]) && r[0] <= r[1] &&
+          (r[0] > -1e300 || r[1] < 1e300)) {
+        s.averageRange = std::pair(r[0], r[1]);
+      }
+      break;
+    }
+    case vtkVolumeMapper::ADDITIVE_BLEND:
+      s.blend = mfadvr::BlendMode::Additive;
+      break;
+    default:
+      s.blend = mfadvr::BlendMode::Composite;
+  }
+  // Clipping planes are in world coordinates; the normals turn with the volume's matrix (the
+  // inverse transpose of a similarity is the matrix up to scale).
+  if (m->GetClippingPlanes()) {
+    const int n = std::min(m->GetClippingPlanes()->GetNumberOfItems(), mfadvr::kMaxClipPlanes);
+    for (int i = 0; i < n; ++i) {
+      vtkPlane* plane = m->GetClippingPlanes()->GetItem(i);
+      const mfadvr::Vec3d origin(plane->GetOrigin()), normal(plane->GetNormal());
+      if (!(normal.norm() > 0.0)) {
+        continue;
+      }
+      s.clipPlanes.push_back({toModel.point(origin), toModel.vector(normal)});
+    }
+  }
+  // Cropping planes are in the data's coordinates: the model's.
+  if (m->GetCropping()) {
+    const double* c = m->GetCroppingRegionPlanes();
+    mfadvr::DomainBox box;
+    for (int a = 0; a < 3; ++a) {
+      box.min[a] = std::min(c[2 * a], c[2 * a + 1]);
+      box.max[a] = std::max(c[2 * a], c[2 * a + 1]);
+    }
+    s.crop = box;
+  }
+}
+
+}  // namespace
+
 void vtkMFAVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol) {
   vtkNew<vtkTimerLog> timer;
   timer->StartTimer();
@@ -276,14 +334,20 @@ void vtkMFAVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol) {
                      "'; colour by '" + field + "' to use its maps");
     }
   }
-  if (this->BlendMode != vtkVolumeMapper::COMPOSITE_BLEND) {
-    this->WarnOnce("only composite blending is supported; rendering with it");
+  if (this->BlendMode == vtkVolumeMapper::ISOSURFACE_BLEND ||
+      this->BlendMode == vtkVolumeMapper::SLICE_BLEND) {
+    this->WarnOnce(
+        "the isosurface and slice blend modes are not supported yet; rendering with "
+        "composite blending");
   }
-  if (this->Cropping) {
-    this->WarnOnce("cropping is not supported and is ignored");
+  if (this->Cropping && this->CroppingRegionFlags != VTK_CROP_SUBVOLUME) {
+    this->WarnOnce(
+        "only sub-volume cropping (SetCroppingRegionFlagsToSubVolume) is supported; "
+        "the central region of the cropping planes is rendered");
   }
-  if (this->ClippingPlanes && this->ClippingPlanes->GetNumberOfItems() > 0) {
-    this->WarnOnce("clipping planes are not supported and are ignored");
+  if (this->ClippingPlanes && this->ClippingPlanes->GetNumberOfItems() > mfadvr::kMaxClipPlanes) {
+    this->WarnOnce("at most " + std::to_string(mfadvr::kMaxClipPlanes) +
+                   " clipping planes are honoured; the others are ignored");
   }
 
   int width = 0, height = 0, originX = 0, originY = 0;
@@ -321,6 +385,7 @@ void vtkMFAVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol) {
     }
     s.background = mfadvr::Vec3f::Zero();  // premultiplied colour over nothing
     s.threads = this->NumberOfThreads;
+    applyBlendAndClipping(this, s, toModel);
 
     // Ray ends from the depth buffer: the opaque geometry drawn so far.
     auto& depth = this->Internal->Depth;

@@ -19,8 +19,10 @@
  * partitioned volume, here or on other ranks, composite to the image of the whole.
  * SetMFAInputConnection / SetMFAInputData are the same port under older names.
  *
- * Not supported (a warning says so once): blend modes other than composite, cropping, clipping
- * planes, gradient opacity, multi-component data.
+ * Blend modes composite, maximum, minimum, average (with its AverageIPScalarRange) and
+ * additive (docs/rendering.md gives their rules), clipping planes (up to 8) and sub-volume
+ * cropping are honoured. Not supported (a warning says so once): the isosurface and slice blend
+ * modes, cropping flags other than the sub-volume, gradient opacity, multi-component data.
  */
 #ifndef vtkMFAVolumeMapper_h
 #define vtkMFAVolumeMapper_h
