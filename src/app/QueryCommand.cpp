@@ -1,4 +1,4 @@
-// mfadvr query MODEL (--points FILE | X Y Z) [--derivatives 0|1|2] [-o OUT.csv]
+// mfadvr query MODEL (--points FILE | X Y Z) [--derivatives 0|1|2] [--curvature] [-o OUT.csv]
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "app/Commands.h"
+#include "core/field/Curvature.h"
 #include "core/model/ModelFile.h"
 #include "core/util/AtomicFile.h"
 #include "core/util/Error.h"
@@ -18,6 +19,7 @@ Command addQueryCommand(CLI::App& app) {
     std::string model, pointsFile, output;
     std::vector<double> xyz;
     int derivatives = 0;
+    bool curvature = false;
   };
   auto o = std::make_shared<Options>();
   CLI::App* sub = app.add_subcommand(
@@ -34,6 +36,11 @@ Command addQueryCommand(CLI::App& app) {
                   "0: value; 1: value and gradient; 2: value, gradient and Hessian")
       ->check(CLI::Range(0, 2))
       ->capture_default_str();
+  sub->add_flag("--curvature", o->curvature,
+                "Add columns k1,k2: the principal curvatures (k1 >= k2) of the level set through "
+                "each point, from the exact gradient and Hessian (Kindlmann et al. 2003; positive "
+                "where the surface bends around higher values: a bright blob of radius r has "
+                "1/r); empty where the gradient is zero");
   sub->add_option("-o,--output", o->output, "Write the CSV to this file instead of stdout");
 
   return {sub, [o]() {
@@ -58,8 +65,9 @@ Command addQueryCommand(CLI::App& app) {
             }
             const Model model = loadModel(o->model);
             std::vector<float> values(points.size());
-            std::vector<Vec3f> gradients(o->derivatives >= 1 ? points.size() : 0);
-            std::vector<Sym3f> hessians(o->derivatives >= 2 ? points.size() : 0);
+            const bool second = o->derivatives >= 2 || o->curvature;
+            std::vector<Vec3f> gradients(o->derivatives >= 1 || second ? points.size() : 0);
+            std::vector<Sym3f> hessians(second ? points.size() : 0);
             model.evaluate(points, values, gradients, hessians);
 
             // A model with a domain mask gets a last column, inside: 1 within the mask, 0 outside
@@ -69,6 +77,7 @@ Command addQueryCommand(CLI::App& app) {
             std::string csv = "x,y,z,value";
             if (o->derivatives >= 1) csv += ",dx,dy,dz";
             if (o->derivatives >= 2) csv += ",dxx,dxy,dxz,dyy,dyz,dzz";
+            if (o->curvature) csv += ",k1,k2";
             if (masked) csv += ",inside";
             csv += "\n";
             char buf[64];
@@ -79,12 +88,23 @@ Command addQueryCommand(CLI::App& app) {
             for (size_t i = 0; i < points.size(); ++i) {
               if (!model.domain().contains(points[i])) ++outside;
               for (int a = 0; a < 3; ++a) put(points[i][a]);
-              put(values[i], o->derivatives == 0 && !masked);
+              const bool more = masked || o->curvature;
+              put(values[i], o->derivatives == 0 && !more);
               if (o->derivatives >= 1)
                 for (int a = 0; a < 3; ++a)
-                  put(gradients[i][a], o->derivatives == 1 && a == 2 && !masked);
+                  put(gradients[i][a], o->derivatives == 1 && a == 2 && !more);
               if (o->derivatives >= 2)
-                for (int a = 0; a < 6; ++a) put(hessians[i][a], a == 5 && !masked);
+                for (int a = 0; a < 6; ++a) put(hessians[i][a], a == 5 && !more);
+              if (o->curvature) {
+                const PrincipalCurvatures k =
+                    principalCurvatures(gradients[i].data(), hessians[i].data());
+                if (std::isnan(k.k1)) {
+                  csv += masked ? ",," : ",\n";
+                } else {
+                  put(k.k1);
+                  put(k.k2, !masked);
+                }
+              }
               if (masked) {
                 const bool in = model.inside(points[i]);
                 if (!in) ++outsideMask;

@@ -72,6 +72,20 @@ TEST(Cli, EncodeInfoQueryRoundTrip) {
   ASSERT_EQ(std::sscanf(row.c_str(), "%lf,%lf,%lf,%lf", &x, &y, &z, &v), 4);
   EXPECT_NEAR(v, 255.0, 255.0 * 0.05);  // beam peak at the origin
 
+  // Curvature columns after the derivatives, k1 >= k2.
+  r = run("query " + model + " 0 0 0 --curvature");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.out.substr(0, r.out.find('\n')), "x,y,z,value,k1,k2");
+  r = run("query " + model + " 0.3 0.1 0.2 -d 1 --curvature");
+  ASSERT_EQ(r.status, 0) << r.err;
+  double k[2], g[3];
+  ASSERT_EQ(
+      std::sscanf(r.out.substr(r.out.find('\n') + 1).c_str(), "%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf",
+                  &x, &y, &z, &v, &g[0], &g[1], &g[2], &k[0], &k[1]),
+      9)
+      << r.out;
+  EXPECT_GE(k[0], k[1]);
+
   std::ofstream(dir / "points.txt") << "x,y,z\n0 0 0\n0.5, -0.25, 0.1\n\n# comment\n2 0 0\n";
   r = run("query " + model + " --points " + (dir / "points.txt").string() + " -d 1");
   ASSERT_EQ(r.status, 0) << r.err;

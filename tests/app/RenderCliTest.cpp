@@ -3,6 +3,12 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+
 #include "TestSupport.h"
 #include "app/CliRunner.h"
 #include "core/image/PngFile.h"
@@ -35,6 +41,39 @@ TEST(CliRender, EveryMethodRendersABuiltin) {
     bool lit = false;
     for (auto v : image.data) lit |= v > 20;
     EXPECT_TRUE(lit) << method;
+  }
+}
+
+// --blend, --clip-plane, --crop and --depth: each mode renders, the depth image has its size
+// and NaN where rays miss, bad values are usage errors and nothing is written.
+TEST(CliRender, BlendModesClippingCroppingAndDepth) {
+  const auto dir = test::scratchDir();
+  const std::string base = "render builtin:marschner-lobb:12 --size 40x30 --method trilinear ";
+  for (const char* mode : {"composite", "max", "min", "average", "additive"}) {
+    const std::string png = (dir / (std::string(mode) + ".png")).string();
+    const std::string depth = (dir / (std::string(mode) + ".nrrd")).string();
+    const auto r = runMfadvr(base + "--blend " + mode + " --clip-plane 0,0,0,1,1,0 --crop " +
+                             "-1,1,-1,0.5,-1,1 --depth " + depth + " -o " + png);
+    ASSERT_EQ(r.status, 0) << mode << ": " << r.err;
+    EXPECT_EQ(readPng(png).width, 40);
+    std::ifstream in(depth, std::ios::binary);
+    const std::string nrrd((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    ASSERT_NE(nrrd.find("sizes: 40 30\n"), std::string::npos) << nrrd.substr(0, 200);
+    const size_t data = nrrd.find("\n\n") + 2;
+    ASSERT_EQ(nrrd.size() - data, 40u * 30u * 4u);
+    float corner, centre;
+    std::memcpy(&corner, nrrd.data() + data, 4);  // the top-left ray misses the box
+    std::memcpy(&centre, nrrd.data() + data + 4 * (15 * 40 + 25), 4);
+    EXPECT_TRUE(std::isnan(corner)) << mode;
+    EXPECT_GT(centre, 0.0f) << mode;
+  }
+  const std::string png = (dir / "bad.png").string();
+  for (const char* bad :
+       {"--blend mean", "--blend average --average-range 2,1", "--average-range 0,1",
+        "--clip-plane 0,0,0,0,0,0", "--clip-plane 1,2,3", "--crop 1,0,0,1,0,1"}) {
+    const auto r = runMfadvr(base + bad + " -o " + png);
+    EXPECT_EQ(r.status, 2) << bad << ": " << r.err;
+    EXPECT_FALSE(std::filesystem::exists(png)) << bad;
   }
 }
 
