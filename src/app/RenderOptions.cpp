@@ -202,6 +202,11 @@ void RenderOptions::addTo(CLI::App* sub) {
                       "give a grey level: docs/rendering.md)")
       ->capture_default_str()
       ->group(blending);
+  sub->add_option("--iso", isoValues,
+                  "--blend iso: the isovalues (data units), V1,V2,... or, repeated, "
+                  "V[:R,G,B[,A]] with the surface's colour and opacity (default: the transfer "
+                  "function's at V)")
+      ->group(blending);
   sub->add_option("--average-range", averageRange,
                   "--blend average: only values in MIN,MAX count (default: all)")
       ->group(blending);
@@ -287,6 +292,29 @@ RenderSettings RenderOptions::settingsFor(const LoadedScene& scene, std::string*
     throw CLI::ValidationError("--blend",
                                "expected " + blendModeChoices() + ", got '" + blend + "'");
   s.blend = *mode;
+  for (const auto& text : isoValues) {
+    const auto colon = text.find(':');
+    if (colon == std::string::npos) {
+      for (double v : parseNumberList("--iso", text, 1, kMaxIsoValues))
+        s.isoSurfaces.push_back({v, {}, {}});
+      continue;
+    }
+    IsoSurface iso;
+    iso.value = parseNumberList("--iso", text.substr(0, colon), 1, 1)[0];
+    const auto c = parseNumberList("--iso", text.substr(colon + 1), 3, 4);
+    for (double x : c)
+      if (!(x >= 0.0 && x <= 1.0))
+        throw CLI::ValidationError("--iso", "colour and opacity must lie in [0, 1]: " + text);
+    iso.color = Vec3f(float(c[0]), float(c[1]), float(c[2]));
+    if (c.size() == 4) iso.opacity = static_cast<float>(c[3]);
+    s.isoSurfaces.push_back(iso);
+  }
+  if (!s.isoSurfaces.empty() && s.blend != BlendMode::Iso)
+    throw CLI::ValidationError("--iso", "applies to --blend iso only");
+  if (s.blend == BlendMode::Iso && s.isoSurfaces.empty())
+    throw CLI::ValidationError("--blend", "iso needs the isovalues: --iso V1,V2,...");
+  if (s.isoSurfaces.size() > static_cast<size_t>(kMaxIsoValues))
+    throw CLI::ValidationError("--iso", "at most " + std::to_string(kMaxIsoValues) + " isovalues");
   if (!averageRange.empty()) {
     if (s.blend != BlendMode::Average)
       throw CLI::ValidationError("--average-range", "applies to --blend average only");

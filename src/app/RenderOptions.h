@@ -28,7 +28,7 @@ struct RenderOptions {
   int threads = 0;
   bool noSkip = false;
   std::string blend = "composite", averageRange, crop;
-  std::vector<std::string> clipPlanes;
+  std::vector<std::string> clipPlanes, isoValues;
 
   // Adds the options to `sub`.
   void addTo(CLI::App* sub);

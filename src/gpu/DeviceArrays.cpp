@@ -1,5 +1,6 @@
 #include "gpu/DeviceArrays.h"
 
+#include "core/render/IsoBasis.h"
 #include "core/util/Error.h"
 
 namespace mfadvr::gpu {
@@ -72,6 +73,11 @@ std::vector<HostArray> frameArrays(const RayParams& p) {
   if (p.rayEnd)
     out.push_back(
         {p.rayEnd, std::size_t(p.camera.width) * p.camera.height * sizeof(float), "the ray ends"});
+  if (p.isoCount > 0) {
+    const IsoBasisTables& t = isoBasisTables();
+    out.push_back({p.isoNodes, t.nodes.size() * sizeof(double), "the isosurface nodes"});
+    out.push_back({p.isoBasis, t.basis.size() * sizeof(double), "the isosurface bases"});
+  }
   return out;
 }
 
@@ -79,7 +85,12 @@ RayParams relocateFrame(const RayParams& params, const std::vector<const void*>&
   expectCopies(frameArrays(params), copies);
   RayParams p = params;
   p.tf.entries = static_cast<const TfEntry*>(copies[0]);
-  if (p.rayEnd) p.rayEnd = static_cast<const float*>(copies[1]);
+  std::size_t next = 1;
+  if (p.rayEnd) p.rayEnd = static_cast<const float*>(copies[next++]);
+  if (p.isoCount > 0) {
+    p.isoNodes = static_cast<const double*>(copies[next++]);
+    p.isoBasis = static_cast<const double*>(copies[next++]);
+  }
   return p;
 }
 

@@ -7,6 +7,7 @@
 #include <vtkActor.h>
 #include <vtkCallbackCommand.h>
 #include <vtkCommand.h>
+#include <vtkContourValues.h>
 #include <vtkDataSetTriangleFilter.h>
 #include <vtkPlane.h>
 #include <vtkPolyDataMapper.h>
@@ -98,6 +99,14 @@ TEST(VolumeMapper, HonoursBlendModesClippingAndCropping) {
        [](VtkVolumeScene& v, RenderSettings& s) {
          v.mapper->SetBlendModeToAdditive();
          s.blend = BlendMode::Additive;
+       }},
+      {"isosurfaces 0.5 and 0.7",
+       [](VtkVolumeScene& v, RenderSettings& s) {
+         v.mapper->SetBlendModeToIsoSurface();
+         v.property->GetIsoSurfaceValues()->SetValue(0, 0.5);
+         v.property->GetIsoSurfaceValues()->SetValue(1, 0.7);
+         s.blend = BlendMode::Iso;
+         s.isoSurfaces = {{0.5, {}, {}}, {0.7, {}, {}}};
        }},
       {"clipping plane",
        [](VtkVolumeScene& v, RenderSettings& s) {

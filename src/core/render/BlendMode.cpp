@@ -11,7 +11,8 @@ struct Name {
 constexpr Name kNames[] = {
     {"composite", BlendMode::Composite}, {"max", BlendMode::Maximum},
     {"min", BlendMode::Minimum},         {"average", BlendMode::Average},
-    {"additive", BlendMode::Additive},   {"mip", BlendMode::Maximum},
+    {"additive", BlendMode::Additive},   {"iso", BlendMode::Iso},
+    {"isosurface", BlendMode::Iso},      {"mip", BlendMode::Maximum},
     {"maximum", BlendMode::Maximum},     {"minimum", BlendMode::Minimum},
     {"minip", BlendMode::Minimum},       {"average-intensity", BlendMode::Average},
 };
@@ -37,13 +38,15 @@ const char* depthRule(BlendMode mode) {
     case BlendMode::Maximum:
     case BlendMode::Minimum:
       return "ray distance from the camera position to the extreme sample, where it is visible";
+    case BlendMode::Iso:
+      return "ray distance from the camera position to the first isosurface hit";
     default:
       return "ray distance from the camera position to the first sample that adds to the pixel";
   }
 }
 
 std::string blendModeChoices() {
-  return "composite|max|min|average|additive";
+  return "composite|max|min|average|additive|iso";
 }
 
 }  // namespace mfadvr

@@ -13,21 +13,27 @@
 //              distance), clamped to [0, 1], grey, opacity 1 (VTK's GPU ADDITIVE_BLEND, which sums
 //              samples: the same when the step is the unit distance; here it does not depend on
 //              the step).
-// Shading applies to composite renders only (VTK's mappers do not shade the others).
+//   iso        surfaces where the field crosses each isovalue (RenderSettings::isoSurfaces), in
+//              depth order, each of its own colour and opacity (the transfer function's at the
+//              value unless given), shaded with the field's gradient at the hit when shading is
+//              on. MFA models: exact crossings of the spline, found cell by cell, whatever the
+//              step (kernel/IsoSurfaceWalk.h); other methods: sign changes between samples,
+//              then solved on the field.
+// Shading applies to composite and iso renders only (VTK's mappers do not shade the others).
 #include <optional>
 #include <string>
 #include <string_view>
 
 namespace mfadvr {
 
-enum class BlendMode : int { Composite = 0, Maximum, Minimum, Average, Additive };
+enum class BlendMode : int { Composite = 0, Maximum, Minimum, Average, Additive, Iso };
 
-// "composite", "max", "min", "average", "additive" (also VTK's long names: "mip",
-// "maximum", "minimum", "minip", "average-intensity"); none for anything else.
+// "composite", "max", "min", "average", "additive", "iso" (also VTK's long names: "mip",
+// "maximum", "minimum", "minip", "average-intensity", "isosurface"); none for anything else.
 std::optional<BlendMode> parseBlendMode(std::string_view name);
 // The short name parseBlendMode takes.
 const char* blendModeName(BlendMode mode);
-// "composite|max|min|average|additive", for help texts and errors.
+// "composite|max|min|average|additive|iso", for help texts and errors.
 std::string blendModeChoices();
 // What a depth image (RenderSettings::depth) holds for this mode, one line.
 const char* depthRule(BlendMode mode);

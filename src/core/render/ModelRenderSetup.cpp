@@ -1,6 +1,9 @@
 #include "core/render/ModelRenderSetup.h"
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <vector>
 
 #include "core/render/PieceCompositor.h"
 #include "core/render/RayCaster.h"
@@ -28,9 +31,20 @@ ModelRenderSetup::ModelRenderSetup(const ModelField& field, const RenderSettings
   view_.mask = model.mask().view();
   // The flags' (re)build is part of the frame: its time is added to the ray casting's.
   const auto start = std::chrono::steady_clock::now();
-  // Only composite renders skip: in the other blend modes a transparent value still sets the
-  // extreme or the average.
-  if (settings.skipEmptySpace && settings.blend == BlendMode::Composite) {
+  // Composite renders skip what the transfer function hides, iso renders the cells that hold no
+  // isovalue; in the other blend modes a transparent value still sets the extreme or the
+  // average.
+  if (settings.skipEmptySpace && settings.blend == BlendMode::Iso) {
+    const TransferFunctionTable band(isoBandTransferFunction(settings.isoSurfaces),
+                                     OpacityCorrection(1.0));
+    if (EmptySpaceCache* cache = field.emptySpaceCache()) {
+      flags_ = cache->flags(model.spline(), band);
+    } else {
+      flags_ = std::make_shared<const EmptySpaceFlags>(buildEmptySpaceFlags(
+          view_.spline, *model.spline().spanRanges(), band, bezierRangesPayOff(model, settings)));
+    }
+    if (flags_->emptyCells > 0) flags_->attachTo(view_);
+  } else if (settings.skipEmptySpace && settings.blend == BlendMode::Composite) {
     if (EmptySpaceCache* cache = field.emptySpaceCache()) {
       flags_ = cache->flags(model.spline(), table_);
     } else {
@@ -42,6 +56,29 @@ ModelRenderSetup::ModelRenderSetup(const ModelField& field, const RenderSettings
     if (flags_->emptyCells > 0) flags_->attachTo(view_);
   }
   setupSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+TransferFunction isoBandTransferFunction(const std::vector<IsoSurface>& surfaces) {
+  std::vector<double> v;
+  for (const IsoSurface& s : surfaces) v.push_back(s.value);
+  std::sort(v.begin(), v.end());
+  v.erase(std::unique(v.begin(), v.end()), v.end());
+  // The table's span: the values with room on both sides; bands two entries wide.
+  const double spread = v.back() - v.front();
+  const double margin = std::max({spread * 0.01, std::abs(v.back()) * 1e-6, 1e-30});
+  const double lo = v.front() - margin, hi = v.back() + margin;
+  const double w = 2.0 * (hi - lo) / (TransferFunctionTable::kEntries - 1);
+  TransferFunction tf;
+  tf.space = TfSpace::Data;
+  tf.color = {{lo, Vec3f::Ones()}, {hi, Vec3f::Ones()}};
+  tf.opacity.push_back({lo, 0.0f});
+  for (size_t i = 0; i < v.size(); ++i) {
+    if (v[i] - w > tf.opacity.back().x) tf.opacity.push_back({v[i] - w, 0.0f});
+    tf.opacity.push_back({v[i], 1.0f});
+    if (i + 1 == v.size() || v[i + 1] - w > v[i] + w) tf.opacity.push_back({v[i] + w, 0.0f});
+  }
+  tf.opacity.push_back({hi, 0.0f});
+  return tf;
 }
 
 // The samples the rays over the model's region would take if none were skipped, a ray's path

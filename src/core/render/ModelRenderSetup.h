@@ -51,4 +51,9 @@ class ModelRenderSetup {
 // kBezierRangesMinSamplesPerCell samples per cell if none were skipped.
 bool bezierRangesPayOff(const Model& model, const RenderSettings& settings);
 
+// For the iso blend's empty-space flags: a transfer function opaque only in bands two table
+// entries wide around each isovalue, so that a cell is empty exactly when no value it can take
+// comes within a band (so holds no isovalue).
+TransferFunction isoBandTransferFunction(const std::vector<IsoSurface>& surfaces);
+
 }  // namespace mfadvr

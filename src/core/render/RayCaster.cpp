@@ -10,6 +10,8 @@
 #include <limits>
 #include <mutex>
 
+#include "core/render/IsoBasis.h"
+
 namespace mfadvr {
 
 RayParams compileRayParams(const RenderSettings& s, const TransferFunctionTable& table,
@@ -43,6 +45,19 @@ RayParams compileRayParams(const RenderSettings& s, const TransferFunctionTable&
     p.averageHi = static_cast<float>(s.averageRange->second);
   }
   p.additiveScale = 1.0 / s.opacityUnitDistance;
+  p.isoCount = s.blend == BlendMode::Iso ? static_cast<int>(s.isoSurfaces.size()) : 0;
+  for (int i = 0; i < p.isoCount; ++i) {
+    const IsoSurface& iso = s.isoSurfaces[i];
+    p.isoValue[i] = static_cast<float>(iso.value);
+    const Vec3f c = iso.color ? *iso.color : s.transferFunction.colorAt(iso.value);
+    for (int a = 0; a < 3; ++a) p.isoColor[i][a] = c[a];
+    p.isoColor[i][3] = iso.opacity ? *iso.opacity : s.transferFunction.opacityAt(iso.value);
+  }
+  if (p.isoCount > 0) {
+    const IsoBasisTables& tables = isoBasisTables();
+    p.isoNodes = tables.nodes.data();
+    p.isoBasis = tables.basis.data();
+  }
   p.clipPlaneCount = static_cast<int>(s.clipPlanes.size());
   for (int i = 0; i < p.clipPlaneCount; ++i) {
     const ClipPlane& c = s.clipPlanes[i];

@@ -46,6 +46,18 @@ void RenderSettings::validate() const {
   if (averageRange && !(std::isfinite(averageRange->first) && std::isfinite(averageRange->second) &&
                         averageRange->first <= averageRange->second))
     throw Error("the average range must be finite with min <= max");
+  if (blend == BlendMode::Iso && isoSurfaces.empty())
+    throw Error("the iso blend needs at least one isovalue");
+  if (isoSurfaces.size() > static_cast<size_t>(kMaxIsoValues))
+    throw Error("at most " + std::to_string(kMaxIsoValues) + " isovalues, got " +
+                std::to_string(isoSurfaces.size()));
+  for (const IsoSurface& i : isoSurfaces) {
+    if (!std::isfinite(i.value)) throw Error("isovalues must be finite");
+    if (i.color && !((i.color->array() >= 0.0f).all() && (i.color->array() <= 1.0f).all()))
+      throw Error("isosurface colours must lie in [0, 1]");
+    if (i.opacity && !(*i.opacity >= 0.0f && *i.opacity <= 1.0f))
+      throw Error("isosurface opacities must lie in [0, 1]");
+  }
   if (threads < 0) throw Error("thread count must be >= 0 (0: all cores)");
   if (shade) lighting.validate();
 }

@@ -23,6 +23,14 @@ struct ClipPlane {
   Vec3d normal = Vec3d::UnitZ();
 };
 
+// One isosurface of the iso blend: its value (data units), colour and opacity (none: the
+// transfer function's at the value).
+struct IsoSurface {
+  double value = 0.0;
+  std::optional<Vec3f> color;
+  std::optional<float> opacity;
+};
+
 struct RenderSettings {
   int width = 512, height = 512;
   Camera camera;
@@ -58,6 +66,8 @@ struct RenderSettings {
   BlendMode blend = BlendMode::Composite;
   // Average blend: only values in [first, second] count (VTK's AverageIPScalarRange); none: all.
   std::optional<std::pair<double, double>> averageRange;
+  // Iso blend: the surfaces (1 to kMaxIsoValues).
+  std::vector<IsoSurface> isoSurfaces;
   // The user's clipping planes and cropping box (world units): rays are clipped to them
   // analytically, for every method, so that the images compare.
   std::vector<ClipPlane> clipPlanes;

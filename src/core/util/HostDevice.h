@@ -6,15 +6,22 @@
 //
 // MFADVR_INLINE forces inlining: the hot functions take the degree as a compile-time constant
 // and must unroll into their callers.
+//
+// MFADVR_OUTLINE keeps a function out of its callers: per-ray paths taken by a ray as a whole
+// (the blend modes other than composite), which inlined into every ray loop of every kernel
+// variant would multiply the compile time and code size for nothing.
 #if defined(__CUDACC__)
 #define MFADVR_HD __host__ __device__
 #define MFADVR_INLINE __forceinline__
+#define MFADVR_OUTLINE __noinline__
 #elif defined(__GNUC__)
 #define MFADVR_HD
 #define MFADVR_INLINE inline __attribute__((always_inline))
+#define MFADVR_OUTLINE inline __attribute__((noinline))
 #else
 #define MFADVR_HD
 #define MFADVR_INLINE inline
+#define MFADVR_OUTLINE inline
 #endif
 
 #include <cmath>

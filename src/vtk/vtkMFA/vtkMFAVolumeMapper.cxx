@@ -2,6 +2,7 @@
 
 #include "vtkAlgorithmOutput.h"
 #include "vtkCamera.h"
+#include "vtkContourValues.h"
 #include "vtkDataSet.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
@@ -262,7 +263,8 @@ double vtkMFAVolumeMapper::ChooseImageSampleDistance(vtkVolume* vol) {
 namespace {
 
 // The mapper's blend mode, clipping planes and cropping box in `s`, in model coordinates.
-void applyBlendAndClipping(vtkVolumeMapper* m, mfadvr::RenderSettings& s,
+void applyBlendAndClipping(vtkVolumeMapper* m, vtkVolumeProperty* property,
+                           mfadvr::RenderSettings& s,
                            const mfadvr::vtkglue::WorldToModel& toModel) {
   switch (m->GetBlendMode()) {
     case vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND:
@@ -284,6 +286,17 @@ void applyBlendAndClipping(vtkVolumeMapper* m, mfadvr::RenderSettings& s,
     case vtkVolumeMapper::ADDITIVE_BLEND:
       s.blend = mfadvr::BlendMode::Additive;
       break;
+    case vtkVolumeMapper::ISOSURFACE_BLEND: {
+      // The property's isosurface values (ParaView's IsosurfaceValues), coloured and made
+      // opaque as the transfer function says at each value, as VTK's GPU mapper does.
+      vtkContourValues* values = property->GetIsoSurfaceValues();
+      const int n = std::min(values ? values->GetNumberOfContours() : 0, mfadvr::kMaxIsoValues);
+      for (int i = 0; i < n; ++i) {
+        s.isoSurfaces.push_back({values->GetValue(i), {}, {}});
+      }
+      s.blend = n > 0 ? mfadvr::BlendMode::Iso : mfadvr::BlendMode::Composite;
+      break;
+    }
     default:
       s.blend = mfadvr::BlendMode::Composite;
   }
@@ -334,11 +347,20 @@ void vtkMFAVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol) {
                      "'; colour by '" + field + "' to use its maps");
     }
   }
-  if (this->BlendMode == vtkVolumeMapper::ISOSURFACE_BLEND ||
-      this->BlendMode == vtkVolumeMapper::SLICE_BLEND) {
-    this->WarnOnce(
-        "the isosurface and slice blend modes are not supported yet; rendering with "
-        "composite blending");
+  if (this->BlendMode == vtkVolumeMapper::SLICE_BLEND) {
+    this->WarnOnce("the slice blend mode is not supported yet; rendering with composite blending");
+  }
+  if (this->BlendMode == vtkVolumeMapper::ISOSURFACE_BLEND) {
+    vtkContourValues* values = vol->GetProperty()->GetIsoSurfaceValues();
+    const int n = values ? values->GetNumberOfContours() : 0;
+    if (n == 0) {
+      this->WarnOnce(
+          "the isosurface blend mode needs isosurface values (vtkVolumeProperty::"
+          "GetIsoSurfaceValues()->SetValue); rendering with composite blending");
+    } else if (n > mfadvr::kMaxIsoValues) {
+      this->WarnOnce("at most " + std::to_string(mfadvr::kMaxIsoValues) +
+                     " isosurface values are rendered; the others are ignored");
+    }
   }
   if (this->Cropping && this->CroppingRegionFlags != VTK_CROP_SUBVOLUME) {
     this->WarnOnce(
@@ -385,7 +407,7 @@ void vtkMFAVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol) {
     }
     s.background = mfadvr::Vec3f::Zero();  // premultiplied colour over nothing
     s.threads = this->NumberOfThreads;
-    applyBlendAndClipping(this, s, toModel);
+    applyBlendAndClipping(this, property, s, toModel);
 
     // Ray ends from the depth buffer: the opaque geometry drawn so far.
     auto& depth = this->Internal->Depth;

@@ -19,10 +19,11 @@
  * partitioned volume, here or on other ranks, composite to the image of the whole.
  * SetMFAInputConnection / SetMFAInputData are the same port under older names.
  *
- * Blend modes composite, maximum, minimum, average (with its AverageIPScalarRange) and
- * additive (docs/rendering.md gives their rules), clipping planes (up to 8) and sub-volume
- * cropping are honoured. Not supported (a warning says so once): the isosurface and slice blend
- * modes, cropping flags other than the sub-volume, gradient opacity, multi-component data.
+ * Blend modes composite, maximum, minimum, average (with its AverageIPScalarRange), additive
+ * and isosurface (the property's GetIsoSurfaceValues(), exact crossings of the model; up to 8)
+ * (docs/rendering.md gives their rules), clipping planes (up to 8) and sub-volume cropping are
+ * honoured. Not supported (a warning says so once): the slice blend mode, cropping flags other
+ * than the sub-volume, gradient opacity, multi-component data.
  */
 #ifndef vtkMFAVolumeMapper_h
 #define vtkMFAVolumeMapper_h

@@ -35,9 +35,10 @@
 // are those of one sample at a time. Skipped samples are exactly those that would have been
 // transparent, so the image is the same with and without skipping.
 //
-// This is the composite blend; the other blend modes reduce the same samples (RayReduction.h),
-// chosen per ray from rp.blend. With rp.depth, each ray records where its opacity first
+// This is the composite blend; the other blend modes reduce the same samples (RayReduction.h)
+// or walk the ray for isosurfaces (IsoSurfaceWalk.h), chosen per ray from rp.blend. With rp.depth, each ray records where its opacity first
 // reaches 0.5 (the midpoint of that sample's step).
+#include "core/render/kernel/IsoSurfaceWalk.h"
 #include "core/render/kernel/RayReduction.h"
 #include "core/render/kernel/RaySteps.h"
 #include "core/render/kernel/SampleBatch.h"
@@ -52,7 +53,10 @@ MFADVR_HD MFADVR_INLINE void integrateSegment(const RayParams& rp, Sampler& samp
   float red = 0.0f, green = 0.0f, blue = 0.0f, alpha = 0.0f;
   if (segment && rp.blend != BlendMode::Composite) {
     ++counters.hits;
-    reduceSegment<Masked>(rp, sampler, *segment, out, counters);
+    if (rp.blend == BlendMode::Iso)
+      isoSegment<Masked, Shade>(rp, sampler, *segment, out, counters);
+    else
+      reduceSegment<Masked>(rp, sampler, *segment, out, counters);
     return;
   }
   float depth = NAN;  // where alpha first reaches 0.5 (rp.depth)

@@ -15,6 +15,8 @@ namespace mfadvr {
 
 // At most this many clipping planes per render (VTK's GPU mapper takes six).
 inline constexpr int kMaxClipPlanes = 8;
+// At most this many isovalues per render.
+inline constexpr int kMaxIsoValues = 8;
 
 struct RayParams {
   CameraRays camera;
@@ -39,6 +41,13 @@ struct RayParams {
   // Clipping planes: a point x is kept where n . x + w >= 0, plane i = {n0, n1, n2, w}.
   int clipPlaneCount = 0;
   double clipPlane[kMaxClipPlanes][4];
+  // Isosurface blend: the values, their colours (rgb, opacity), and the Chebyshev-Lobatto nodes
+  // and Bernstein bases of every degree 0..kMaxIsoDegree (IsoBasis.h; host or device memory).
+  int isoCount = 0;
+  float isoValue[kMaxIsoValues];
+  float isoColor[kMaxIsoValues][4];
+  const double* isoNodes = nullptr;
+  const double* isoBasis = nullptr;
   // width * height ray distances (RenderSettings::depth), written by every ray that hits the
   // box; the driver fills it with NaN first. Null: no depth.
   float* depth = nullptr;

@@ -72,9 +72,9 @@ struct RayReduction {
 // Masked: samples outside the sampler's mask do not count. Samplers that skip empty space are
 // asked emptyAt() only to locate each point (their stage() relies on it); nothing is skipped.
 template <bool Masked, class Sampler>
-MFADVR_HD MFADVR_INLINE void reduceSegment(const RayParams& rp, Sampler& sampler,
-                                           const RaySegment& ray, float out[4],
-                                           RayCounters& counters) {
+MFADVR_HD MFADVR_OUTLINE void reduceSegment(const RayParams& rp, Sampler& sampler,
+                                            const RaySegment& ray, float out[4],
+                                            RayCounters& counters) {
   constexpr int K = Sampler::kBatch;
   const double dt = rp.sampleDistance;
   RayReduction r;

@@ -124,6 +124,35 @@ class SplineRaySampler {
     if constexpr (Skip) beginMarch(o, d, march_);
   }
 
+  // The isosurface walk's pieces (kernel/IsoSurfaceWalk.h): inside a knot-span cell the spline
+  // along a ray is a polynomial of the degrees' sum.
+  MFADVR_HD MFADVR_INLINE int rayDegree() const { return p_[0] + p_[1] + p_[2]; }
+
+  // Where the ray o + t d leaves the knot-span cell it is in just after t: the nearest knot
+  // plane beyond t on any axis (+inf for a ray parallel to every axis's knots).
+  MFADVR_HD MFADVR_INLINE double pieceEnd(const double o[3], const double d[3], double t) const {
+    double end = INFINITY;
+    for (int a = 0; a < 3; ++a) {
+      const double ud = d[a] * m_.inverseExtent[a];
+      if (ud == 0.0) continue;
+      const double uo = (o[a] - m_.boxMin[a]) * m_.inverseExtent[a];
+      const KnotAxisView& axis = m_.spline.axis[a];
+      const double* U = axis.knots;
+      int j = findSpan<P>(axis, uo + t * ud);
+      double ta;
+      if (ud > 0.0) {
+        ++j;  // knots[j]: the span's far end; on past knots that rounding puts behind t
+        while (j < axis.count && !((U[j] - uo) / ud > t)) ++j;
+        ta = (U[j] - uo) / ud;
+      } else {
+        while (j > p_[a] && !((U[j] - uo) / ud > t)) --j;
+        ta = (U[j] - uo) / ud;
+      }
+      if (ta < end) end = ta;
+    }
+    return end;
+  }
+
   MFADVR_HD MFADVR_INLINE bool inside(const double p[3]) const {
     double u[3];
     toParameter(p, u);
