@@ -8,9 +8,11 @@
 #include <vtkCallbackCommand.h>
 #include <vtkCamera.h>
 #include <vtkCommand.h>
+#include <vtkContourValues.h>
 #include <vtkInteractorStyleTrackballCamera.h>
 #include <vtkNew.h>
 #include <vtkObjectFactory.h>
+#include <vtkPlane.h>
 #include <vtkRenderWindow.h>
 #include <vtkRenderWindowInteractor.h>
 #include <vtkRenderer.h>
@@ -65,9 +67,62 @@ struct Viewer {
   vtkNew<vtkRenderer> renderer;
   vtkNew<vtkRenderWindow> window;
 
+  bool clipFacingCamera = false;  // key c: a plane through the focal point, facing the camera
+  std::string savedAverageRange;  // --average-range while key b shows another blend
+
+  // The blend mode, isovalues, clipping planes and cropping of `s` on the mapper and property.
+  void applyBlendAndClipping(const RenderSettings& s) {
+    switch (s.blend) {
+      case BlendMode::Maximum:
+        mapper->SetBlendModeToMaximumIntensity();
+        break;
+      case BlendMode::Minimum:
+        mapper->SetBlendModeToMinimumIntensity();
+        break;
+      case BlendMode::Average:
+        mapper->SetBlendModeToAverageIntensity();
+        if (s.averageRange)
+          mapper->SetAverageIPScalarRange(s.averageRange->first, s.averageRange->second);
+        break;
+      case BlendMode::Additive:
+        mapper->SetBlendModeToAdditive();
+        break;
+      case BlendMode::Iso:
+        mapper->SetBlendModeToIsoSurface();
+        break;
+      default:
+        mapper->SetBlendModeToComposite();
+    }
+    vtkContourValues* iso = property->GetIsoSurfaceValues();
+    iso->SetNumberOfContours(static_cast<int>(s.isoSurfaces.size()));
+    for (size_t i = 0; i < s.isoSurfaces.size(); ++i)
+      iso->SetValue(static_cast<int>(i), s.isoSurfaces[i].value);
+    mapper->RemoveAllClippingPlanes();
+    for (const ClipPlane& c : s.clipPlanes) {
+      vtkNew<vtkPlane> plane;
+      plane->SetOrigin(c.point.data());
+      plane->SetNormal(c.normal.data());
+      mapper->AddClippingPlane(plane);
+    }
+    if (clipFacingCamera) {
+      vtkCamera* camera = renderer->GetActiveCamera();
+      vtkNew<vtkPlane> plane;
+      plane->SetOrigin(camera->GetFocalPoint());
+      plane->SetNormal(camera->GetDirectionOfProjection());  // keeps the half behind the focus
+      mapper->AddClippingPlane(plane);
+    }
+    mapper->SetCropping(s.crop ? 1 : 0);
+    if (s.crop) {
+      mapper->SetCroppingRegionPlanes(s.crop->min[0], s.crop->max[0], s.crop->min[1],
+                                      s.crop->max[1], s.crop->min[2], s.crop->max[2]);
+      mapper->SetCroppingRegionFlagsToSubVolume();
+    }
+  }
+
   // Re-derives the transfer function and shading from the options; keeps the live camera.
   void applyOptions() {
     const RenderSettings s = options.settingsFor(*scene);
+    applyBlendAndClipping(s);
     applyTransferFunction(s, property);
     applyLighting(s.lighting, renderer);
     mapper->SetSampleDistance(s.sampleDistance);
@@ -92,7 +147,10 @@ struct Viewer {
                   methodName(methods[method]).c_str(),
                   options.colormap.empty() ? "cool-to-warm" : options.colormap.c_str(),
                   options.tf.empty() ? "ramp" : options.tf.c_str(),
-                  options.shade ? "shaded" : "unshaded", 1000.0 * mapper->GetTimeToDraw());
+                  (std::string(options.shade ? "shaded " : "unshaded ") + options.blend +
+                   (clipFacingCamera ? ", clipped" : ""))
+                      .c_str(),
+                  1000.0 * mapper->GetTimeToDraw());
     // The window title: a text actor would need VTK's FreeType module, whose CMake package
     // drags in MPI on Debian.
     window->SetWindowName(text);
@@ -112,6 +170,18 @@ struct Viewer {
       options.tf = kOpacityCycle[(i + 1) % kOpacityCycle.size()];
     } else if (key == "s") {
       options.shade = !options.shade;
+    } else if (key == "b") {
+      // Composite, max, min, average, additive, and iso where isovalues were given.
+      std::vector<std::string> modes{"composite", "max", "min", "average", "additive"};
+      if (!options.isoValues.empty()) modes.push_back("iso");
+      size_t i = 0;
+      while (i < modes.size() && modes[i] != options.blend) ++i;
+      options.blend = modes[(i + 1) % modes.size()];
+      // The average range belongs to the average blend only.
+      if (options.blend != "average") savedAverageRange.swap(options.averageRange);
+      if (options.blend == "average") options.averageRange.swap(savedAverageRange);
+    } else if (key == "c") {
+      clipFacingCamera = !clipFacingCamera;
     } else {
       return;
     }
@@ -131,7 +201,7 @@ class ViewerStyle : public vtkInteractorStyleTrackballCamera {
 
   void OnChar() override {
     const std::string key = this->Interactor->GetKeySym() ? this->Interactor->GetKeySym() : "";
-    if (key == "m" || key == "t" || key == "o" || key == "s") {
+    if (key == "m" || key == "t" || key == "o" || key == "s" || key == "b" || key == "c") {
       viewer->onKey(key);
       return;
     }
@@ -143,7 +213,8 @@ class ViewerStyle : public vtkInteractorStyleTrackballCamera {
   }
 
   static constexpr const char* kKeyHelp =
-      "keys: m method, t colour map, o opacity preset, s shading on/off, r reset camera, "
+      "keys: m method, t colour map, o opacity preset, s shading on/off, b blend mode, "
+      "c clipping plane through the focal point (on/off), r reset camera, "
       "h help, q quit; drag to rotate, shift-drag to pan, wheel to zoom\n";
 };
 vtkStandardNewMacro(ViewerStyle);

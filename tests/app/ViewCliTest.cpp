@@ -33,6 +33,24 @@ TEST(CliView, ScreenshotMatchesRenderForEveryMethod) {
   }
 }
 
+// The blend, isovalue, clipping and cropping options reach the viewer's mapper: its frame is
+// render's.
+TEST(CliView, ScreenshotMatchesRenderForBlendModesAndClipping) {
+  const auto dir = test::scratchDir();
+  const std::string scene = " --size 96x80 --azimuth 30 --elevation 20 -q";
+  for (const char* options :
+       {" --blend max", " --blend iso --iso 0.5 --shade", " --clip-plane 0,0,0,1,0.2,0",
+        " --crop -1,0.5,-1,1,-0.5,1 --blend additive"}) {
+    const std::string view = (dir / "view.png").string(), render = (dir / "render.png").string();
+    const auto v =
+        runMfadvr("view builtin:marschner-lobb:33 --screenshot " + view + options + scene);
+    ASSERT_EQ(v.status, 0) << options << ": " << v.err;
+    const auto r = runMfadvr("render builtin:marschner-lobb:33 -o " + render + options + scene);
+    ASSERT_EQ(r.status, 0) << options << ": " << r.err;
+    EXPECT_GT(compareImages(readPng(view), readPng(render)).psnr, 48.0) << options;
+  }
+}
+
 TEST(CliView, RejectsMethodsTheInputCannotProvide) {
   const auto dir = test::scratchDir();
   const std::string model = (dir / "ml.mfa").string();
