@@ -14,9 +14,21 @@
 
 namespace mfadvr::test {
 
+// ulps > 0: channels may differ by that many float steps (counters still exactly).
 inline void expectSameFrame(const Image& a, const RenderStats& aStats, const Image& b,
-                            const RenderStats& bStats, int render) {
-  EXPECT_EQ(a.rgba, b.rgba) << "render " << render;
+                            const RenderStats& bStats, int render, int ulps = 0) {
+  if (ulps == 0) {
+    EXPECT_EQ(a.rgba, b.rgba) << "render " << render;
+  } else {
+    ASSERT_EQ(a.rgba.size(), b.rgba.size());
+    for (size_t i = 0; i < a.rgba.size(); ++i) {
+      float x = a.rgba[i];
+      for (int u = 0; u < ulps && x < b.rgba[i]; ++u) x = std::nextafter(x, b.rgba[i]);
+      for (int u = 0; u < ulps && x > b.rgba[i]; ++u) x = std::nextafter(x, b.rgba[i]);
+      ASSERT_EQ(x, b.rgba[i]) << "render " << render << ", float " << i << ": " << a.rgba[i]
+                              << " vs " << b.rgba[i];
+    }
+  }
   EXPECT_EQ(aStats.samples, bStats.samples) << "render " << render;
   EXPECT_EQ(aStats.skipped, bStats.skipped) << "render " << render;
   EXPECT_EQ(aStats.terminated, bStats.terminated) << "render " << render;
@@ -64,11 +76,11 @@ inline Image renderRayByRay(const RenderSettings& s, const ModelRenderSetup& set
 // renderModelView's frame of `setup` against renderRayByRay's, image and counters; returns the
 // ray-by-ray counters.
 inline RenderStats expectFrameOfRayByRay(const RenderSettings& s, const ModelRenderSetup& setup,
-                                         int render) {
+                                         int render, int ulps = 0) {
   RenderStats frameStats, rayStats;
   const Image frame = renderModelView(s, setup.params(), setup.view(), &frameStats);
   const Image rays = renderRayByRay(s, setup, rayStats);
-  expectSameFrame(frame, frameStats, rays, rayStats, render);
+  expectSameFrame(frame, frameStats, rays, rayStats, render, ulps);
   return rayStats;
 }
 

@@ -31,7 +31,12 @@ class OneLane {
   bool inside(const double p[3]) { return s_.inside(p); }
   bool emptyAt(const double p[3], double& tLeave) { return s_.emptyAt(p, tLeave); }
   void stage(int, const double p[3]) { s_.stage(0, p); }
-  void evaluate(int n, float v[]) { s_.evaluate(n, v); }
+  // The batched sampler writes all of its kBatch lanes (its lane kernel stores whole vectors).
+  void evaluate(int n, float v[]) {
+    float lanes[S::kBatch];
+    s_.evaluate(n, lanes);
+    for (int i = 0; i < n; ++i) v[i] = lanes[i];
+  }
   void gradient(int, float g[3]) { s_.gradient(0, g); }
 
  private:
