@@ -1,5 +1,6 @@
 // Writes seed inputs for the fuzzers: small valid models (uniform and non-uniform knots, several
-// degrees, one with a domain mask, a multi-block file) and point lists ("x y z" and "x y z v"), so
+// degrees, one with a domain mask, a multi-block file), point lists ("x y z" and "x y z v") and
+// 2-D transfer functions (JSON boxes), so
 // that mutations start from the interesting structure.
 #include <filesystem>
 #include <fstream>
@@ -12,10 +13,15 @@
 #include "core/model/ModelFile.h"
 
 int main(int argc, char** argv) {
-  if (argc != 3) return 2;
-  const std::filesystem::path models = argv[1], points = argv[2];
+  if (argc != 4) return 2;
+  const std::filesystem::path models = argv[1], points = argv[2], tf2d = argv[3];
   std::filesystem::create_directories(models);
   std::filesystem::create_directories(points);
+  std::filesystem::create_directories(tf2d);
+  std::ofstream(tf2d / "boxes.json")
+      << R"({"boxes": [{"value": [0.2, 0.5], "gradient": [0, 3], "color": [1, 0.5, 0], )"
+      << R"("opacity": 0.4}, {"value": [0.4, 1], "gradient": [2, 9], "opacity": 1}], )"
+      << R"("size": [16, 8]})";
   int i = 0;
   for (mfadvr::Degree3 p : {mfadvr::Degree3{1, 1, 1}, mfadvr::Degree3{3, 2, 2}}) {
     mfadvr::StructuredFitOptions o;
@@ -25,9 +31,8 @@ int main(int argc, char** argv) {
         mfadvr::fitStructured(mfadvr::sampleBuiltinSpec("builtin:marschner-lobb:6x5x4"), o);
     mfadvr::saveModel(m, models / ("seed" + std::to_string(i++) + ".mfa"));
   }
-  for (const mfadvr::ControlCoding c :
-       {mfadvr::ControlCoding{mfadvr::ControlCoder::kLossless, 0.0},
-        mfadvr::ControlCoding{mfadvr::ControlCoder::kZfp, 1e-3}}) {
+  for (const mfadvr::ControlCoding c : {mfadvr::ControlCoding{mfadvr::ControlCoder::kLossless, 0.0},
+                                        mfadvr::ControlCoding{mfadvr::ControlCoder::kZfp, 1e-3}}) {
     // Coded control points (format version 3).
     mfadvr::StructuredFitOptions o;
     o.controlCounts = {5, 4, 4};
@@ -36,10 +41,10 @@ int main(int argc, char** argv) {
     mfadvr::saveModel(m, models / ("seed" + std::to_string(i++) + ".mfa"));
     // The coded section alone, in the form the fuzzer's second half reads (see
     // fuzz_model_file.cpp): a selector byte, then the payload.
-    const std::string payload = mfadvr::encodeControlPoints(m.spline().controlPoints(), {5, 4, 4}, c);
+    const std::string payload =
+        mfadvr::encodeControlPoints(m.spline().controlPoints(), {5, 4, 4}, c);
     std::ofstream(models / ("seed-payload" + std::to_string(i++) + ".bin"), std::ios::binary)
-        << static_cast<char>(c.coder == mfadvr::ControlCoder::kZfp ? 0x83 : 0x03)
-        << payload;
+        << static_cast<char>(c.coder == mfadvr::ControlCoder::kZfp ? 0x83 : 0x03) << payload;
   }
   {
     // A masked model: 3 x 4 x 5 = 60 nodes, so the last mask byte has padding bits.

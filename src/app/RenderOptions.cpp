@@ -162,6 +162,20 @@ void RenderOptions::addTo(CLI::App* sub) {
   sub->add_option("--range", range,
                   "Value range MIN,MAX that normalized TF points map onto (default: the data's)")
       ->group(tfGroup);
+  sub->add_option("--gradient-opacity", gradientOpacity,
+                  "Gradient opacity: each sample's opacity times a piecewise-linear function of "
+                  "|grad f| (data units per world unit), inline 'G:A,G:A,...' (VTK's "
+                  "SetGradientOpacity; composite blend)")
+      ->group(tfGroup);
+  sub->add_option("--tf2d", tf2d,
+                  "2-D transfer function over (value, |grad f|) replacing --tf and --colormap: "
+                  "a JSON file of boxes, or an RGBA PNG (x: value, bottom to top: |grad f|) "
+                  "placed by --tf2d-range (composite blend)")
+      ->group(tfGroup);
+  sub->add_option("--tf2d-range", tf2dRange,
+                  "The PNG's axes: GLO,GHI (|grad f|; values over --range or the data's) or "
+                  "VLO,VHI,GLO,GHI")
+      ->group(tfGroup);
   sub->add_option("--unit-distance", unitDistance,
                   "Opacity unit distance, world units (default: the TF file's, else the "
                   "smallest data spacing)")
@@ -263,6 +277,37 @@ RenderSettings RenderOptions::settingsFor(const LoadedScene& scene, std::string*
     hi = r[1];
   }
   s.transferFunction = tfSpec.resolved(lo, hi);
+  if (!gradientOpacity.empty()) {
+    std::stringstream points(gradientOpacity);
+    for (std::string point; std::getline(points, point, ',');) {
+      const auto colon = point.find(':');
+      if (colon == std::string::npos)
+        throw CLI::ValidationError(
+            "--gradient-opacity",
+            "expected points G:A,G:A,... (|grad f| : opacity), got '" + point + "'");
+      const double g = parseNumberList("--gradient-opacity", point.substr(0, colon), 1, 1)[0];
+      const double a = parseNumberList("--gradient-opacity", point.substr(colon + 1), 1, 1)[0];
+      if (!(g >= 0.0) || !(a >= 0.0 && a <= 1.0))
+        throw CLI::ValidationError("--gradient-opacity",
+                                   "|grad f| must be >= 0 and opacity in [0, 1]: '" + point + "'");
+      if (!s.gradientOpacity.empty() && g < s.gradientOpacity.back().x)
+        throw CLI::ValidationError("--gradient-opacity", "the |grad f| points must be sorted");
+      s.gradientOpacity.push_back({g, static_cast<float>(a)});
+    }
+  }
+  if (!tf2dRange.empty() && tf2d.empty())
+    throw CLI::ValidationError("--tf2d-range", "applies to --tf2d");
+  if (!tf2d.empty()) {
+    std::optional<TransferFunction2DRange> axes;
+    if (!tf2dRange.empty()) {
+      const auto r = parseNumberList("--tf2d-range", tf2dRange, 2, 4);
+      if (r.size() == 3)
+        throw CLI::ValidationError("--tf2d-range", "expected GLO,GHI or VLO,VHI,GLO,GHI");
+      axes = r.size() == 2 ? TransferFunction2DRange{lo, hi, r[0], r[1]}
+                           : TransferFunction2DRange{r[0], r[1], r[2], r[3]};
+    }
+    s.transferFunction2D = readTransferFunction2D(tf2d, axes ? &*axes : nullptr);
+  }
   if (tfWarning) *tfWarning = uniformOpacityWarning(tfSpec, s.transferFunction, scene, range);
   const double smallestSpacing = scene.spacing.minCoeff();
   if (unitDistance < 0.0 || !std::isfinite(unitDistance))

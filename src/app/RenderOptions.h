@@ -20,6 +20,7 @@ struct RenderOptions {
   double viewAngle = 30.0, parallelScale = 0.0, azimuth = 0.0, elevation = 0.0, zoom = 1.0;
   bool parallel = false;
   std::string tf, colormap;
+  std::string gradientOpacity, tf2d, tf2dRange;
   double unitDistance = 0.0, ert = 0.99;
   std::optional<double> step;  // none: half the smallest data spacing
   bool shade = false, noHeadlight = false;

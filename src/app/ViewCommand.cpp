@@ -170,6 +170,11 @@ struct Viewer {
       options.tf = kOpacityCycle[(i + 1) % kOpacityCycle.size()];
     } else if (key == "s") {
       options.shade = !options.shade;
+    } else if (key == "b" && (!options.gradientOpacity.empty() || !options.tf2d.empty())) {
+      std::fprintf(stderr,
+                   "mfadvr view: --gradient-opacity and --tf2d classify composite renders "
+                   "only; the blend stays composite\n");
+      return;
     } else if (key == "b") {
       // Composite, max, min, average, additive, and iso where isovalues were given.
       std::vector<std::string> modes{"composite", "max", "min", "average", "additive"};

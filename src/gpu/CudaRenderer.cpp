@@ -171,7 +171,7 @@ Image CudaRenderer::renderModel(const ModelField& field, const RenderSettings& s
         l.params = params;
         l.view = view;
         l.masked = setup.masked();
-        l.shade = settings.shade;
+        l.shade = settings.needsGradients();
         l.skip = setup.skips();
         l.image = pixels;
         l.counters = counters;
@@ -194,10 +194,8 @@ Image CudaRenderer::renderTrilinear(const PaddedGrid& grid, const RenderSettings
     b.gridData = host.data;
     b.gridSize = grid.paddedSize();
   }
-  const TransferFunctionTable table(
-      settings.transferFunction,
-      OpacityCorrection(settings.sampleDistance / settings.opacityUnitDistance));
-  const RayParams params = compileRayParams(settings, table, grid.boxMin(), grid.boxMax());
+  const ClassificationTables tables(settings);
+  const RayParams params = compileRayParams(settings, tables, grid.boxMin(), grid.boxMax());
   Image image = renderFrame(
       params, settings.depth, b.frame, b.image, b.depth, b.counters,
       [&](const RayParams& relocated, float* pixels, DeviceRayCounters* counters) {
@@ -205,7 +203,7 @@ Image CudaRenderer::renderTrilinear(const PaddedGrid& grid, const RenderSettings
         l.params = relocated;
         l.grid = host;
         l.grid.data = b.grid.as<const float>();
-        l.shade = settings.shade;
+        l.shade = settings.needsGradients();
         l.image = pixels;
         l.counters = counters;
         return launchGridRays(l);

@@ -78,6 +78,12 @@ std::vector<HostArray> frameArrays(const RayParams& p) {
     out.push_back({p.isoNodes, t.nodes.size() * sizeof(double), "the isosurface nodes"});
     out.push_back({p.isoBasis, t.basis.size() * sizeof(double), "the isosurface bases"});
   }
+  const GradientTransferView& g = p.gradientTf;
+  if (g.opacity)
+    out.push_back({g.opacity, std::size_t(g.opacityCount) * sizeof(float), "the gradient opacity"});
+  if (g.table)
+    out.push_back(
+        {g.table, std::size_t(g.width) * g.height * sizeof(TfEntry), "the 2-D transfer function"});
   return out;
 }
 
@@ -91,6 +97,8 @@ RayParams relocateFrame(const RayParams& params, const std::vector<const void*>&
     p.isoNodes = static_cast<const double*>(copies[next++]);
     p.isoBasis = static_cast<const double*>(copies[next++]);
   }
+  if (p.gradientTf.opacity) p.gradientTf.opacity = static_cast<const float*>(copies[next++]);
+  if (p.gradientTf.table) p.gradientTf.table = static_cast<const TfEntry*>(copies[next++]);
   return p;
 }
 

@@ -106,6 +106,12 @@ void applyBlendAndClipping(VtkMethod method, const RenderSettings& settings,
                            vtkAbstractVolumeMapper* mapper) {
   const std::string name = vtkMethodName(method);
   const bool fixedPoint = method == VtkMethod::FixedPoint;
+  // VTK's mappers scale the gradient their own way: the same function would not be the same
+  // classification, so the comparison is refused rather than made unfair.
+  if (settings.classifiesGradients())
+    throw Error(name +
+                ": gradient opacity and 2-D transfer functions are not compared with "
+                "VTK's mappers (they scale |grad f| their own way); render them with our methods");
   if (settings.blend != BlendMode::Composite &&
       !(fixedPoint &&
         (settings.blend == BlendMode::Maximum || settings.blend == BlendMode::Minimum)))

@@ -173,6 +173,33 @@ void applyTransferFunction(const RenderSettings& s, vtkVolumeProperty* property,
   property->SetScalarOpacity(opacity);
   property->SetInterpolationTypeToLinear();
   property->SetScalarOpacityUnitDistance(s.opacityUnitDistance);
+  // Gradient opacity and the 2-D table, as vtkMFAVolumeMapper reads them (|grad f| per world
+  // unit; the table placed by its origin and spacing).
+  property->SetTransferFunctionMode(vtkVolumeProperty::TF_1D);
+  property->SetDisableGradientOpacity(s.gradientOpacity.empty() ? 1 : 0);
+  if (!s.gradientOpacity.empty()) {
+    vtkNew<vtkPiecewiseFunction> gradient;
+    const std::vector<double> gx = separatedX(
+        s.gradientOpacity,
+        1e-6 * std::max(s.gradientOpacity.back().x - s.gradientOpacity.front().x, 1e-300));
+    for (size_t i = 0; i < gx.size(); ++i) gradient->AddPoint(gx[i], s.gradientOpacity[i].alpha);
+    property->SetGradientOpacity(gradient);
+  }
+  if (s.transferFunction2D) {
+    const TransferFunction2D& t = *s.transferFunction2D;
+    vtkNew<vtkImageData> image;
+    image->SetDimensions(t.width, t.height, 1);
+    image->SetOrigin(t.valueLo, t.gradientLo, 0.0);
+    image->SetSpacing((t.valueHi - t.valueLo) / (t.width - 1),
+                      (t.gradientHi - t.gradientLo) / (t.height - 1), 1.0);
+    vtkNew<vtkFloatArray> rgba;
+    rgba->SetNumberOfComponents(4);
+    rgba->SetNumberOfTuples(static_cast<vtkIdType>(t.width) * t.height);
+    std::copy(t.rgba.begin(), t.rgba.end(), rgba->GetPointer(0));
+    image->GetPointData()->SetScalars(rgba);
+    property->SetTransferFunction2D(image);
+    property->SetTransferFunctionMode(vtkVolumeProperty::TF_2D);
+  }
   property->SetShade(s.shade ? 1 : 0);
   property->SetAmbient(s.lighting.ambient);
   property->SetDiffuse(s.lighting.diffuse);

@@ -77,6 +77,47 @@ TEST(CliRender, BlendModesClippingCroppingAndDepth) {
   }
 }
 
+TEST(CliRender, GradientOpacityAndTwoDimensionalTransferFunctions) {
+  const auto dir = test::scratchDir();
+  const std::string base = "render builtin:marschner-lobb:12 --size 40x30 -q ";
+  const std::string boxes = (dir / "boxes.json").string();
+  {
+    std::ofstream f(boxes);
+    f << R"({"boxes": [{"value": [0.2, 0.9], "gradient": [0, 8], "color": [1, 0.5, 0],
+                        "opacity": 0.6}]})";
+  }
+  Image8 table;
+  table.width = 8;
+  table.height = 4;
+  table.channels = 4;
+  table.data.assign(8 * 4 * 4, 200);
+  const std::string tablePng = (dir / "table.png").string();
+  writePng(tablePng, table);
+  for (const std::string& args : std::vector<std::string>{
+           "--gradient-opacity 0:0,2:1", "--gradient-opacity 0:0,2:1 --shade --method trilinear",
+           "--tf2d " + boxes, "--tf2d " + boxes + " --shade --method tricubic",
+           "--tf2d " + tablePng + " --tf2d-range 0,10",
+           "--tf2d " + tablePng + " --tf2d-range 0,1,0,10"}) {
+    const std::string png = (dir / "x.png").string();
+    std::filesystem::remove(png);
+    const auto r = runMfadvr(base + args + " -o " + png);
+    ASSERT_EQ(r.status, 0) << args << ": " << r.err;
+    EXPECT_EQ(readPng(png).width, 40) << args;
+  }
+  const std::string png = (dir / "bad.png").string();
+  for (const std::string& bad : std::vector<std::string>{
+           "--gradient-opacity 1", "--gradient-opacity 1:2", "--gradient-opacity 2:1,1:1",
+           "--gradient-opacity -1:1", "--gradient-opacity 0:0,1:1 --blend max",
+           "--tf2d " + boxes + " --blend iso --iso 0.5", "--tf2d " + tablePng,
+           "--tf2d " + tablePng + " --tf2d-range 1,0", "--tf2d " + tablePng + " --tf2d-range 0,1,2",
+           "--tf2d-range 0,1", "--tf2d " + (dir / "missing.json").string(), "--tf2d " + png}) {
+    const auto r = runMfadvr(base + bad + " -o " + png);
+    EXPECT_NE(r.status, 0) << bad;
+    EXPECT_FALSE(r.err.empty()) << bad;
+    EXPECT_FALSE(std::filesystem::exists(png)) << bad;
+  }
+}
+
 TEST(CliRender, ImagesIndependentOfThreadsAndFloatOutput) {
   const auto dir = test::scratchDir();
   const std::string common =

@@ -7,7 +7,6 @@
 #include <cmath>
 
 #include "core/image/Image.h"
-#include "core/render/ModelKernelSwitch.h"
 #include "core/render/ModelRenderSetup.h"
 #include "core/render/RayCaster.h"
 #include "core/render/RenderSettings.h"
@@ -55,23 +54,9 @@ inline void varyFrame(RenderSettings& s, int variant, int oddWidth) {
 
 // The frame one ray at a time (integrateRay per pixel), with the sampler renderModelView would
 // use: what the renderer's faster paths (ray packets, the interleaved march) must reproduce.
-inline Image renderRayByRay(const RenderSettings& s, const ModelRenderSetup& setup,
-                            RenderStats& stats) {
-  Image image(s.width, s.height);
-  RayCounters counters;
-  const ModelView& view = setup.view();
-  modelKernelSwitch(view, s.shade, [&]<int P, bool Masked, bool Shade, bool Skip>() {
-    SplineRaySampler<P, Skip, Shade> sampler(view);
-    for (int y = 0; y < s.height; ++y)
-      for (int x = 0; x < s.width; ++x)
-        integrateRay<Masked, Shade>(setup.params(), sampler, x, y, image.pixel(x, y), counters);
-  });
-  stats.samples = counters.samples;
-  stats.skipped = counters.skipped;
-  stats.terminated = counters.terminated;
-  stats.raysHit = counters.hits;
-  return image;
-}
+// FrameAgreement.cpp: its instantiation of every loop is compiled once, not in every test
+// source that uses it.
+Image renderRayByRay(const RenderSettings& s, const ModelRenderSetup& setup, RenderStats& stats);
 
 // renderModelView's frame of `setup` against renderRayByRay's, image and counters; returns the
 // ray-by-ray counters.

@@ -127,6 +127,41 @@ TEST(DeviceArrays, RelocatedCopiesRenderTheCpuImage) {
   EXPECT_EQ(withRayEnds, 14);
 }
 
+// The gradient-opacity and 2-D tables travel with the frame.
+TransferFunction2D stripedTable() {
+  TransferFunction2D t;
+  t.width = 12;
+  t.height = 6;
+  t.valueLo = 0.0;
+  t.valueHi = 1.0;
+  t.gradientLo = 0.0;
+  t.gradientHi = 4.0;
+  for (int j = 0; j < t.height; ++j)
+    for (int i = 0; i < t.width; ++i)
+      t.rgba.insert(t.rgba.end(), {float(i) / (t.width - 1), 0.5f, float(j) / (t.height - 1),
+                                   j >= 2 && i >= 4 ? 0.7f : 0.0f});
+  return t;
+}
+
+TEST(DeviceArrays, GradientTablesTravelWithTheFrame) {
+  const Model& m = *models()[0];
+  for (int variant = 0; variant < 2; ++variant) {
+    RenderSettings s = settingsFor(m.domain().min, m.domain().max, transferFunctions()[0], true);
+    s.width = 40;
+    s.height = 32;
+    if (variant == 0) s.gradientOpacity = {{0.5, 0.0f}, {2.0, 1.0f}};
+    if (variant == 1) s.transferFunction2D = stripedTable();
+    const ModelField field(m);
+    const ModelRenderSetup setup(field, s);
+    const Copies frame(gpu::frameArrays(setup.params()));
+    const RayParams params = gpu::relocateFrame(setup.params(), frame.addresses);
+    EXPECT_TRUE(variant == 1 || frame.owns(params.gradientTf.opacity));
+    EXPECT_TRUE(variant == 0 || frame.owns(params.gradientTf.table));
+    const Image relocated = renderModelView(s, params, setup.view());
+    EXPECT_EQ(relocated.rgba, renderVolume(field, s).rgba) << "variant " << variant;
+  }
+}
+
 TEST(DeviceArrays, WrongNumberOfCopiesIsAnError) {
   const Model& m = mlModel(2);
   ModelView v;

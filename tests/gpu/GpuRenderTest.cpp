@@ -137,6 +137,27 @@ TEST_F(Gpu, ModelIsKeptBetweenFramesAndReplacedByAnother) {
   EXPECT_NE(a1.rgba, b1.rgba);
 }
 
+TEST_F(Gpu, GradientOpacityAndTwoDimensionalTransferFunctions) {
+  const Model& m = mlModel(3);
+  for (bool shade : {false, true}) {
+    RenderSettings s = settingsFor(m.domain().min, m.domain().max, transferFunctions()[0], shade);
+    s.gradientOpacity = {{0.5, 0.0f}, {2.0, 1.0f}};
+    compareModel(m, s, std::string("gradient opacity") + (shade ? ", shaded" : ""));
+    s.gradientOpacity.clear();
+    TransferFunction2D t;
+    t.width = 12;
+    t.height = 6;
+    t.valueHi = 1.0;
+    t.gradientHi = 4.0;
+    for (int j = 0; j < t.height; ++j)
+      for (int i = 0; i < t.width; ++i)
+        t.rgba.insert(t.rgba.end(), {float(i) / (t.width - 1), 0.5f, float(j) / (t.height - 1),
+                                     j >= 2 && i >= 4 ? 0.7f : 0.0f});
+    s.transferFunction2D = t;
+    compareModel(m, s, std::string("2-D transfer function") + (shade ? ", shaded" : ""));
+  }
+}
+
 TEST_F(Gpu, TrilinearMatchesTheCpu) {
   const GridField<TrilinearFilter> field(mlGrid());
   for (bool shade : {false, true}) {

@@ -9,7 +9,11 @@
 #include <vtkCommand.h>
 #include <vtkContourValues.h>
 #include <vtkDataSetTriangleFilter.h>
+#include <vtkFloatArray.h>
+#include <vtkImageData.h>
+#include <vtkPiecewiseFunction.h>
 #include <vtkPlane.h>
+#include <vtkPointData.h>
 #include <vtkPolyDataMapper.h>
 #include <vtkProperty.h>
 #include <vtkSphereSource.h>
@@ -122,6 +126,43 @@ TEST(VolumeMapper, HonoursBlendModesClippingAndCropping) {
          v.mapper->SetCroppingRegionPlanes(-0.8, 0.6, -1.0, 0.4, -0.5, 1.0);
          v.mapper->SetCroppingRegionFlagsToSubVolume();
          s.crop = DomainBox{Vec3d(-0.8, -1.0, -0.5), Vec3d(0.6, 0.4, 1.0)};
+       }},
+      {"gradient opacity",
+       [](VtkVolumeScene& v, RenderSettings& s) {
+         vtkNew<vtkPiecewiseFunction> g;
+         g->AddPoint(1.5, 0.0);
+         g->AddPoint(3.0, 1.0);
+         v.property->SetGradientOpacity(g);
+         s.gradientOpacity = {{1.5, 0.0f}, {3.0, 1.0f}};
+       }},
+      {"2-D transfer function",
+       [](VtkVolumeScene& v, RenderSettings& s) {
+         // Opaque orange at high |grad f| and values above 0.4, faint blue elsewhere.
+         TransferFunction2D t;
+         t.width = 16;
+         t.height = 8;
+         t.valueLo = 0.0;
+         t.valueHi = 1.0;
+         t.gradientLo = 0.0;
+         t.gradientHi = 4.0;
+         vtkNew<vtkImageData> image;
+         image->SetDimensions(t.width, t.height, 1);
+         image->SetSpacing(1.0 / (t.width - 1), 4.0 / (t.height - 1), 1.0);
+         vtkNew<vtkFloatArray> rgba;
+         rgba->SetNumberOfComponents(4);
+         rgba->SetNumberOfTuples(t.width * t.height);
+         for (int j = 0; j < t.height; ++j)
+           for (int i = 0; i < t.width; ++i) {
+             const bool edge = j >= 3 && i >= 6;
+             const float e[4] = {edge ? 1.0f : 0.2f, edge ? 0.6f : 0.4f, edge ? 0.1f : 1.0f,
+                                 edge ? 0.8f : 0.02f};
+             rgba->SetTypedTuple(j * t.width + i, e);
+             t.rgba.insert(t.rgba.end(), e, e + 4);
+           }
+         image->GetPointData()->SetScalars(rgba);
+         v.property->SetTransferFunction2D(image);
+         v.property->SetTransferFunctionMode(vtkVolumeProperty::TF_2D);
+         s.transferFunction2D = t;
        }},
   };
   for (const Case& c : cases) {

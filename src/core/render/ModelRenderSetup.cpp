@@ -18,10 +18,9 @@ const RenderSettings& validated(const RenderSettings& s) {
 }  // namespace
 
 ModelRenderSetup::ModelRenderSetup(const ModelField& field, const RenderSettings& settings)
-    : table_(validated(settings).transferFunction,
-             OpacityCorrection(settings.sampleDistance / settings.opacityUnitDistance)) {
+    : tables_(validated(settings)) {
   const Model& model = field.model();
-  params_ = compileRayParams(settings, table_, model.domain().min, model.domain().max);
+  params_ = compileRayParams(settings, tables_, model.domain().min, model.domain().max);
   view_.spline = model.spline().view();
   const Vec3d extent = model.domain().extent();
   for (int a = 0; a < 3; ++a) {
@@ -46,11 +45,11 @@ ModelRenderSetup::ModelRenderSetup(const ModelField& field, const RenderSettings
     if (flags_->emptyCells > 0) flags_->attachTo(view_);
   } else if (settings.skipEmptySpace && settings.blend == BlendMode::Composite) {
     if (EmptySpaceCache* cache = field.emptySpaceCache()) {
-      flags_ = cache->flags(model.spline(), table_);
+      flags_ = cache->flags(model.spline(), tables_.table());
     } else {
       const std::shared_ptr<const SpanRanges> ranges = model.spline().spanRanges();
-      flags_ = std::make_shared<const EmptySpaceFlags>(
-          buildEmptySpaceFlags(view_.spline, *ranges, table_, bezierRangesPayOff(model, settings)));
+      flags_ = std::make_shared<const EmptySpaceFlags>(buildEmptySpaceFlags(
+          view_.spline, *ranges, tables_.table(), bezierRangesPayOff(model, settings)));
     }
     // Nothing to skip: the loop without the per-sample test.
     if (flags_->emptyCells > 0) flags_->attachTo(view_);

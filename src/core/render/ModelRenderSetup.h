@@ -8,6 +8,7 @@
 #include <memory>
 
 #include "core/field/ModelField.h"
+#include "core/render/ClassificationTables.h"
 #include "core/render/EmptySpaceGrid.h"
 #include "core/render/RenderSettings.h"
 #include "core/render/TransferFunctionTable.h"
@@ -38,7 +39,7 @@ class ModelRenderSetup {
   double setupSeconds() const { return setupSeconds_; }
 
  private:
-  TransferFunctionTable table_;
+  ClassificationTables tables_;
   RayParams params_;
   ModelView view_;
   std::shared_ptr<const EmptySpaceFlags> flags_;

@@ -33,11 +33,12 @@ Image renderModelView(const RenderSettings& settings, const RayParams& params,
   }
   const double boundsSeconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  modelKernelSwitch(view, settings.shade, [&]<int P, bool Masked, bool Shade, bool Skip>() {
-    castRays<Masked, Shade>(
-        settings, frame, [&] { return SplineRaySampler<P, Skip, Shade>(view); }, image, stats,
-        depth ? depth->view() : DepthBoundsView{});
-  });
+  modelKernelSwitch(view, settings.needsGradients(),
+                    [&]<int P, bool Masked, bool Shade, bool Skip>() {
+                      castRays<Masked, Shade>(
+                          settings, frame, [&] { return SplineRaySampler<P, Skip, Shade>(view); },
+                          image, stats, depth ? depth->view() : DepthBoundsView{});
+                    });
   if (stats) stats->seconds += boundsSeconds;
   return image;
 }

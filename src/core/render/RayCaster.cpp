@@ -36,6 +36,7 @@ RayParams compileRayParams(const RenderSettings& s, const TransferFunctionTable&
   p.rayEnd = s.rayEnd.empty() ? nullptr : s.rayEnd.data();
   p.tf = table.view();
   if (s.shade) p.shading = makeShadingParams(s.lighting, s.camera.directionOfProjection());
+  p.shadeSamples = s.shade;
   p.blend = s.blend;
   // v' = (v - lo) / (hi - lo) over the table's span (its entries' index is (v - lo) * scale).
   p.valueLo = p.tf.lo;
@@ -65,6 +66,13 @@ RayParams compileRayParams(const RenderSettings& s, const TransferFunctionTable&
     for (int a = 0; a < 3; ++a) p.clipPlane[i][a] = n[a];
     p.clipPlane[i][3] = -n.dot(c.point);
   }
+  return p;
+}
+
+RayParams compileRayParams(const RenderSettings& s, const ClassificationTables& tables,
+                           const Vec3d& boxMin, const Vec3d& boxMax) {
+  RayParams p = compileRayParams(s, tables.table(), boxMin, boxMax);
+  p.gradientTf = tables.gradientView();
   return p;
 }
 

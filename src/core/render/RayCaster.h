@@ -23,6 +23,7 @@
 #include "core/field/Field.h"
 #include "core/field/ModelField.h"
 #include "core/image/Image.h"
+#include "core/render/ClassificationTables.h"
 #include "core/render/FieldRaySampler.h"
 #include "core/render/RenderSettings.h"
 #include "core/render/TransferFunctionTable.h"
@@ -36,6 +37,10 @@ namespace mfadvr {
 
 // The plain parameters of one render; `table` and `settings.rayEnd` must outlive the result.
 RayParams compileRayParams(const RenderSettings& settings, const TransferFunctionTable& table,
+                           const Vec3d& boxMin, const Vec3d& boxMax);
+
+// The same with the gradient classification of `tables` (which must outlive the result).
+RayParams compileRayParams(const RenderSettings& settings, const ClassificationTables& tables,
                            const Vec3d& boxMin, const Vec3d& boxMax);
 
 // With settings.depth: image.depth filled with NaN and params.depth pointed at it.
@@ -53,9 +58,10 @@ template <bool Masked, bool Shade, class MakeSampler>
 void castRays(const RenderSettings& settings, const RayParams& params, const MakeSampler& make,
               Image& image, RenderStats* stats, DepthBoundsView depth = {}) {
   // Packets and the march ahead serve composite renders (the other blend modes sample every
-  // step); packets keep no depth.
+  // step); packets keep no depth and classify by the value alone.
   const bool composite = params.blend == BlendMode::Composite;
-  const bool packets = composite && !params.depth;
+  [[maybe_unused]] const bool packets =
+      composite && !params.depth && !params.gradientTf.active() && (!Shade || params.shadeSamples);
   forEachTile(
       settings,
       [&](int x0, int y0, int x1, int y1, RayCounters& counters) {
@@ -122,10 +128,8 @@ Image renderVolume(const F& field, const RenderSettings& settings, RenderStats* 
     return renderModel(field, settings, stats);
   } else {
     settings.validate();
-    const TransferFunctionTable table(
-        settings.transferFunction,
-        OpacityCorrection(settings.sampleDistance / settings.opacityUnitDistance));
-    RayParams params = compileRayParams(settings, table, field.boxMin(), field.boxMax());
+    const ClassificationTables tables(settings);
+    RayParams params = compileRayParams(settings, tables, field.boxMin(), field.boxMax());
     Image image(settings.width, settings.height);
     keepDepth(settings, image, params);
     using S = decltype(field.sampler());
@@ -136,12 +140,12 @@ Image renderVolume(const F& field, const RenderSettings& settings, RenderStats* 
           stats);
     };
     if (masked) {
-      if (settings.shade)
+      if (settings.needsGradients())
         run.template operator()<FieldRaySampler<S, true>::kHasInside, true>();
       else
         run.template operator()<FieldRaySampler<S, false>::kHasInside, false>();
     } else {
-      if (settings.shade)
+      if (settings.needsGradients())
         run.template operator()<false, true>();
       else
         run.template operator()<false, false>();

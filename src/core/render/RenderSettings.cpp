@@ -58,6 +58,20 @@ void RenderSettings::validate() const {
     if (i.opacity && !(*i.opacity >= 0.0f && *i.opacity <= 1.0f))
       throw Error("isosurface opacities must lie in [0, 1]");
   }
+  for (size_t i = 0; i < gradientOpacity.size(); ++i) {
+    const OpacityPoint& p = gradientOpacity[i];
+    if (!(std::isfinite(p.x) && p.x >= 0.0))
+      throw Error("gradient opacity: |grad f| points must be finite and >= 0");
+    if (i > 0 && p.x < gradientOpacity[i - 1].x)
+      throw Error("gradient opacity: the |grad f| points must be sorted");
+    if (!(p.alpha >= 0.0f && p.alpha <= 1.0f))
+      throw Error("gradient opacity: opacities must lie in [0, 1]");
+  }
+  if (transferFunction2D) transferFunction2D->validate();
+  if (classifiesGradients() && blend != BlendMode::Composite)
+    throw Error(std::string("gradient opacity and 2-D transfer functions apply to the composite "
+                            "blend, not ") +
+                blendModeName(blend));
   if (threads < 0) throw Error("thread count must be >= 0 (0: all cores)");
   if (shade) lighting.validate();
 }

@@ -11,6 +11,7 @@
 #include "core/render/Camera.h"
 #include "core/render/Lighting.h"
 #include "core/render/TransferFunction.h"
+#include "core/render/TransferFunction2D.h"
 #include "core/render/kernel/CameraRays.h"
 #include "core/render/kernel/RayParams.h"  // kMaxClipPlanes
 
@@ -46,6 +47,18 @@ struct RenderSettings {
   TransferFunction transferFunction;
   // Opacities are per this many world units (VTK's ScalarOpacityUnitDistance); must be > 0.
   double opacityUnitDistance = 1.0;
+  // Gradient opacity (vtkVolumeProperty::SetGradientOpacity): each sample's step opacity times
+  // this piecewise-linear function of |grad f| (x: data units per world unit, sorted; opacity in
+  // [0, 1]; clamped to its end values). Empty: none. Composite blend only.
+  std::vector<OpacityPoint> gradientOpacity;
+  // A 2-D transfer function over (value, |grad f|) that replaces transferFunction's colour and
+  // opacity (vtkVolumeProperty::SetTransferFunction2D). Composite blend only.
+  std::optional<TransferFunction2D> transferFunction2D;
+  // Whether samples are classified by their gradient as well (either of the two above): the
+  // renderers then evaluate the gradient of every visible sample, shaded or not.
+  bool classifiesGradients() const { return !gradientOpacity.empty() || transferFunction2D; }
+  // Whether the ray loop needs gradients at all: shading or classification.
+  bool needsGradients() const { return shade || classifiesGradients(); }
   bool shade = false;
   Lighting lighting;
   // Distance between samples along a ray, world units; must be > 0.

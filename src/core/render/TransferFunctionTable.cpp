@@ -1,6 +1,7 @@
 #include "core/render/TransferFunctionTable.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "core/util/Error.h"
 
@@ -23,6 +24,38 @@ TransferFunctionTable::TransferFunctionTable(const TransferFunction& tf,
     const float alpha = tf.opacityAt(x);
     entries_[i] = {rgb[0], rgb[1], rgb[2], alpha, correction.full(alpha), {}};
   }
+  countVisible();
+}
+
+TransferFunctionTable::TransferFunctionTable(const TransferFunction2D& tf,
+                                             const OpacityCorrection& correction)
+    : entries_(kEntries) {
+  tf.validate();
+  const double lo = tf.valueLo, hi = tf.valueHi;
+  lo_ = static_cast<float>(lo);
+  scale_ = static_cast<float>((kEntries - 1) / (hi - lo));
+  // Each 2-D column's greatest opacity over the gradient axis.
+  std::vector<float> column(tf.width, 0.0f);
+  for (int j = 0; j < tf.height; ++j)
+    for (int i = 0; i < tf.width; ++i) column[i] = std::max(column[i], tf.entry(i, j)[3]);
+  const double columns = (tf.width - 1) / (hi - lo);  // 2-D column index per value
+  for (int k = 0; k < kEntries; ++k) {
+    // Values in [x(k-1), x(k+1)] interpolate from entry k; they read 2-D columns
+    // floor(u) .. floor(u) + 1 for u over that span (one more each side for rounding).
+    const double x0 = lo + (hi - lo) * (k - 1) / double(kEntries - 1);
+    const double x1 = lo + (hi - lo) * (k + 1) / double(kEntries - 1);
+    const int c0 =
+        std::clamp(static_cast<int>(std::floor((x0 - lo) * columns)) - 1, 0, tf.width - 1);
+    const int c1 =
+        std::clamp(static_cast<int>(std::floor((x1 - lo) * columns)) + 2, 0, tf.width - 1);
+    float alpha = 0.0f;
+    for (int c = c0; c <= c1; ++c) alpha = std::max(alpha, column[c]);
+    entries_[k] = {1.0f, 1.0f, 1.0f, alpha, correction.full(alpha), {}};
+  }
+  countVisible();
+}
+
+void TransferFunctionTable::countVisible() {
   visibleBefore_.assign(kEntries + 1, 0);
   for (int i = 0; i < kEntries; ++i)
     visibleBefore_[i + 1] = visibleBefore_[i] + (entries_[i].alpha != 0.0f ? 1 : 0);

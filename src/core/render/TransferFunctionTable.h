@@ -13,6 +13,7 @@
 
 #include "core/render/OpacityCorrection.h"
 #include "core/render/TransferFunction.h"
+#include "core/render/TransferFunction2D.h"
 #include "core/render/kernel/TransferFunctionView.h"
 
 namespace mfadvr {
@@ -29,6 +30,12 @@ class TransferFunctionTable {
 
   // tf must be resolved to data values.
   TransferFunctionTable(const TransferFunction& tf, const OpacityCorrection& correction);
+
+  // The envelope of a 2-D transfer function over its gradient axis, on its value axis: each
+  // entry's opacity is the greatest of the 2-D table's columns that values interpolating from
+  // the entry read, so a value this table makes transparent is transparent at every |grad f|
+  // (the 2-D table is then the one that classifies; GradientTransferView.h). Colours: white.
+  TransferFunctionTable(const TransferFunction2D& tf, const OpacityCorrection& correction);
 
   // The plain view the ray integration reads; valid while this table lives.
   TransferFunctionView view() const { return {entries_.data(), kEntries, lo_, scale_}; }
@@ -67,6 +74,8 @@ class TransferFunctionTable {
     last = std::min(i1 + 1, kEntries - 1);
     return true;
   }
+
+  void countVisible();
 
   float lo_ = 0.0f, scale_ = 0.0f;
   std::vector<TfEntry> entries_;

@@ -2,11 +2,14 @@
 
 #include "vtkCamera.h"
 #include "vtkColorTransferFunction.h"
+#include "vtkDataArray.h"
+#include "vtkImageData.h"
 #include "vtkLight.h"
 #include "vtkLightCollection.h"
 #include "vtkMatrix4x4.h"
 #include "vtkNew.h"
 #include "vtkPiecewiseFunction.h"
+#include "vtkPointData.h"
 #include "vtkRenderer.h"
 #include "vtkVolumeProperty.h"
 
@@ -192,15 +195,58 @@ TransferFunction transferFunctionFromVtk(vtkVolumeProperty* property,
   tf.opacity = opacityPoints(property->GetScalarOpacity(0));
   if (tf.color.empty()) tf.color.push_back({0.0, Vec3f(1, 1, 1)});
   if (tf.opacity.empty()) tf.opacity.push_back({0.0, 1.0f});
-  if (!property->GetDisableGradientOpacity(0)) {
-    vtkPiecewiseFunction* g = property->GetGradientOpacity(0);
-    bool constantOne = true;
-    for (int i = 0; i < g->GetSize(); ++i) {
-      double node[4];
-      g->GetNodeValue(i, node);
-      constantOne = constantOne && node[1] == 1.0;
-    }
-    if (!constantOne) notes.push_back("gradient opacity is not supported and is ignored");
+  return tf;
+}
+
+std::vector<OpacityPoint> gradientOpacityFromVtk(vtkVolumeProperty* property,
+                                                 const WorldToModel& toModel) {
+  if (property->GetTransferFunctionMode() != vtkVolumeProperty::TF_1D ||
+      !property->HasGradientOpacity(0) || property->GetDisableGradientOpacity(0))
+    return {};
+  std::vector<OpacityPoint> points = opacityPoints(property->GetGradientOpacity(0));
+  bool constantOne = true;
+  for (OpacityPoint& p : points) {
+    constantOne = constantOne && p.alpha == 1.0f;
+    // |grad f| per world unit -> per model unit (model lengths are world lengths x scale).
+    p.x = std::max(0.0, p.x / toModel.scale);
+  }
+  if (constantOne) return {};
+  return points;
+}
+
+std::optional<TransferFunction2D> transferFunction2DFromVtk(vtkVolumeProperty* property,
+                                                            const WorldToModel& toModel,
+                                                            std::vector<std::string>& notes) {
+  if (property->GetTransferFunctionMode() != vtkVolumeProperty::TF_2D) return std::nullopt;
+  vtkImageData* image = property->GetTransferFunction2D(0);
+  vtkDataArray* rgba = image ? image->GetPointData()->GetScalars() : nullptr;
+  int dims[3] = {0, 0, 0};
+  if (image) image->GetDimensions(dims);
+  if (!rgba || rgba->GetNumberOfComponents() != 4 || dims[0] < 2 || dims[1] < 2 || dims[2] != 1) {
+    notes.push_back(
+        "the 2-D transfer function needs an image of at least 2 x 2 points with 4 components "
+        "(RGBA); rendering with the 1-D transfer function");
+    return std::nullopt;
+  }
+  TransferFunction2D tf;
+  tf.width = dims[0];
+  tf.height = dims[1];
+  tf.rgba.resize(static_cast<size_t>(tf.width) * tf.height * 4);
+  for (vtkIdType i = 0; i < static_cast<vtkIdType>(tf.width) * tf.height; ++i)
+    for (int c = 0; c < 4; ++c)
+      tf.rgba[i * 4 + c] = static_cast<float>(std::clamp(rgba->GetComponent(i, c), 0.0, 1.0));
+  // The image's origin and spacing place it: x in data values, y in |grad f| per world unit.
+  const double* origin = image->GetOrigin();
+  const double* spacing = image->GetSpacing();
+  tf.valueLo = origin[0];
+  tf.valueHi = origin[0] + spacing[0] * (tf.width - 1);
+  tf.gradientLo = std::max(0.0, origin[1]) / toModel.scale;
+  tf.gradientHi = (origin[1] + spacing[1] * (tf.height - 1)) / toModel.scale;
+  try {
+    tf.validate();
+  } catch (const std::exception& e) {
+    notes.push_back(std::string(e.what()) + "; rendering with the 1-D transfer function");
+    return std::nullopt;
   }
   return tf;
 }

@@ -2,12 +2,14 @@
 // What a VTK scene says about a volume, in the core renderer's terms: the camera, the transfer
 // function and the lights of a renderer and a vtkVolumeProperty, expressed in the volume's own
 // (model) coordinates. Used by vtkMFAVolumeMapper; private to the module.
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "core/render/Camera.h"
 #include "core/render/Lighting.h"
 #include "core/render/TransferFunction.h"
+#include "core/render/TransferFunction2D.h"
 #include "core/render/kernel/CameraRays.h"
 
 class vtkCamera;
@@ -47,6 +49,18 @@ CameraRays raysFromVtk(vtkRenderer* renderer, const WorldToModel& toModel, int w
 // over its node range. `notes` receives what cannot be honoured (for a warning).
 TransferFunction transferFunctionFromVtk(vtkVolumeProperty* property,
                                          std::vector<std::string>& notes);
+
+// The property's gradient opacity (component 0, 1-D mode, not disabled) with |grad f| in model
+// units; empty when there is none or it is 1 everywhere.
+std::vector<OpacityPoint> gradientOpacityFromVtk(vtkVolumeProperty* property,
+                                                 const WorldToModel& toModel);
+
+// The property's 2-D transfer function (TF_2D mode): an image of RGBA points placed by its origin
+// and spacing, x in data values and y in |grad f| per world unit. None in 1-D mode, or (with a
+// note) when the image is not such a table.
+std::optional<TransferFunction2D> transferFunction2DFromVtk(vtkVolumeProperty* property,
+                                                            const WorldToModel& toModel,
+                                                            std::vector<std::string>& notes);
 
 // The renderer's switched-on lights as directional lights in model coordinates, with the
 // property's coefficients; positional lights shine from their position towards their focal

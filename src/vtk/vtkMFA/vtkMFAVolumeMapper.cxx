@@ -398,6 +398,12 @@ void vtkMFAVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol) {
     s.rays = mfadvr::vtkglue::raysFromVtk(ren, toModel, rw, rh);
     s.transferFunction = mfadvr::vtkglue::transferFunctionFromVtk(property, notes);
     s.opacityUnitDistance = property->GetScalarOpacityUnitDistance(0) * toModel.scale;
+    // Gradient opacity and 2-D transfer functions classify composite renders only, as in
+    // VTK's GPU mapper.
+    if (this->BlendMode == vtkVolumeMapper::COMPOSITE_BLEND) {
+      s.gradientOpacity = mfadvr::vtkglue::gradientOpacityFromVtk(property, toModel);
+      s.transferFunction2D = mfadvr::vtkglue::transferFunction2DFromVtk(property, toModel, notes);
+    }
     s.sampleDistance = this->SampleDistance > 0.0 ? this->SampleDistance * toModel.scale
                                                   : 0.5 * model->dataSpacing().minCoeff();
     s.earlyTerminationOpacity = this->EarlyRayTerminationOpacity;

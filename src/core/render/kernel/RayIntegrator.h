@@ -35,9 +35,13 @@
 // are those of one sample at a time. Skipped samples are exactly those that would have been
 // transparent, so the image is the same with and without skipping.
 //
+// With rp.gradientTf active (a loop with gradients, Shade = true), a visible sample is
+// classified again from its gradient (GradientTransferView.h): gradient opacity, 2-D transfer
+// functions; rp.shadeSamples then says whether its colour is also shaded.
+//
 // This is the composite blend; the other blend modes reduce the same samples (RayReduction.h)
-// or walk the ray for isosurfaces (IsoSurfaceWalk.h), chosen per ray from rp.blend. With rp.depth, each ray records where its opacity first
-// reaches 0.5 (the midpoint of that sample's step).
+// or walk the ray for isosurfaces (IsoSurfaceWalk.h), chosen per ray from rp.blend. With rp.depth,
+// each ray records where its opacity first reaches 0.5 (the midpoint of that sample's step).
 #include "core/render/kernel/IsoSurfaceWalk.h"
 #include "core/render/kernel/RayReduction.h"
 #include "core/render/kernel/RaySteps.h"
@@ -53,10 +57,15 @@ MFADVR_HD MFADVR_INLINE void integrateSegment(const RayParams& rp, Sampler& samp
   float red = 0.0f, green = 0.0f, blue = 0.0f, alpha = 0.0f;
   if (segment && rp.blend != BlendMode::Composite) {
     ++counters.hits;
-    if (rp.blend == BlendMode::Iso)
+    if (rp.blend == BlendMode::Iso) {
       isoSegment<Masked, Shade>(rp, sampler, *segment, out, counters);
-    else
+    } else if constexpr (!Sampler::kSkipsEmptySpace) {
       reduceSegment<Masked>(rp, sampler, *segment, out, counters);
+    } else {
+      // Not reached: only composite and iso renders skip (ModelRenderSetup), and leaving the
+      // reduction out of the skipping loops keeps their compilation shorter.
+      overBackground(rp, 0.0f, 0.0f, 0.0f, 0.0f, out);
+    }
     return;
   }
   float depth = NAN;  // where alpha first reaches 0.5 (rp.depth)
@@ -75,7 +84,7 @@ MFADVR_HD MFADVR_INLINE void integrateSegment(const RayParams& rp, Sampler& samp
     RayShading rayShading;
     if constexpr (Shade) {
       const float df[3] = {float(d[0]), float(d[1]), float(d[2])};
-      if (samples) prepareRayShading(rp.shading, df, rayShading);
+      if (samples && rp.shadeSamples) prepareRayShading(rp.shading, df, rayShading);
     }
 #if MFADVR_EMPTY_SPACE_PROFILE
     const std::int64_t rayStart = cycleCount();
@@ -86,11 +95,13 @@ MFADVR_HD MFADVR_INLINE void integrateSegment(const RayParams& rp, Sampler& samp
     std::int64_t carried = start.skipped;  // passed over before step k
     bool done = false, terminated = false;
     while (!done && k < steps) {
-      double lengths[K], mids[K];
+      // Zeroed although only lanes < n are read: GCC 12 otherwise warns that they may be read
+      // uninitialized (it cannot follow n through the loops); the stores cost nothing measurable.
+      double lengths[K] = {}, mids[K] = {};
       // Samples skipped before each lane, counted as the lanes are used (and those after the
       // last lane unless the ray stops first), so that the counters do not depend on the batch
       // size.
-      std::int64_t skippedBefore[K];
+      std::int64_t skippedBefore[K] = {};
       std::int64_t skipped = carried;
       carried = 0;
       int n = 0;
@@ -129,7 +140,7 @@ MFADVR_HD MFADVR_INLINE void integrateSegment(const RayParams& rp, Sampler& samp
         skipped = 0;
         ++n;
       }
-      float values[K];
+      float values[K] = {};
 #if MFADVR_EMPTY_SPACE_PROFILE
       const std::int64_t evaluateStart = cycleCount();
       counters.cycles.marching += evaluateStart - marchStart;
@@ -143,24 +154,39 @@ MFADVR_HD MFADVR_INLINE void integrateSegment(const RayParams& rp, Sampler& samp
       for (int i = 0; i < n && !stopped; ++i) {
         counters.skipped += skippedBefore[i];
         ++counters.samples;
-        const TfEntry tf = rp.tf.classify(values[i]);
+        TfEntry tf = rp.tf.classify(values[i]);
         if (!(tf.alpha > 0.0f)) {
 #if MFADVR_EMPTY_SPACE_PROFILE
           ++transparent;
 #endif
           continue;
         }
-        const double length = lengths[i];
-        const float a = length == dt
-                            ? tf.alphaStep
-                            : correctOpacity(tf.alpha, rp.correctionExponent * length / dt);
+        float factor = 1.0f;  // the gradient opacity
         float c[3] = {tf.r, tf.g, tf.b};
         if constexpr (Shade) {
-          const float unshaded[3] = {tf.r, tf.g, tf.b};
-          float g[3];
-          sampler.gradient(i, g);
-          shadeSample(rp.shading, rayShading, unshaded, g, c);
+          if (rp.gradientTf.active() || rp.shadeSamples) {
+            float g[3];
+            sampler.gradient(i, g);
+            // Classification by |grad f| too: the 1-D table (for a 2-D function its envelope)
+            // only said the sample may be visible.
+            if (rp.gradientTf.active()) {
+              rp.gradientTf.apply(values[i], g, tf, factor);
+              if (!(tf.alpha * factor > 0.0f)) continue;
+              c[0] = tf.r;
+              c[1] = tf.g;
+              c[2] = tf.b;
+            }
+            if (rp.shadeSamples) {
+              const float unshaded[3] = {c[0], c[1], c[2]};
+              shadeSample(rp.shading, rayShading, unshaded, g, c);
+            }
+          }
         }
+        const double length = lengths[i];
+        const float a =
+            (length == dt ? tf.alphaStep
+                          : correctOpacity(tf.alpha, rp.correctionExponent * length / dt)) *
+            factor;
         const bool below = alpha < 0.5f;
         compositeSample(red, green, blue, alpha, a, c);
         if (below && alpha >= 0.5f) depth = static_cast<float>(mids[i]);

@@ -8,6 +8,7 @@
 #include "core/render/BlendMode.h"
 #include "core/render/kernel/CameraRays.h"
 #include "core/render/kernel/EmptySpaceProfile.h"
+#include "core/render/kernel/GradientTransferView.h"
 #include "core/render/kernel/ShadingKernel.h"
 #include "core/render/kernel/TransferFunctionView.h"
 
@@ -31,6 +32,11 @@ struct RayParams {
   const float* rayEnd = nullptr;  // width * height distances along the rays, or null
   TransferFunctionView tf;
   ShadingParams shading;  // filled for shaded renders (integrateRay<..., Shade = true>)
+  // Loops with gradients (Shade = true) shade the samples' colours unless this is false: a
+  // render that classifies by the gradient without shading (gradientTf).
+  bool shadeSamples = true;
+  // Gradient opacity and 2-D transfer functions (composite blend); inactive: none.
+  GradientTransferView gradientTf;
   BlendMode blend = BlendMode::Composite;
   // Average and additive blends: v' = (v - valueLo) * valueScale, the value normalized over the
   // transfer function's range; average: values in [averageLo, averageHi] count.
