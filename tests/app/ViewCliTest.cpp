@@ -4,6 +4,8 @@
 // comparing it with `render` checks the whole chain: options -> VTK scene -> mapper -> pixels.
 #include <gtest/gtest.h>
 
+#include <fstream>
+
 #include "TestSupport.h"
 #include "app/CliRunner.h"
 #include "core/image/ImageMetrics.h"
@@ -33,14 +35,18 @@ TEST(CliView, ScreenshotMatchesRenderForEveryMethod) {
   }
 }
 
-// The blend, isovalue, clipping and cropping options reach the viewer's mapper: its frame is
-// render's.
+// The blend, isovalue, clipping, cropping and gradient-classification options reach the viewer's
+// mapper: its frame is render's.
 TEST(CliView, ScreenshotMatchesRenderForBlendModesAndClipping) {
   const auto dir = test::scratchDir();
   const std::string scene = " --size 96x80 --azimuth 30 --elevation 20 -q";
-  for (const char* options :
-       {" --blend max", " --blend iso --iso 0.5 --shade", " --clip-plane 0,0,0,1,0.2,0",
-        " --crop -1,0.5,-1,1,-0.5,1 --blend additive"}) {
+  const std::string boxes = (dir / "boxes.json").string();
+  std::ofstream(boxes) << R"({"boxes": [{"value": [0.3, 0.8], "gradient": [1, 9], "opacity": 0.7,
+                                          "color": [1, 0.6, 0.2]}]})";
+  for (const std::string& options : std::vector<std::string>{
+           " --blend max", " --blend iso --iso 0.5 --shade", " --clip-plane 0,0,0,1,0.2,0",
+           " --crop -1,0.5,-1,1,-0.5,1 --blend additive", " --gradient-opacity 0:0,3:1 --shade",
+           " --tf2d " + boxes}) {
     const std::string view = (dir / "view.png").string(), render = (dir / "render.png").string();
     const auto v =
         runMfadvr("view builtin:marschner-lobb:33 --screenshot " + view + options + scene);
