@@ -128,21 +128,6 @@ TEST(DeviceArrays, RelocatedCopiesRenderTheCpuImage) {
 }
 
 // The gradient-opacity and 2-D tables travel with the frame.
-TransferFunction2D stripedTable() {
-  TransferFunction2D t;
-  t.width = 12;
-  t.height = 6;
-  t.valueLo = 0.0;
-  t.valueHi = 1.0;
-  t.gradientLo = 0.0;
-  t.gradientHi = 4.0;
-  for (int j = 0; j < t.height; ++j)
-    for (int i = 0; i < t.width; ++i)
-      t.rgba.insert(t.rgba.end(), {float(i) / (t.width - 1), 0.5f, float(j) / (t.height - 1),
-                                   j >= 2 && i >= 4 ? 0.7f : 0.0f});
-  return t;
-}
-
 TEST(DeviceArrays, GradientTablesTravelWithTheFrame) {
   const Model& m = *models()[0];
   for (int variant = 0; variant < 2; ++variant) {
@@ -150,7 +135,7 @@ TEST(DeviceArrays, GradientTablesTravelWithTheFrame) {
     s.width = 40;
     s.height = 32;
     if (variant == 0) s.gradientOpacity = {{0.5, 0.0f}, {2.0, 1.0f}};
-    if (variant == 1) s.transferFunction2D = stripedTable();
+    if (variant == 1) s.transferFunction2D = stripedTransferFunction2D();
     const ModelField field(m);
     const ModelRenderSetup setup(field, s);
     const Copies frame(gpu::frameArrays(setup.params()));

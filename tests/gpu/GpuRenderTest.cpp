@@ -144,16 +144,7 @@ TEST_F(Gpu, GradientOpacityAndTwoDimensionalTransferFunctions) {
     s.gradientOpacity = {{0.5, 0.0f}, {2.0, 1.0f}};
     compareModel(m, s, std::string("gradient opacity") + (shade ? ", shaded" : ""));
     s.gradientOpacity.clear();
-    TransferFunction2D t;
-    t.width = 12;
-    t.height = 6;
-    t.valueHi = 1.0;
-    t.gradientHi = 4.0;
-    for (int j = 0; j < t.height; ++j)
-      for (int i = 0; i < t.width; ++i)
-        t.rgba.insert(t.rgba.end(), {float(i) / (t.width - 1), 0.5f, float(j) / (t.height - 1),
-                                     j >= 2 && i >= 4 ? 0.7f : 0.0f});
-    s.transferFunction2D = t;
+    s.transferFunction2D = stripedTransferFunction2D();
     compareModel(m, s, std::string("2-D transfer function") + (shade ? ", shaded" : ""));
   }
 }

@@ -72,6 +72,21 @@ inline std::vector<TransferFunction> transferFunctions() {
   };
 }
 
+// A 2-D transfer function over values [0, 1] and |grad f| in [0, 4]: colour ramps along both
+// axes, opaque only at higher values and gradients (the gradient tests of both devices).
+inline TransferFunction2D stripedTransferFunction2D() {
+  TransferFunction2D t;
+  t.width = 12;
+  t.height = 6;
+  t.valueHi = 1.0;
+  t.gradientHi = 4.0;
+  for (int j = 0; j < t.height; ++j)
+    for (int i = 0; i < t.width; ++i)
+      t.rgba.insert(t.rgba.end(), {float(i) / (t.width - 1), 0.5f, float(j) / (t.height - 1),
+                                   j >= 2 && i >= 4 ? 0.7f : 0.0f});
+  return t;
+}
+
 inline RenderSettings settingsFor(const Vec3d& lo, const Vec3d& hi, const TransferFunction& tf,
                                   bool shade) {
   RenderSettings s;
