@@ -1,5 +1,7 @@
-// libFuzzer target: the JSON box form of 2-D transfer functions (`render --tf2d FILE.json`),
-// then the tables a render builds from what it accepts (the 1-D envelope, the 2-D entries).
+// libFuzzer target: the JSON box forms of 2-D transfer functions (`render --tf2d FILE.json`)
+// and of curvature transfer functions (`render --curvature-tf FILE.json`), each input read as
+// both, then the tables a render builds from what they accept (the 1-D envelope, the 2-D
+// entries, the curvature entries).
 #include <cstdint>
 #include <string>
 
@@ -23,6 +25,20 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, size_t size) {
     float factor;
     v.apply(0.5f, g, e, factor);
     if (!(e.alpha >= 0.0f && e.alpha <= 1.0f)) __builtin_trap();
+  } catch (const mfadvr::Error&) {
+  }
+  try {
+    mfadvr::RenderSettings s;
+    s.curvatureTransferFunction = mfadvr::parseCurvatureTransferFunctionJson(text, "fuzz");
+    s.validate();
+    const mfadvr::ClassificationTables tables(s);
+    const mfadvr::CurvatureTransferView v = tables.curvatureView(s.primaryRays());
+    if (!v.table || v.width != s.curvatureTransferFunction->width) __builtin_trap();
+    const float g[3] = {0.0f, 0.0f, -1.0f}, h[6] = {-1.0f, 0.0f, 0.0f, -2.0f, 0.0f, 0.0f};
+    const double d[3] = {0.0, 0.0, -1.0};
+    float c[3] = {1.0f, 1.0f, 1.0f}, factor = 1.0f, contour;
+    v.apply(g, h, d, 1.0, c, factor, contour);
+    if (!(factor >= 0.0f && factor <= 1.0f && c[0] >= 0.0f && c[0] <= 1.0f)) __builtin_trap();
   } catch (const mfadvr::Error&) {
   }
   return 0;

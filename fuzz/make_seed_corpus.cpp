@@ -22,6 +22,9 @@ int main(int argc, char** argv) {
       << R"({"boxes": [{"value": [0.2, 0.5], "gradient": [0, 3], "color": [1, 0.5, 0], )"
       << R"("opacity": 0.4}, {"value": [0.4, 1], "gradient": [2, 9], "opacity": 1}], )"
       << R"("size": [16, 8]})";
+  std::ofstream(tf2d / "curvature.json")
+      << R"({"boxes": [{"k1": [0.5, 4], "k2": [-1, 1], "color": [1, 0.5, 0], "weight": 0.7, )"
+      << R"("opacity": 0.4}, {"k1": [-2, 0], "k2": [-3, -1]}], "size": [16, 8]})";
   int i = 0;
   for (mfadvr::Degree3 p : {mfadvr::Degree3{1, 1, 1}, mfadvr::Degree3{3, 2, 2}}) {
     mfadvr::StructuredFitOptions o;

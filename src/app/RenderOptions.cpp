@@ -176,6 +176,21 @@ void RenderOptions::addTo(CLI::App* sub) {
                   "The PNG's axes: GLO,GHI (|grad f|; values over --range or the data's) or "
                   "VLO,VHI,GLO,GHI")
       ->group(tfGroup);
+  sub->add_option("--curvature-tf", curvatureTf,
+                  "Colour (and opacity) by the principal curvatures k1 >= k2 of the level set "
+                  "at each sample: a preset " +
+                      curvaturePresetNames() +
+                      " with an optional :K (the curvature of full colour, 1/world units; "
+                      "default 1/8 of the inverse smallest data spacing), or a JSON file of "
+                      "boxes over (k1, k2) (composite and iso blends)")
+      ->group(tfGroup);
+  sub->add_option("--contours", contours,
+                  "Draw thickness-controlled contours (silhouettes) PIXELS wide, from the "
+                  "curvature along the view (composite and iso blends)")
+      ->group(tfGroup);
+  sub->add_option("--contour-color", contourColor, "Colour R,G,B of --contours")
+      ->capture_default_str()
+      ->group(tfGroup);
   sub->add_option("--unit-distance", unitDistance,
                   "Opacity unit distance, world units (default: the TF file's, else the "
                   "smallest data spacing)")
@@ -310,6 +325,15 @@ RenderSettings RenderOptions::settingsFor(const LoadedScene& scene, std::string*
   }
   if (tfWarning) *tfWarning = uniformOpacityWarning(tfSpec, s.transferFunction, scene, range);
   const double smallestSpacing = scene.spacing.minCoeff();
+  if (!curvatureTf.empty())
+    s.curvatureTransferFunction =
+        readCurvatureTransferFunction(curvatureTf, 1.0 / (8.0 * smallestSpacing));
+  if (!std::isfinite(contours) || contours < 0.0)
+    throw CLI::ValidationError("--contours", "must be a width in pixels >= 0");
+  s.contourPixels = contours;
+  s.contourColor = parseVec("--contour-color", contourColor).cast<float>();
+  if ((s.contourColor.array() < 0.0f).any() || (s.contourColor.array() > 1.0f).any())
+    throw CLI::ValidationError("--contour-color", "components must lie in [0, 1]");
   if (unitDistance < 0.0 || !std::isfinite(unitDistance))
     throw CLI::ValidationError("--unit-distance", "must be positive");
   s.opacityUnitDistance = unitDistance > 0.0        ? unitDistance

@@ -21,6 +21,8 @@ struct RenderOptions {
   bool parallel = false;
   std::string tf, colormap;
   std::string gradientOpacity, tf2d, tf2dRange;
+  std::string curvatureTf, contourColor = "0,0,0";
+  double contours = 0.0;
   double unitDistance = 0.0, ert = 0.99;
   std::optional<double> step;  // none: half the smallest data spacing
   bool shade = false, noHeadlight = false;

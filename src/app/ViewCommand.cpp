@@ -362,6 +362,13 @@ Command addViewCommand(CLI::App& app) {
     viewer->mapper->SetInputData(viewer->data.GetPointer());
     viewer->mapper->SetEarlyRayTerminationOpacity(settings.earlyTerminationOpacity);
     viewer->mapper->SetNumberOfThreads(settings.threads);
+    // Curvature classification (composite and iso blends): the mapper reads the specification
+    // itself, as a VTK program passes it.
+    if (!o->render.curvatureTf.empty())
+      viewer->mapper->SetCurvatureTransferFunction(o->render.curvatureTf.c_str());
+    viewer->mapper->SetContourWidth(settings.contourPixels);
+    viewer->mapper->SetContourColor(settings.contourColor[0], settings.contourColor[1],
+                                    settings.contourColor[2]);
     viewer->property->SetScalarOpacityUnitDistance(settings.opacityUnitDistance);
     viewer->volume->SetMapper(viewer->mapper);
     viewer->volume->SetProperty(viewer->property);

@@ -84,6 +84,10 @@ std::vector<HostArray> frameArrays(const RayParams& p) {
   if (g.table)
     out.push_back(
         {g.table, std::size_t(g.width) * g.height * sizeof(TfEntry), "the 2-D transfer function"});
+  const CurvatureTransferView& c = p.curvatureTf;
+  if (c.table)
+    out.push_back({c.table, std::size_t(c.width) * c.height * sizeof(CurvatureEntry),
+                   "the curvature transfer function"});
   return out;
 }
 
@@ -99,6 +103,7 @@ RayParams relocateFrame(const RayParams& params, const std::vector<const void*>&
   }
   if (p.gradientTf.opacity) p.gradientTf.opacity = static_cast<const float*>(copies[next++]);
   if (p.gradientTf.table) p.gradientTf.table = static_cast<const TfEntry*>(copies[next++]);
+  if (p.curvatureTf.table) p.curvatureTf.table = static_cast<const CurvatureEntry*>(copies[next++]);
   return p;
 }
 

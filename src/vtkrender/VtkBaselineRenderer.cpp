@@ -108,6 +108,10 @@ void applyBlendAndClipping(VtkMethod method, const RenderSettings& settings,
   const bool fixedPoint = method == VtkMethod::FixedPoint;
   // VTK's mappers scale the gradient their own way: the same function would not be the same
   // classification, so the comparison is refused rather than made unfair.
+  if (settings.classifiesCurvature())
+    throw Error(name +
+                ": VTK's mappers have no curvature transfer functions or contours; render them "
+                "with our methods (mfa, or a grid filter for comparison)");
   if (settings.classifiesGradients())
     throw Error(name +
                 ": gradient opacity and 2-D transfer functions are not compared with "

@@ -118,6 +118,44 @@ TEST(CliRender, GradientOpacityAndTwoDimensionalTransferFunctions) {
   }
 }
 
+TEST(CliRender, CurvatureTransferFunctionsAndContours) {
+  const auto dir = test::scratchDir();
+  const std::string base = "render builtin:marschner-lobb:12 --size 40x30 -q ";
+  const std::string boxes = (dir / "curvature.json").string();
+  {
+    std::ofstream f(boxes);
+    f << R"({"boxes": [{"k1": [0, 50], "k2": [-50, 50], "color": [0, 1, 0], "weight": 0.8}]})";
+  }
+  const std::string plainPng = (dir / "plain.png").string();
+  ASSERT_EQ(runMfadvr(base + "-o " + plainPng).status, 0);
+  const Image8 plain = readPng(plainPng);
+  for (const std::string& args : std::vector<std::string>{
+           "--curvature-tf mean", "--curvature-tf ridges-valleys:0.5 --shade",
+           "--curvature-tf gaussian --method tricubic", "--curvature-tf " + boxes, "--contours 2",
+           "--contours 1.5 --contour-color 1,0,0 --shade --method bspline",
+           "--blend iso --iso 0.5 --contours 2 --shade",
+           "--blend iso --iso 0.5 --curvature-tf mean"}) {
+    const std::string png = (dir / "x.png").string();
+    std::filesystem::remove(png);
+    const auto r = runMfadvr(base + args + " -o " + png);
+    ASSERT_EQ(r.status, 0) << args << ": " << r.err;
+    const Image8 image = readPng(png);
+    EXPECT_EQ(image.width, 40) << args;
+    EXPECT_NE(image.data, plain.data) << args << ": the curvature changed nothing";
+  }
+  const std::string png = (dir / "bad.png").string();
+  for (const std::string& bad : std::vector<std::string>{
+           "--curvature-tf ridges", "--curvature-tf mean:0", "--curvature-tf mean:k",
+           "--curvature-tf " + (dir / "missing.json").string(), "--contours -1",
+           "--contours 2 --contour-color 2,0,0", "--contours 2 --blend max",
+           "--curvature-tf mean --method vtk-fixedpoint"}) {
+    const auto r = runMfadvr(base + bad + " -o " + png);
+    EXPECT_NE(r.status, 0) << bad;
+    EXPECT_FALSE(r.err.empty()) << bad;
+    EXPECT_FALSE(std::filesystem::exists(png)) << bad;
+  }
+}
+
 TEST(CliRender, ImagesIndependentOfThreadsAndFloatOutput) {
   const auto dir = test::scratchDir();
   const std::string common =

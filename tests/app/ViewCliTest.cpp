@@ -35,8 +35,8 @@ TEST(CliView, ScreenshotMatchesRenderForEveryMethod) {
   }
 }
 
-// The blend, isovalue, clipping, cropping and gradient-classification options reach the viewer's
-// mapper: its frame is render's.
+// The blend, isovalue, clipping, cropping, gradient- and curvature-classification options reach
+// the viewer's mapper: its frame is render's.
 TEST(CliView, ScreenshotMatchesRenderForBlendModesAndClipping) {
   const auto dir = test::scratchDir();
   const std::string scene = " --size 96x80 --azimuth 30 --elevation 20 -q";
@@ -46,7 +46,8 @@ TEST(CliView, ScreenshotMatchesRenderForBlendModesAndClipping) {
   for (const std::string& options : std::vector<std::string>{
            " --blend max", " --blend iso --iso 0.5 --shade", " --clip-plane 0,0,0,1,0.2,0",
            " --crop -1,0.5,-1,1,-0.5,1 --blend additive", " --gradient-opacity 0:0,3:1 --shade",
-           " --tf2d " + boxes}) {
+           " --tf2d " + boxes, " --curvature-tf mean --shade",
+           " --blend iso --iso 0.5 --contours 2 --curvature-tf ridges-valleys"}) {
     const std::string view = (dir / "view.png").string(), render = (dir / "render.png").string();
     const auto v =
         runMfadvr("view builtin:marschner-lobb:33 --screenshot " + view + options + scene);

@@ -38,6 +38,7 @@ class OneLane {
     for (int i = 0; i < n; ++i) v[i] = lanes[i];
   }
   void gradient(int, float g[3]) { s_.gradient(0, g); }
+  void hessian(int, const double p[3], float h[6]) { s_.hessian(0, p, h); }
 
  private:
   S s_;

@@ -128,20 +128,22 @@ TEST(DeviceArrays, RelocatedCopiesRenderTheCpuImage) {
 }
 
 // The gradient-opacity and 2-D tables travel with the frame.
-TEST(DeviceArrays, GradientTablesTravelWithTheFrame) {
+TEST(DeviceArrays, GradientAndCurvatureTablesTravelWithTheFrame) {
   const Model& m = *models()[0];
-  for (int variant = 0; variant < 2; ++variant) {
+  for (int variant = 0; variant < 3; ++variant) {
     RenderSettings s = settingsFor(m.domain().min, m.domain().max, transferFunctions()[0], true);
     s.width = 40;
     s.height = 32;
     if (variant == 0) s.gradientOpacity = {{0.5, 0.0f}, {2.0, 1.0f}};
     if (variant == 1) s.transferFunction2D = stripedTransferFunction2D();
+    if (variant == 2) s.curvatureTransferFunction = curvaturePreset("gaussian", 4.0);
     const ModelField field(m);
     const ModelRenderSetup setup(field, s);
     const Copies frame(gpu::frameArrays(setup.params()));
     const RayParams params = gpu::relocateFrame(setup.params(), frame.addresses);
-    EXPECT_TRUE(variant == 1 || frame.owns(params.gradientTf.opacity));
-    EXPECT_TRUE(variant == 0 || frame.owns(params.gradientTf.table));
+    EXPECT_TRUE(variant != 0 || frame.owns(params.gradientTf.opacity));
+    EXPECT_TRUE(variant != 1 || frame.owns(params.gradientTf.table));
+    EXPECT_TRUE(variant != 2 || frame.owns(params.curvatureTf.table));
     const Image relocated = renderModelView(s, params, setup.view());
     EXPECT_EQ(relocated.rgba, renderVolume(field, s).rgba) << "variant " << variant;
   }

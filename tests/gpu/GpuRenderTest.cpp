@@ -149,6 +149,19 @@ TEST_F(Gpu, GradientOpacityAndTwoDimensionalTransferFunctions) {
   }
 }
 
+TEST_F(Gpu, CurvatureTransferFunctionsAndContours) {
+  const Model& m = mlModel(3);
+  const double k = 8.0 / (m.domain().max - m.domain().min).norm();
+  for (bool shade : {false, true}) {
+    RenderSettings s = settingsFor(m.domain().min, m.domain().max, transferFunctions()[0], shade);
+    s.curvatureTransferFunction = curvaturePreset("mean", k);
+    compareModel(m, s, std::string("mean curvature") + (shade ? ", shaded" : ""));
+    s.curvatureTransferFunction.reset();
+    s.contourPixels = 2.0;
+    compareModel(m, s, std::string("contours") + (shade ? ", shaded" : ""));
+  }
+}
+
 TEST_F(Gpu, TrilinearMatchesTheCpu) {
   const GridField<TrilinearFilter> field(mlGrid());
   for (bool shade : {false, true}) {

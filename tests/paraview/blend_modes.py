@@ -1,6 +1,7 @@
 """ParaView's Blend Mode reaches the MFA Volume representation's mapper: Isosurface (the mode
 ParaView 5.11 offers besides Composite and Slice) with two Isosurface Values changes the image,
-which is not empty, and Composite brings the composite image back."""
+which is not empty, and Composite brings the composite image back. The representation's
+curvature transfer function and contour width change the composite and isosurface images."""
 import os
 import sys
 
@@ -45,4 +46,16 @@ if iso.max() < 40:
     sys.exit("iso: the image is empty")
 if differs(back, composite):
     sys.exit("back to Composite: the image is not the composite one")
-print("blend modes reach the mapper; ParaView offers", available)
+display.MFACurvatureTransferFunction = "mean"
+curvature = pixels("curvature-mean")
+if not differs(curvature, composite):
+    sys.exit("curvature transfer function: the composite image did not change")
+display.MFACurvatureTransferFunction = ""
+display.BlendMode = "Isosurface"
+display.MFAContourWidth = 3.0
+contours = pixels("iso-contours")
+if not differs(contours, iso):
+    sys.exit("contours: the isosurface image did not change")
+display.MFAContourWidth = 0.0
+display.BlendMode = "Composite"
+print("blend modes, curvature and contours reach the mapper; ParaView offers", available)

@@ -1,5 +1,7 @@
 #include "core/render/ClassificationTables.h"
 
+#include <cmath>
+
 namespace mfadvr {
 
 namespace {
@@ -47,6 +49,38 @@ ClassificationTables::ClassificationTables(const RenderSettings& s)
     gradientLo_ = static_cast<float>(t.gradientLo);
     gradientScale_ = static_cast<float>((height_ - 1) / (t.gradientHi - t.gradientLo));
   }
+  CurvatureTransferView& c = curvatureView_;
+  if (s.curvatureTransferFunction) {
+    const CurvatureTransferFunction& t = *s.curvatureTransferFunction;
+    curvature_.resize(static_cast<size_t>(t.width) * t.height);
+    for (int j = 0; j < t.height; ++j)
+      for (int i = 0; i < t.width; ++i) {
+        const float* e = t.entry(i, j);
+        curvature_[static_cast<size_t>(j) * t.width + i] = {e[0], e[1], e[2], e[3], e[4]};
+      }
+    c.width = t.width;
+    c.height = t.height;
+    c.k1Lo = static_cast<float>(t.k1Lo);
+    c.k1Scale = static_cast<float>((t.width - 1) / (t.k1Hi - t.k1Lo));
+    c.k2Lo = static_cast<float>(t.k2Lo);
+    c.k2Scale = static_cast<float>((t.height - 1) / (t.k2Hi - t.k2Lo));
+  }
+  c.contourPixels = static_cast<float>(s.contourPixels);
+  for (int a = 0; a < 3; ++a) c.contourColor[a] = s.contourColor[a];
+}
+
+CurvatureTransferView ClassificationTables::curvatureView(const CameraRays& rays) const {
+  CurvatureTransferView v = curvatureView_;
+  v.table = curvature_.empty() ? nullptr : curvature_.data();
+  // A pixel spans 2 halfHeight |up| / height on the image plane (primaryRay), which lies
+  // |forward| from the eye of a perspective view: its size grows by that over |forward| per
+  // unit of distance along a ray. (The vectors need not be unit: a host's rays, raysFromVtk,
+  // span its near plane.)
+  auto norm = [](const double* x) { return std::sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]); };
+  const double pixel = 2.0 * rays.halfHeight * norm(rays.up) / rays.height;
+  v.pixelBase = rays.parallel ? pixel : 0.0;
+  v.pixelSlope = rays.parallel ? 0.0 : pixel / norm(rays.forward);
+  return v;
 }
 
 GradientTransferView ClassificationTables::gradientView() const {

@@ -4,7 +4,8 @@
 //
 // Shaded renders ask the field for value and gradient together at every sample, as the grid
 // filters compute both at once; unshaded ones ask for the value alone. Batches of kSampleBatch
-// points (SampleBatch.h).
+// points (SampleBatch.h). Curvature renders take the Hessian from differences of the field's own
+// gradient (PointwiseBatch::hessian).
 #include <concepts>
 
 #include "core/field/Field.h"
@@ -20,7 +21,9 @@ class FieldRaySampler : public PointwiseBatch<FieldRaySampler<S, Shade>, kSample
     { s.inside(x) } -> std::convertible_to<bool>;
   };
 
-  explicit FieldRaySampler(S sampler) : s_(std::move(sampler)) {}
+  // differenceStep: the Hessian's difference step (world units; PointwiseBatch::hessian).
+  explicit FieldRaySampler(S sampler, double differenceStep = 1e-4)
+      : s_(std::move(sampler)), step_(differenceStep) {}
 
   void beginRay(const double*, const double*) {}
 
@@ -41,6 +44,8 @@ class FieldRaySampler : public PointwiseBatch<FieldRaySampler<S, Shade>, kSample
     return vg.value;
   }
 
+  double differenceStep(int) const { return step_; }
+
   // Whether samples can fall outside (a sampler without inside() cannot; one with masked()
   // says so: a model without a mask cannot).
   bool canBeOutside() const {
@@ -54,6 +59,7 @@ class FieldRaySampler : public PointwiseBatch<FieldRaySampler<S, Shade>, kSample
 
  private:
   S s_;
+  double step_;
 };
 
 }  // namespace mfadvr

@@ -73,6 +73,7 @@ RayParams compileRayParams(const RenderSettings& s, const ClassificationTables& 
                            const Vec3d& boxMin, const Vec3d& boxMax) {
   RayParams p = compileRayParams(s, tables.table(), boxMin, boxMax);
   p.gradientTf = tables.gradientView();
+  p.curvatureTf = tables.curvatureView(p.camera);
   return p;
 }
 

@@ -60,8 +60,9 @@ void castRays(const RenderSettings& settings, const RayParams& params, const Mak
   // Packets and the march ahead serve composite renders (the other blend modes sample every
   // step); packets keep no depth and classify by the value alone.
   const bool composite = params.blend == BlendMode::Composite;
-  [[maybe_unused]] const bool packets =
-      composite && !params.depth && !params.gradientTf.active() && (!Shade || params.shadeSamples);
+  [[maybe_unused]] const bool packets = composite && !params.depth && !params.gradientTf.active() &&
+                                        !params.curvatureTf.active() &&
+                                        (!Shade || params.shadeSamples);
   forEachTile(
       settings,
       [&](int x0, int y0, int x1, int y1, RayCounters& counters) {
@@ -134,9 +135,12 @@ Image renderVolume(const F& field, const RenderSettings& settings, RenderStats* 
     keepDepth(settings, image, params);
     using S = decltype(field.sampler());
     const bool masked = FieldRaySampler<S, false>(field.sampler()).canBeOutside();
+    // The Hessian's difference step of curvature renders: 1e-4 of the box diagonal (1/20 of a
+    // voxel of a 256^3 grid; small against every cell, large against float rounding).
+    const double step = 1e-4 * (field.boxMax() - field.boxMin()).norm();
     auto run = [&]<bool Masked, bool Shade>() {
       castRays<Masked, Shade>(
-          settings, params, [&] { return FieldRaySampler<S, Shade>(field.sampler()); }, image,
+          settings, params, [&] { return FieldRaySampler<S, Shade>(field.sampler(), step); }, image,
           stats);
     };
     if (masked) {

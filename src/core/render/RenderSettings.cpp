@@ -68,9 +68,18 @@ void RenderSettings::validate() const {
       throw Error("gradient opacity: opacities must lie in [0, 1]");
   }
   if (transferFunction2D) transferFunction2D->validate();
-  if (classifiesGradients() && blend != BlendMode::Composite)
+  if (curvatureTransferFunction) curvatureTransferFunction->validate();
+  if (!(std::isfinite(contourPixels) && contourPixels >= 0.0))
+    throw Error("contour width must be a finite number of pixels >= 0");
+  if (!((contourColor.array() >= 0.0f).all() && (contourColor.array() <= 1.0f).all()))
+    throw Error("contour colour components must lie in [0, 1]");
+  if ((!gradientOpacity.empty() || transferFunction2D) && blend != BlendMode::Composite)
     throw Error(std::string("gradient opacity and 2-D transfer functions apply to the composite "
                             "blend, not ") +
+                blendModeName(blend));
+  if (classifiesCurvature() && blend != BlendMode::Composite && blend != BlendMode::Iso)
+    throw Error(std::string("curvature transfer functions and contours apply to the composite "
+                            "and iso blends, not ") +
                 blendModeName(blend));
   if (threads < 0) throw Error("thread count must be >= 0 (0: all cores)");
   if (shade) lighting.validate();

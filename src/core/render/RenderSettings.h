@@ -9,6 +9,7 @@
 #include "core/model/DomainBox.h"
 #include "core/render/BlendMode.h"
 #include "core/render/Camera.h"
+#include "core/render/CurvatureTransferFunction.h"
 #include "core/render/Lighting.h"
 #include "core/render/TransferFunction.h"
 #include "core/render/TransferFunction2D.h"
@@ -54,9 +55,23 @@ struct RenderSettings {
   // A 2-D transfer function over (value, |grad f|) that replaces transferFunction's colour and
   // opacity (vtkVolumeProperty::SetTransferFunction2D). Composite blend only.
   std::optional<TransferFunction2D> transferFunction2D;
-  // Whether samples are classified by their gradient as well (either of the two above): the
-  // renderers then evaluate the gradient of every visible sample, shaded or not.
-  bool classifiesGradients() const { return !gradientOpacity.empty() || transferFunction2D; }
+  // A curvature transfer function (CurvatureTransferFunction.h): colour and opacity from the
+  // principal curvatures of the level set through each visible sample (or isosurface hit).
+  // Composite and iso blends.
+  std::optional<CurvatureTransferFunction> curvatureTransferFunction;
+  // Thickness-controlled contours (kernel/CurvatureTransferView.h): their width in pixels (0:
+  // none) and colour. Composite and iso blends.
+  double contourPixels = 0.0;
+  Vec3f contourColor = Vec3f::Zero();
+  // Whether samples are classified by the curvature (either of the two above): the renderers
+  // then evaluate the gradient and Hessian of every visible sample.
+  bool classifiesCurvature() const { return curvatureTransferFunction || contourPixels > 0.0; }
+  // Whether samples are classified by their gradient as well (gradient opacity, 2-D transfer
+  // function, curvature): the renderers then evaluate the gradient of every visible sample,
+  // shaded or not.
+  bool classifiesGradients() const {
+    return !gradientOpacity.empty() || transferFunction2D || classifiesCurvature();
+  }
   // Whether the ray loop needs gradients at all: shading or classification.
   bool needsGradients() const { return shade || classifiesGradients(); }
   bool shade = false;

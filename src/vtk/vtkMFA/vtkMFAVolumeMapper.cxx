@@ -28,6 +28,7 @@
 #include <cmath>
 #include <deque>
 #include <exception>
+#include <optional>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -65,6 +66,10 @@ struct vtkMFAVolumeMapper::Internals {
     this->CarrierModel = nullptr;
   }
   std::set<std::string> Warned;
+  // The curvature transfer function, read once per specification and scale.
+  std::string CurvatureSpec;
+  double CurvatureDefault = 0.0, CurvatureScale = 0.0;
+  std::optional<mfadvr::CurvatureTransferFunction> Curvature;
   std::vector<float> Depth;
   std::vector<unsigned char> Pixels;
   std::function<mfadvr::Image(const mfadvr::RenderSettings&)> FieldRenderer;
@@ -111,7 +116,9 @@ struct vtkMFAVolumeMapper::Internals {
 
 vtkMFAVolumeMapper::vtkMFAVolumeMapper() : Internal(new Internals) {}
 
-vtkMFAVolumeMapper::~vtkMFAVolumeMapper() = default;
+vtkMFAVolumeMapper::~vtkMFAVolumeMapper() {
+  this->SetCurvatureTransferFunction(nullptr);
+}
 
 void vtkMFAVolumeMapper::PrintSelf(ostream& os, vtkIndent indent) {
   this->Superclass::PrintSelf(os, indent);
@@ -122,6 +129,11 @@ void vtkMFAVolumeMapper::PrintSelf(ostream& os, vtkIndent indent) {
   os << indent << "AutoAdjustSampleDistances: " << this->AutoAdjustSampleDistances << "\n";
   os << indent << "EarlyRayTerminationOpacity: " << this->EarlyRayTerminationOpacity << "\n";
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
+  os << indent << "CurvatureTransferFunction: "
+     << (this->CurvatureTransferFunction ? this->CurvatureTransferFunction : "(none)") << "\n";
+  os << indent << "ContourWidth: " << this->ContourWidth << "\n";
+  os << indent << "ContourColor: " << this->ContourColor[0] << " " << this->ContourColor[1] << " "
+     << this->ContourColor[2] << "\n";
   os << indent << "Device: " << this->Device << "\n";
   os << indent << "LastDevice: " << this->LastDevice << " (" << this->Internal->DeviceDescription
      << ")\n";
@@ -414,6 +426,34 @@ void vtkMFAVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol) {
     s.background = mfadvr::Vec3f::Zero();  // premultiplied colour over nothing
     s.threads = this->NumberOfThreads;
     applyBlendAndClipping(this, property, s, toModel);
+    if (this->BlendMode == vtkVolumeMapper::COMPOSITE_BLEND ||
+        this->BlendMode == vtkVolumeMapper::ISOSURFACE_BLEND) {
+      const std::string spec =
+          this->CurvatureTransferFunction ? this->CurvatureTransferFunction : "";
+      if (!spec.empty()) {
+        // Curvatures in the model's units: world ones divided by the world-to-model scale.
+        auto& in = *this->Internal;
+        const double defaultK = toModel.scale / (8.0 * model->dataSpacing().minCoeff());
+        if (!in.Curvature || in.CurvatureSpec != spec || in.CurvatureDefault != defaultK ||
+            in.CurvatureScale != toModel.scale) {
+          in.Curvature.reset();
+          mfadvr::CurvatureTransferFunction tf =
+              mfadvr::readCurvatureTransferFunction(spec, defaultK);
+          tf.k1Lo /= toModel.scale;
+          tf.k1Hi /= toModel.scale;
+          tf.k2Lo /= toModel.scale;
+          tf.k2Hi /= toModel.scale;
+          in.Curvature = std::move(tf);
+          in.CurvatureSpec = spec;
+          in.CurvatureDefault = defaultK;
+          in.CurvatureScale = toModel.scale;
+        }
+        s.curvatureTransferFunction = in.Curvature;
+      }
+      // The width in pixels of the image rendered (the viewport's over the sample distance).
+      s.contourPixels = this->ContourWidth / isd;
+      for (int a = 0; a < 3; ++a) s.contourColor[a] = static_cast<float>(this->ContourColor[a]);
+    }
 
     // Ray ends from the depth buffer: the opaque geometry drawn so far.
     auto& depth = this->Internal->Depth;

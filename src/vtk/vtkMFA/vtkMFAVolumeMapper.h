@@ -147,6 +147,31 @@ class VTKMFA_EXPORT vtkMFAVolumeMapper : public vtkVolumeMapper {
   void SetDeviceToCUDA() { this->SetDevice(DeviceCUDA); }
   //@}
 
+  //@{
+  /**
+   * Curvature transfer function (docs/transfer-functions.md, "Curvature transfer functions"):
+   * a preset "ridges-valleys", "mean" or "gaussian" with an optional ":K" (the curvature of
+   * full colour, 1 / world units; default 1 / (8 x the model's smallest data spacing)), or the
+   * path of a JSON table over (k1, k2) in 1 / world units. Null or empty (the default): none.
+   * Composite and isosurface blends; a specification that cannot be read is an error of the
+   * render (nothing is drawn).
+   */
+  vtkSetStringMacro(CurvatureTransferFunction);
+  vtkGetStringMacro(CurvatureTransferFunction);
+  //@}
+
+  //@{
+  /**
+   * Thickness-controlled contours (silhouette lines of one width in pixels, from the curvature
+   * along the view): their width in pixels of the viewport (0, the default: none) and colour.
+   * Composite and isosurface blends.
+   */
+  vtkSetClampMacro(ContourWidth, double, 0.0, 64.0);
+  vtkGetMacro(ContourWidth, double);
+  vtkSetVector3Macro(ContourColor, double);
+  vtkGetVector3Macro(ContourColor, double);
+  //@}
+
   /**
    * The device the last frame ran on (DeviceCPU or DeviceCUDA), and its description: the GPU's
    * name, or with DeviceAuto on the CPU, why the GPU was not used.
@@ -198,6 +223,9 @@ class VTKMFA_EXPORT vtkMFAVolumeMapper : public vtkVolumeMapper {
   int Device = DeviceAuto;
   int LastDevice = DeviceCPU;
   double LastImageSampleDistance = 1.0;
+  char* CurvatureTransferFunction = nullptr;
+  double ContourWidth = 0.0;
+  double ContourColor[3] = {0.0, 0.0, 0.0};
 
  private:
   vtkMFAVolumeMapper(const vtkMFAVolumeMapper&) = delete;

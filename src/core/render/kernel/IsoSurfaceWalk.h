@@ -21,7 +21,9 @@
 // (as VTK's isosurface blend finds them, then solved rather than taken at the sample).
 //
 // A hit on isovalue i has colour rp.isoColor[i] (rgb) and opacity rp.isoColor[i][3], shaded
-// with the field's gradient at the hit for shaded renders. Depth: the first hit.
+// with the field's gradient at the hit for shaded renders, coloured and weighted by the surface's
+// curvature there with rp.curvatureTf (its exact Hessian for the MFA model). Depth: the first
+// hit.
 #include "core/render/kernel/RaySteps.h"
 #include "core/render/kernel/ShadingKernel.h"
 
@@ -179,7 +181,7 @@ MFADVR_HD MFADVR_OUTLINE void isoSegment(const RayParams& rp, Sampler& sampler,
   RayShading rayShading;
   if constexpr (Shade) {
     const float df[3] = {float(ray.d[0]), float(ray.d[1]), float(ray.d[2])};
-    prepareRayShading(rp.shading, df, rayShading);
+    if (rp.shadeSamples) prepareRayShading(rp.shading, df, rayShading);
   }
   bool done = false;
   // Composites one hit (skipped outside a domain mask).
@@ -191,6 +193,7 @@ MFADVR_HD MFADVR_OUTLINE void isoSegment(const RayParams& rp, Sampler& sampler,
     }
     const float* colour = rp.isoColor[surface];
     float c[3] = {colour[0], colour[1], colour[2]};
+    float opacity = colour[3];
     if constexpr (Shade) {
       if constexpr (Sampler::kSkipsEmptySpace) {
         double tLeave;
@@ -202,10 +205,26 @@ MFADVR_HD MFADVR_OUTLINE void isoSegment(const RayParams& rp, Sampler& sampler,
       ++counters.samples;
       float g[3];
       sampler.gradient(0, g);
-      shadeSample(rp.shading, rayShading, colour, g, c);
+      // The surface's colour and opacity by its curvature at the hit, then shading, then the
+      // contours (CurvatureTransferView.h).
+      float unshaded[3] = {c[0], c[1], c[2]}, contour = 0.0f;
+      if (rp.curvatureTf.active()) {
+        float h[6], factor = 1.0f;
+        sampler.hessian(0, p, h);
+        rp.curvatureTf.apply(g, h, ray.d, t, unshaded, factor, contour);
+        opacity *= factor;
+      }
+      if (rp.shadeSamples) {
+        shadeSample(rp.shading, rayShading, unshaded, g, c);
+      } else {
+        for (int a = 0; a < 3; ++a) c[a] = unshaded[a];
+      }
+      if (contour > 0.0f)
+        for (int a = 0; a < 3; ++a) c[a] += contour * (rp.curvatureTf.contourColor[a] - c[a]);
     }
+    if (!(opacity > 0.0f)) return;
     if (depth != depth) depth = static_cast<float>(t);
-    compositeSample(red, green, blue, alpha, colour[3], c);
+    compositeSample(red, green, blue, alpha, opacity, c);
     if (alpha >= rp.stopOpacity) {
       ++counters.terminated;
       done = true;

@@ -29,6 +29,8 @@
 //   void stage(int lane, const double p[3])   the lane's point (after inside / emptyAt for p)
 //   void evaluate(int n, float v[])           the values at lanes 0..n-1
 //   void gradient(int lane, float g[3])       the physical gradient at a lane's point
+//   void hessian(int lane, const double p[3], float h[6])   the physical Hessian (xx, xy, xz,
+//        yy, yz, zz) at the lane's point p (curvature classification only)
 // A batch's values are independent, so the processor overlaps their evaluations; classifying,
 // shading and compositing then take the lanes in ray order. A ray that terminates inside a
 // batch has evaluated at most kBatch - 1 samples it does not use; the counters and the image
@@ -37,7 +39,8 @@
 //
 // With rp.gradientTf active (a loop with gradients, Shade = true), a visible sample is
 // classified again from its gradient (GradientTransferView.h): gradient opacity, 2-D transfer
-// functions; rp.shadeSamples then says whether its colour is also shaded.
+// functions; by the curvature of its level set (CurvatureTransferView.h): curvature transfer
+// functions and contours; rp.shadeSamples then says whether its colour is also shaded.
 //
 // This is the composite blend; the other blend modes reduce the same samples (RayReduction.h)
 // or walk the ray for isosurfaces (IsoSurfaceWalk.h), chosen per ray from rp.blend. With rp.depth,
@@ -164,7 +167,7 @@ MFADVR_HD MFADVR_INLINE void integrateSegment(const RayParams& rp, Sampler& samp
         float factor = 1.0f;  // the gradient opacity
         float c[3] = {tf.r, tf.g, tf.b};
         if constexpr (Shade) {
-          if (rp.gradientTf.active() || rp.shadeSamples) {
+          if (rp.gradientTf.active() || rp.curvatureTf.active() || rp.shadeSamples) {
             float g[3];
             sampler.gradient(i, g);
             // Classification by |grad f| too: the 1-D table (for a 2-D function its envelope)
@@ -176,10 +179,22 @@ MFADVR_HD MFADVR_INLINE void integrateSegment(const RayParams& rp, Sampler& samp
               c[1] = tf.g;
               c[2] = tf.b;
             }
+            // And by the curvature of the level set, from the Hessian at the sample's point.
+            float contour = 0.0f;
+            if (rp.curvatureTf.active()) {
+              double p[3];
+              for (int a = 0; a < 3; ++a) p[a] = o[a] + mids[i] * d[a];
+              float h[6];
+              sampler.hessian(i, p, h);
+              rp.curvatureTf.apply(g, h, d, mids[i], c, factor, contour);
+              if (!(tf.alpha * factor > 0.0f)) continue;
+            }
             if (rp.shadeSamples) {
               const float unshaded[3] = {c[0], c[1], c[2]};
               shadeSample(rp.shading, rayShading, unshaded, g, c);
             }
+            if (contour > 0.0f)
+              for (int a = 0; a < 3; ++a) c[a] += contour * (rp.curvatureTf.contourColor[a] - c[a]);
           }
         }
         const double length = lengths[i];

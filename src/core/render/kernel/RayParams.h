@@ -7,6 +7,7 @@
 
 #include "core/render/BlendMode.h"
 #include "core/render/kernel/CameraRays.h"
+#include "core/render/kernel/CurvatureTransferView.h"
 #include "core/render/kernel/EmptySpaceProfile.h"
 #include "core/render/kernel/GradientTransferView.h"
 #include "core/render/kernel/ShadingKernel.h"
@@ -33,10 +34,12 @@ struct RayParams {
   TransferFunctionView tf;
   ShadingParams shading;  // filled for shaded renders (integrateRay<..., Shade = true>)
   // Loops with gradients (Shade = true) shade the samples' colours unless this is false: a
-  // render that classifies by the gradient without shading (gradientTf).
+  // render that classifies by the gradient or curvature without shading.
   bool shadeSamples = true;
   // Gradient opacity and 2-D transfer functions (composite blend); inactive: none.
   GradientTransferView gradientTf;
+  // Curvature transfer functions and contours (composite blend); inactive: none.
+  CurvatureTransferView curvatureTf;
   BlendMode blend = BlendMode::Composite;
   // Average and additive blends: v' = (v - valueLo) * valueScale, the value normalized over the
   // transfer function's range; average: values in [averageLo, averageHi] count.

@@ -19,7 +19,8 @@ inline constexpr int kSampleBatch = 8;
 // The batch interface for samplers that evaluate one point at a time. Derived provides
 //   float pointValue(const double p[3])
 //   float pointValueGradient(const double p[3], float g[3])   (shaded renders)
-// and inherits stage / evaluate / gradient, which keep each lane's point and gradient.
+//   double differenceStep(int axis) const     (curvature renders: hessian's step, world units)
+// and inherits stage / evaluate / gradient / hessian, which keep each lane's point and gradient.
 template <class Derived, int K, bool Shade>
 class PointwiseBatch {
  public:
@@ -41,6 +42,31 @@ class PointwiseBatch {
 
   MFADVR_HD MFADVR_INLINE void gradient(int lane, float g[3]) const {
     for (int a = 0; a < 3; ++a) g[a] = gradients_[lane][a];
+  }
+
+  // The Hessian at p (xx, xy, xz, yy, yz, zz): central differences of the sampler's own
+  // gradient at p +- Derived::differenceStep(axis) along each axis, symmetrized: the filter's own
+  // second derivatives where its gradient is smooth around p (for a polynomial cell, within
+  // step^2 / 6 of the gradient's third derivative).
+  MFADVR_HD MFADVR_INLINE void hessian(int, const double p[3], float h[6]) {
+    Derived& self = static_cast<Derived&>(*this);
+    double dg[3][3];  // dg[b][a]: d g_a / d x_b
+    for (int b = 0; b < 3; ++b) {
+      const double step = self.differenceStep(b);
+      double q[3] = {p[0], p[1], p[2]};
+      float up[3], down[3];
+      q[b] = p[b] + step;
+      self.pointValueGradient(q, up);
+      q[b] = p[b] - step;
+      self.pointValueGradient(q, down);
+      for (int a = 0; a < 3; ++a) dg[b][a] = (double(up[a]) - double(down[a])) / (2.0 * step);
+    }
+    h[0] = static_cast<float>(dg[0][0]);
+    h[1] = static_cast<float>(0.5 * (dg[1][0] + dg[0][1]));
+    h[2] = static_cast<float>(0.5 * (dg[2][0] + dg[0][2]));
+    h[3] = static_cast<float>(dg[1][1]);
+    h[4] = static_cast<float>(0.5 * (dg[2][1] + dg[1][2]));
+    h[5] = static_cast<float>(dg[2][2]);
   }
 
  private:

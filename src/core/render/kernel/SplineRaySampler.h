@@ -328,6 +328,22 @@ class SplineRaySampler {
     for (int a = 0; a < 3; ++a) g[a] *= gradientScale_[a];
   }
 
+  // Physical Hessian (xx, xy, xz, yy, yz, zz) at the lane's point p: exact, from the second
+  // derivatives of the basis (evaluated again at p: only curvature renders ask for it).
+  MFADVR_HD MFADVR_INLINE void hessian(int, const double p[3], float h[6]) const {
+    double u[3];
+    toParameter(p, u);
+    float out[10];
+    splineValueGradientHessian<P>(m_.spline, u, out);
+    const float* s = gradientScale_;
+    h[0] = out[4] * s[0] * s[0];
+    h[1] = out[5] * s[0] * s[1];
+    h[2] = out[6] * s[0] * s[2];
+    h[3] = out[7] * s[1] * s[1];
+    h[4] = out[8] * s[1] * s[2];
+    h[5] = out[9] * s[2] * s[2];
+  }
+
  private:
   // Lanes 0..n-1 one point at a time, each located (locs_, or span_ / tau_).
   MFADVR_HD MFADVR_INLINE void evaluateEach(int n, float v[]) {

@@ -49,6 +49,21 @@ void vtkMFAVolumeRepresentation::SetMaximumImageSampleDistance(double distance) 
   this->Modified();
 }
 
+void vtkMFAVolumeRepresentation::SetCurvatureTransferFunction(const char* spec) {
+  this->GetMFAMapper()->SetCurvatureTransferFunction(spec && *spec ? spec : nullptr);
+  this->Modified();
+}
+
+void vtkMFAVolumeRepresentation::SetContourWidth(double pixels) {
+  this->GetMFAMapper()->SetContourWidth(pixels);
+  this->Modified();
+}
+
+void vtkMFAVolumeRepresentation::SetContourColor(double r, double g, double b) {
+  this->GetMFAMapper()->SetContourColor(r, g, b);
+  this->Modified();
+}
+
 int vtkMFAVolumeRepresentation::RequestData(vtkInformation* request,
                                             vtkInformationVector** inputVector,
                                             vtkInformationVector* outputVector) {

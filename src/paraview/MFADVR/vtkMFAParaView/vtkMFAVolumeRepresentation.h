@@ -34,6 +34,17 @@ class VTKMFAPARAVIEW_EXPORT vtkMFAVolumeRepresentation : public vtkImageVolumeRe
   void SetMaximumImageSampleDistance(double distance);
   //@}
 
+  //@{
+  /**
+   * Forwarded to vtkMFAVolumeMapper: the curvature transfer function (a preset
+   * "ridges-valleys", "mean", "gaussian" with an optional ":K", or a JSON table's path; empty:
+   * none), the contours' width in pixels (0: none) and their colour.
+   */
+  void SetCurvatureTransferFunction(const char* spec);
+  void SetContourWidth(double pixels);
+  void SetContourColor(double r, double g, double b);
+  //@}
+
  protected:
   vtkMFAVolumeRepresentation();
   ~vtkMFAVolumeRepresentation() override;
