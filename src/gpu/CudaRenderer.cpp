@@ -156,7 +156,16 @@ Image CudaRenderer::renderModel(const ModelField& field, const RenderSettings& s
   }
 
   ModelView view = relocateModel(setup.view(), b.modelCopies);
-  if (const auto flags = setup.emptySpaceFlags()) {
+  // The device's kernels skip in composite and iso renders only (RayIntegrator.h): the other
+  // blends' skipping information stays on the host.
+  const bool skips =
+      setup.skips() && (settings.blend == BlendMode::Composite || settings.blend == BlendMode::Iso);
+  view.empty = nullptr;
+  view.extremeUpper = view.extremeLower = nullptr;
+  view.extremeUpperPyramid = view.extremeLowerPyramid = nullptr;
+  view.extremeUpperLevels = view.extremeLowerLevels = nullptr;
+  view.extremeLevels = 0;
+  if (const auto flags = skips ? setup.emptySpaceFlags() : nullptr) {
     if (flags != b.flags) {
       b.flags = nullptr;
       b.flagAddresses = upload(flagArrays(*flags), b.flagCopies);
@@ -172,7 +181,7 @@ Image CudaRenderer::renderModel(const ModelField& field, const RenderSettings& s
         l.view = view;
         l.masked = setup.masked();
         l.shade = settings.needsGradients();
-        l.skip = setup.skips();
+        l.skip = skips;
         l.image = pixels;
         l.counters = counters;
         return launchModelRays(l);

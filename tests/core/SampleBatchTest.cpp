@@ -30,6 +30,11 @@ class OneLane {
   void beginRay(const double o[3], const double d[3]) { s_.beginRay(o, d); }
   bool inside(const double p[3]) { return s_.inside(p); }
   bool emptyAt(const double p[3], double& tLeave) { return s_.emptyAt(p, tLeave); }
+  bool boundedAt(const double p[3], bool maximum, int bound, double& tLeave) {
+    return s_.boundedAt(p, maximum, bound, tLeave);
+  }
+  const float* upperLevels() const { return s_.upperLevels(); }
+  const float* lowerLevels() const { return s_.lowerLevels(); }
   void stage(int, const double p[3]) { s_.stage(0, p); }
   // The batched sampler writes all of its kBatch lanes (its lane kernel stores whole vectors).
   void evaluate(int n, float v[]) {

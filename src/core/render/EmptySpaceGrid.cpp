@@ -8,6 +8,8 @@
 #include <cmath>
 #include <cstring>
 
+#include "core/render/CellPyramid.h"
+
 namespace mfadvr {
 
 EmptySpaceFlags buildEmptySpaceFlags(const SplineView& spline, const SpanRanges& r,
@@ -26,20 +28,12 @@ EmptySpaceFlags buildEmptySpaceFlags(const SplineView& spline, const SpanRanges&
   // per slab (their allocations, zeroing and first touches measured a third of the build).
   const std::int64_t plane = std::int64_t(r.cells[0]) * r.cells[1], Z = r.cells[2];
   const std::int64_t slab = std::max<std::int64_t>(16, (Z + 15) / 16);
-  struct Scanners {
-    SpanRangeScanner scan;
-    BezierRangeScanner bezier;
-    std::vector<float> lo, hi, bezierLo, bezierHi;
-  };
-  tbb::enumerable_thread_specific<Scanners> perThread([&] {
-    const size_t size = static_cast<size_t>(plane);
-    return Scanners{SpanRangeScanner(spline), BezierRangeScanner(spline), std::vector<float>(size),
-                    std::vector<float>(size), std::vector<float>(size),   std::vector<float>(size)};
-  });
+  tbb::enumerable_thread_specific<CellRangeScanners> perThread(
+      [&] { return CellRangeScanners(spline, plane); });
   const double bezierRounding = perThread.local().bezier.relativeRounding();
   std::atomic<std::int64_t> empties{0};
   tbb::parallel_for(std::int64_t(0), (Z + slab - 1) / slab, [&](std::int64_t task) {
-    Scanners& t = perThread.local();
+    CellRangeScanners& t = perThread.local();
     SpanRangeScanner& scan = t.scan;
     BezierRangeScanner& bezier = t.bezier;
     std::vector<float>&lo = t.lo, &hi = t.hi, &bezierLo = t.bezierLo, &bezierHi = t.bezierHi;
@@ -94,37 +88,11 @@ EmptySpaceFlags buildEmptySpaceFlags(const SplineView& spline, const SpanRanges&
   });
   out.emptyCells = empties;
 
-  // The pyramid: its levels' sizes, then each level from the one below (a block is empty when
-  // its up to eight sub-blocks are), one layer of blocks per task.
-  std::int64_t size = 0;
-  const int* below = r.cells;
-  while (out.levels < kMaxEmptyLevels &&
-         (out.levels == 0 || below[0] > 1 || below[1] > 1 || below[2] > 1)) {
-    EmptyLevelView& L = out.level[out.levels++];
-    for (int a = 0; a < 3; ++a) L.count[a] = (below[a] + 1) / 2;
-    L.offset = size;
-    size += std::int64_t(L.count[0]) * L.count[1] * L.count[2];
-    below = L.count;
-  }
-  out.pyramid.assign(static_cast<size_t>(size), 0);
-  for (int l = 0; l < out.levels; ++l) {
-    const EmptyLevelView& L = out.level[l];
-    const std::uint8_t* below =
-        l == 0 ? flags.data() : out.pyramid.data() + out.level[l - 1].offset;
-    const int* n = l == 0 ? r.cells : out.level[l - 1].count;
-    std::uint8_t* level = out.pyramid.data() + L.offset;
-    tbb::parallel_for(0, L.count[2], [&](int k) {
-      for (int j = 0; j < L.count[1]; ++j)
-        for (int i = 0; i < L.count[0]; ++i) {
-          bool empty = true;
-          for (int kk = 2 * k; kk < std::min(2 * k + 2, n[2]); ++kk)
-            for (int jj = 2 * j; jj < std::min(2 * j + 2, n[1]); ++jj)
-              for (int ii = 2 * i; ii < std::min(2 * i + 2, n[0]); ++ii)
-                empty = empty && below[ii + std::int64_t(n[0]) * (jj + std::int64_t(n[1]) * kk)];
-          level[i + std::int64_t(L.count[0]) * (j + std::int64_t(L.count[1]) * k)] = empty;
-        }
-    });
-  }
+  // The pyramid: a block is empty when all its cells are (the least of their 0/1 flags).
+  CellPyramid pyramid = buildCellPyramid(r.cells, flags.data(), /*greatest=*/false);
+  out.levels = pyramid.levels;
+  for (int l = 0; l < out.levels; ++l) out.level[l] = pyramid.level[l];
+  out.pyramid = std::move(pyramid.bytes);
   // Each empty cell keeps 1 + the level of the largest aligned all-empty block around it (1: the
   // cell alone), so that a ray's jump reads one byte instead of a flag per level. From the top
   // level down, a set block whose parent is not set fills its cells' rows; every cell of a set
@@ -176,6 +144,16 @@ std::shared_ptr<const EmptySpaceFlags> EmptySpaceCache::flags(const TensorBSplin
     key_ = std::move(key);
   }
   return flags_;
+}
+
+std::shared_ptr<const ExtremeBounds> EmptySpaceCache::extremeBounds(const TensorBSpline& spline) {
+  const std::shared_ptr<const SpanRanges> ranges = spline.spanRanges();
+  std::lock_guard lock(mutex_);
+  if (!extremes_ || ranges != extremeRanges_) {
+    extremes_ = std::make_shared<const ExtremeBounds>(buildExtremeBounds(spline.view(), *ranges));
+    extremeRanges_ = ranges;
+  }
+  return extremes_;
 }
 
 }  // namespace mfadvr

@@ -19,6 +19,7 @@
 #include <mutex>
 #include <vector>
 
+#include "core/render/ExtremeBounds.h"
 #include "core/render/TransferFunctionTable.h"
 #include "core/render/kernel/SplineRaySampler.h"  // EmptyLevelView
 #include "core/spline/BezierRangeScanner.h"
@@ -82,6 +83,22 @@ inline bool skippingRange(const SpanRanges& r, double bezierRounding, float lo, 
   return true;
 }
 
+// One task's scanners of a build over the cells (the flags here, ExtremeBounds.h), with buffers
+// for a plane of cells: made once per thread, not per slab of planes (their allocations, zeroing
+// and first touches measured a third of the flags' build).
+struct CellRangeScanners {
+  SpanRangeScanner scan;
+  BezierRangeScanner bezier;
+  std::vector<float> lo, hi, bezierLo, bezierHi;
+  CellRangeScanners(const SplineView& spline, std::int64_t planeCells)
+      : scan(spline),
+        bezier(spline),
+        lo(static_cast<size_t>(planeCells)),
+        hi(lo.size()),
+        bezierLo(lo.size()),
+        bezierHi(lo.size()) {}
+};
+
 // `ranges`: spline's (SpanRanges::compute). The cells' bounds are computed here, a slab of cells
 // per task, and not kept. Without `bezierRanges` a cell is classified by its control points
 // alone: fewer empty cells, a faster build (for flags that serve few samples per cell).
@@ -99,6 +116,9 @@ class EmptySpaceCache {
   // Flags for `spline` under `table`; the object stays valid as long as the pointer is held.
   std::shared_ptr<const EmptySpaceFlags> flags(const TensorBSpline& spline,
                                                const TransferFunctionTable& table);
+  // The extreme bounds of `spline` for maximum and minimum intensity skipping (ExtremeBounds.h):
+  // built on the first call for a spline, then kept while it is the same.
+  std::shared_ptr<const ExtremeBounds> extremeBounds(const TensorBSpline& spline);
   // The flags built last, or null before the first call.
   std::shared_ptr<const EmptySpaceFlags> current() {
     std::lock_guard lock(mutex_);
@@ -110,6 +130,8 @@ class EmptySpaceCache {
   std::shared_ptr<const SpanRanges> ranges_;  // identifies the spline (shared by its copies)
   std::vector<std::uint64_t> key_;            // the table's zero-opacity entries, lo and scale
   std::shared_ptr<const EmptySpaceFlags> flags_;
+  std::shared_ptr<const SpanRanges> extremeRanges_;  // identifies extremes_' spline
+  std::shared_ptr<const ExtremeBounds> extremes_;
 };
 
 }  // namespace mfadvr

@@ -30,10 +30,28 @@ ModelRenderSetup::ModelRenderSetup(const ModelField& field, const RenderSettings
   view_.mask = model.mask().view();
   // The flags' (re)build is part of the frame: its time is added to the ray casting's.
   const auto start = std::chrono::steady_clock::now();
-  // Composite renders skip what the transfer function hides, iso renders the cells that hold no
-  // isovalue; in the other blend modes a transparent value still sets the extreme or the
-  // average.
-  if (settings.skipEmptySpace && settings.blend == BlendMode::Iso) {
+  // Composite and additive renders skip what the transfer function hides, iso renders the cells
+  // that hold no isovalue, maximum and minimum intensity renders the cells that cannot beat a
+  // ray's extreme (ExtremeBounds.h; unshaded); average renders count transparent values too.
+  const BlendMode blend = settings.blend;
+  // Only the unshaded loops reduce with skipping (RayIntegrator.h).
+  const bool unshaded = !settings.needsGradients();
+  // Maximum intensity skips only when the transfer function is transparent at the low end, so
+  // that rays pass over that end from their start: with a ramp from the minimum, rays through
+  // a dense field (Marschner-Lobb 256^3) rarely jump far, and the tests cost more than they
+  // saved (4.76 s against 4.07 s at 1000x1000; 2.48 s against 4.20 s transparent below the
+  // middle; docs/rendering.md). Minimum intensity gained in both (1.11 s against 4.30 s).
+  const bool maximumSkips =
+      blend == BlendMode::Maximum && tables_.table().transparentUpTo() > -INFINITY;
+  if (settings.skipEmptySpace && unshaded && (maximumSkips || blend == BlendMode::Minimum)) {
+    if (EmptySpaceCache* cache = field.emptySpaceCache()) {
+      extremes_ = cache->extremeBounds(model.spline());
+    } else {
+      extremes_ = std::make_shared<const ExtremeBounds>(buildExtremeBounds(
+          view_.spline, *model.spline().spanRanges(), bezierRangesPayOff(model, settings)));
+    }
+    extremes_->attachTo(view_);
+  } else if (settings.skipEmptySpace && blend == BlendMode::Iso) {
     const TransferFunctionTable band(isoBandTransferFunction(settings.isoSurfaces),
                                      OpacityCorrection(1.0));
     if (EmptySpaceCache* cache = field.emptySpaceCache()) {
@@ -43,7 +61,8 @@ ModelRenderSetup::ModelRenderSetup(const ModelField& field, const RenderSettings
           view_.spline, *model.spline().spanRanges(), band, bezierRangesPayOff(model, settings)));
     }
     if (flags_->emptyCells > 0) flags_->attachTo(view_);
-  } else if (settings.skipEmptySpace && settings.blend == BlendMode::Composite) {
+  } else if (settings.skipEmptySpace &&
+             (blend == BlendMode::Composite || (blend == BlendMode::Additive && unshaded))) {
     if (EmptySpaceCache* cache = field.emptySpaceCache()) {
       flags_ = cache->flags(model.spline(), tables_.table());
     } else {

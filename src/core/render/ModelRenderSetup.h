@@ -30,6 +30,8 @@ class ModelRenderSetup {
   bool masked() const { return view_.mask.nodes != nullptr; }
   // Whether the view carries empty-space flags (skipping on and something to skip).
   bool skips() const { return view_.empty != nullptr; }
+  // Whether it carries extreme bounds (maximum and minimum intensity skipping, host only).
+  bool skipsExtremes() const { return view_.extremeUpper != nullptr; }
   // The flags behind view().empty / emptyPyramid, or null. Shared with the field's cache: the
   // same object comes back while the model and the transfer function's zero set are unchanged.
   std::shared_ptr<const EmptySpaceFlags> emptySpaceFlags() const {
@@ -43,6 +45,7 @@ class ModelRenderSetup {
   RayParams params_;
   ModelView view_;
   std::shared_ptr<const EmptySpaceFlags> flags_;
+  std::shared_ptr<const ExtremeBounds> extremes_;
   double setupSeconds_ = 0.0;
 };
 

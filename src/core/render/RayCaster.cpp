@@ -46,6 +46,8 @@ RayParams compileRayParams(const RenderSettings& s, const TransferFunctionTable&
     p.averageHi = static_cast<float>(s.averageRange->second);
   }
   p.additiveScale = 1.0 / s.opacityUnitDistance;
+  if (s.blend == BlendMode::Maximum) p.transparentBeyond = table.transparentUpTo();
+  if (s.blend == BlendMode::Minimum) p.transparentBeyond = table.transparentFrom();
   p.isoCount = s.blend == BlendMode::Iso ? static_cast<int>(s.isoSurfaces.size()) : 0;
   for (int i = 0; i < p.isoCount; ++i) {
     const IsoSurface& iso = s.isoSurfaces[i];

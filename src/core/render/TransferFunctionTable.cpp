@@ -1,7 +1,10 @@
 #include "core/render/TransferFunctionTable.h"
 
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 
 #include "core/util/Error.h"
 
@@ -71,6 +74,45 @@ bool TransferFunctionTable::mayBeTransparentOver(float lo, float hi) const {
   int first, last;
   if (!touchedEntries(lo, hi, first, last)) return true;
   return visibleBefore_[last + 1] - visibleBefore_[first] < last + 1 - first;
+}
+
+namespace {
+// Floats in their order as integers (both zeros as 0), and back.
+std::int64_t orderedKey(float f) {
+  std::int32_t bits;
+  std::memcpy(&bits, &f, 4);
+  return bits >= 0 ? std::int64_t(bits) : -std::int64_t(bits & 0x7fffffff);
+}
+float fromOrderedKey(std::int64_t key) {
+  const std::uint32_t bits =
+      key >= 0 ? static_cast<std::uint32_t>(key) : static_cast<std::uint32_t>(-key) | 0x80000000u;
+  float f;
+  std::memcpy(&f, &bits, 4);
+  return f;
+}
+// The last float in [-FLT_MAX, FLT_MAX] where `holds` (true at -FLT_MAX, monotone) is true.
+template <class Holds>
+float lastWhere(Holds holds) {
+  std::int64_t yes = orderedKey(-FLT_MAX), no = orderedKey(FLT_MAX);
+  while (no - yes > 1) {
+    const std::int64_t mid = yes + (no - yes) / 2;
+    (holds(fromOrderedKey(mid)) ? yes : no) = mid;
+  }
+  return fromOrderedKey(yes);
+}
+}  // namespace
+
+float TransferFunctionTable::transparentUpTo() const {
+  // transparentOver(-FLT_MAX, v) only loses entries' transparency as v grows: monotone.
+  if (!transparentOver(-FLT_MAX, -FLT_MAX)) return -INFINITY;
+  if (transparentOver(-FLT_MAX, FLT_MAX)) return INFINITY;
+  return lastWhere([&](float v) { return transparentOver(-FLT_MAX, v); });
+}
+
+float TransferFunctionTable::transparentFrom() const {
+  if (!transparentOver(FLT_MAX, FLT_MAX)) return INFINITY;
+  if (transparentOver(-FLT_MAX, FLT_MAX)) return -INFINITY;
+  return -lastWhere([&](float v) { return transparentOver(-v, FLT_MAX); });
 }
 
 }  // namespace mfadvr

@@ -51,6 +51,11 @@ class TransferFunctionTable {
   // True when some value in [lo, hi] may classify to opacity exactly 0: [lo, hi] touches a
   // transparent entry (NaN ends: true). O(1).
   bool mayBeTransparentOver(float lo, float hi) const;
+  // The greatest value v such that every value at or below it classifies to opacity exactly 0
+  // (-inf: none; +inf: every value), and the least value such that every value at or above it
+  // does (+inf: none; -inf: every value). Maximum and minimum intensity skipping start there.
+  float transparentUpTo() const;
+  float transparentFrom() const;
   // Both at once: every value of [lo, hi] transparent, some may be, or none is. Inline: the
   // empty-space flags' build asks it once per cell.
   enum class RangeOpacity { Transparent, Mixed, Visible };

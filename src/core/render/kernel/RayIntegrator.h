@@ -52,6 +52,14 @@
 
 namespace mfadvr {
 
+// Whether the blends other than composite and iso skip (RayReduction.h): on the host; the
+// device's kernels sample every step of them.
+#if defined(__CUDA_ARCH__)
+inline constexpr bool kReducesWithSkipping = false;
+#else
+inline constexpr bool kReducesWithSkipping = true;
+#endif
+
 // Integrates the segment (raySegment; null: the ray misses the box) from `start` into out.
 template <bool Masked, bool Shade, class Sampler>
 MFADVR_HD MFADVR_INLINE void integrateSegment(const RayParams& rp, Sampler& sampler,
@@ -62,11 +70,12 @@ MFADVR_HD MFADVR_INLINE void integrateSegment(const RayParams& rp, Sampler& samp
     ++counters.hits;
     if (rp.blend == BlendMode::Iso) {
       isoSegment<Masked, Shade>(rp, sampler, *segment, out, counters);
-    } else if constexpr (!Sampler::kSkipsEmptySpace) {
+    } else if constexpr (!Sampler::kSkipsEmptySpace || (!Shade && kReducesWithSkipping)) {
       reduceSegment<Masked>(rp, sampler, *segment, out, counters);
     } else {
-      // Not reached: only composite and iso renders skip (ModelRenderSetup), and leaving the
-      // reduction out of the skipping loops keeps their compilation shorter.
+      // Not reached: the other blends skip in unshaded renders on the host only
+      // (ModelRenderSetup, CudaRenderer), and leaving the reduction out of the other skipping
+      // loops keeps their compilation shorter.
       overBackground(rp, 0.0f, 0.0f, 0.0f, 0.0f, out);
     }
     return;

@@ -47,6 +47,10 @@ struct RayParams {
   float averageLo = -INFINITY, averageHi = INFINITY;
   // Additive blend: a step of length dt adds a v' dt * additiveScale (1 / opacity unit distance).
   double additiveScale = 1.0;
+  // Maximum blend: every value at or below this is transparent (TransferFunctionTable::
+  // transparentUpTo); minimum blend: every value at or above it (transparentFrom). A ray skips
+  // cells that cannot go beyond it as it skips those that cannot beat its running extreme.
+  float transparentBeyond = NAN;
   // Clipping planes: a point x is kept where n . x + w >= 0, plane i = {n0, n1, n2, w}.
   int clipPlaneCount = 0;
   double clipPlane[kMaxClipPlanes][4];

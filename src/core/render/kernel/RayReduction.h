@@ -3,8 +3,14 @@
 // to one value (max, min) or one level (average, additive), then made a pixel. The ray and its
 // samples are the composite integration's (RaySteps.h), the sampler is the same ray sampler
 // (RayIntegrator.h describes its interface), so that every method and mode sees the same
-// samples. Nothing is shaded, no ray terminates early, no space is skipped: every sample can
-// set the extreme or add to the sum.
+// samples. Nothing is shaded and no ray terminates early. A sampler that skips (the MFA model's)
+// passes over exactly the samples that could not change the pixel: in a maximum (minimum)
+// intensity render those of cells whose values cannot exceed (go below) the ray's running extreme
+// nor leave the transfer function's transparent end (SplineRaySampler::boundedAt,
+// ExtremeBounds.h), in an additive render those the transfer function makes transparent (the
+// composite render's empty cells: they add nothing). Average renders count every value within
+// their range, transparent or not, and skip nothing.
+#include "core/render/kernel/ExtremeLevels.h"
 #include "core/render/kernel/RaySteps.h"
 
 namespace mfadvr {
@@ -69,8 +75,9 @@ struct RayReduction {
 };
 
 // Reduces the samples of `ray` into out (RGBA) and, when the render keeps depth, rp.depth.
-// Masked: samples outside the sampler's mask do not count. Samplers that skip empty space are
-// asked emptyAt() only to locate each point (their stage() relies on it); nothing is skipped.
+// Masked: samples outside the sampler's mask do not count. A sampler that skips is given the
+// skipping of the ray's blend (maximum, minimum: its extreme bounds; additive: its empty-space
+// flags; never average).
 template <bool Masked, class Sampler>
 MFADVR_HD MFADVR_OUTLINE void reduceSegment(const RayParams& rp, Sampler& sampler,
                                             const RaySegment& ray, float out[4],
@@ -79,6 +86,22 @@ MFADVR_HD MFADVR_OUTLINE void reduceSegment(const RayParams& rp, Sampler& sample
   const double dt = rp.sampleDistance;
   RayReduction r;
   sampler.beginRay(ray.o, ray.d);
+  [[maybe_unused]] const bool maximum = rp.blend == BlendMode::Maximum;
+  [[maybe_unused]] const bool extreme = maximum || rp.blend == BlendMode::Minimum;
+  // The byte a cell's bound must pass to be skipped, from the ray's extreme or the transfer
+  // function's transparent end, whichever lies further out; it only moves outwards as the ray
+  // goes (a batch's values update it after the batch: later, never wrong).
+  [[maybe_unused]] int bound = 0;
+  [[maybe_unused]] const auto updateBound = [&] {
+    if constexpr (Sampler::kSkipsEmptySpace) {
+      if (!extreme) return;
+      float v = rp.transparentBeyond;
+      if (r.any && (maximum ? !(r.extreme <= v) : !(r.extreme >= v))) v = r.extreme;
+      bound = maximum ? upperByteAtMost(sampler.upperLevels(), v)
+                      : lowerByteAtLeast(sampler.lowerLevels(), v);
+    }
+  };
+  updateBound();
   std::int64_t k = 0;
   bool done = false;
   while (!done && k < ray.steps) {
@@ -96,7 +119,12 @@ MFADVR_HD MFADVR_OUTLINE void reduceSegment(const RayParams& rp, Sampler& sample
       }
       if constexpr (Sampler::kSkipsEmptySpace) {
         double tLeave;
-        (void)sampler.emptyAt(p, tLeave);
+        if (extreme ? sampler.boundedAt(p, maximum, bound, tLeave) : sampler.emptyAt(p, tLeave)) {
+          const std::int64_t next = stepAfterEmpty(k, tLeave, ray.t0, dt, ray.steps);
+          counters.skipped += 1 + (next - k);
+          k = next;
+          continue;
+        }
       }
       sampler.stage(n, p);
       lengths[n] = length;
@@ -108,6 +136,7 @@ MFADVR_HD MFADVR_OUTLINE void reduceSegment(const RayParams& rp, Sampler& sample
     sampler.evaluate(n, values);
     counters.samples += n;
     for (int i = 0; i < n; ++i) r.take(rp, values[i], lengths[i], mids[i]);
+    updateBound();
   }
   float depth;
   r.finish(rp, out, depth);

@@ -21,6 +21,7 @@
 #include <cstdint>
 
 #include "core/mask/MaskView.h"
+#include "core/render/kernel/ExtremeLevels.h"
 #include "core/render/kernel/SampleBatch.h"
 #include "core/spline/SplineKernel.h"
 #include "core/spline/SplineLaneKernel.h"
@@ -56,6 +57,20 @@ struct ModelView {
   const std::uint8_t* emptyPyramid = nullptr;
   int emptyLevels = 0;
   EmptyLevelView emptyLevel[kMaxEmptyLevels];
+  // Maximum and minimum intensity skipping (ExtremeBounds.h); null: none. Per cell (indexed as
+  // `empty`) the byte of an upper and of a lower bound of its values: the index of a level of
+  // extremeUpperLevels / extremeLowerLevels (kExtremeLevels ascending floats each). Their
+  // pyramids: level l = 1..extremeLevels has the greatest upper and the least lower byte per
+  // block of 2^l cells per axis, from extremeUpperPyramid / extremeLowerPyramid +
+  // extremeLevel[l - 1].offset.
+  const std::uint8_t* extremeUpper = nullptr;
+  const std::uint8_t* extremeLower = nullptr;
+  const std::uint8_t* extremeUpperPyramid = nullptr;
+  const std::uint8_t* extremeLowerPyramid = nullptr;
+  const float* extremeUpperLevels = nullptr;
+  const float* extremeLowerLevels = nullptr;
+  int extremeLevels = 0;
+  EmptyLevelView extremeLevel[kMaxEmptyLevels];
 };
 
 // Shade: evaluate() also computes the basis derivatives (one Horner pass gives both), which
@@ -159,6 +174,19 @@ class SplineRaySampler {
     return insideMask(m_.mask, u);
   }
 
+  // Where the ray r leaves, on axis a, the aligned block of 2^level cells per axis whose first
+  // cell on that axis is b (clipped at the grid's far face): the knot plane of the face it leaves
+  // by, pulled in by kEmptyInset; +inf when the ray is parallel to the axis's faces.
+  MFADVR_HD MFADVR_INLINE double blockExit(const RayMarch& r, int a, int b, int level) const {
+    const double* U = m_.spline.axis[a].knots;
+    if (r.ud[a] > 0.0) {
+      const int end = b + (1 << level);
+      return (U[p_[a] + (end < cells_[a] ? end : cells_[a])] - kEmptyInset - r.uo[a]) * r.invUd[a];
+    }
+    if (r.ud[a] < 0.0) return (U[p_[a] + b] + kEmptyInset - r.uo[a]) * r.invUd[a];
+    return static_cast<double>(INFINITY);
+  }
+
   MFADVR_HD MFADVR_INLINE bool emptyAt(const double p[3], double& tLeave) {
     located_ = true;
     return emptyAlong(march_, p, tLeave, loc_);
@@ -191,16 +219,7 @@ class SplineRaySampler {
     int level = flag - 1;
     int b[3] = {0, 0, 0};  // the region's first cell on each axis
     double tn[3];          // where the ray leaves the region on each axis
-    const auto leave = [&](int a) {
-      const double* U = m_.spline.axis[a].knots;
-      if (r.ud[a] > 0.0) {
-        const int end = b[a] + (1 << level);
-        return (U[p_[a] + (end < cells_[a] ? end : cells_[a])] - kEmptyInset - r.uo[a]) *
-               r.invUd[a];
-      }
-      if (r.ud[a] < 0.0) return (U[p_[a] + b[a]] + kEmptyInset - r.uo[a]) * r.invUd[a];
-      return static_cast<double>(INFINITY);
-    };
+    const auto leave = [&](int a) { return blockExit(r, a, b[a], level); };
     for (int a = 0; a < 3; ++a) {
       b[a] = ((loc[a].span - p_[a]) >> level) << level;
       tn[a] = leave(a);
@@ -241,6 +260,44 @@ class SplineRaySampler {
     }
     return true;
   }
+
+  // Maximum (maximum = true) or minimum intensity skipping: true when no value the spline can
+  // take in the cell of p is above the level of upper byte `bound` (below that of lower byte
+  // `bound`; upperByteAtMost / lowerByteAtLeast of the ray's running extreme); tLeave: where the
+  // ray leaves the largest aligned block of cells around p where that holds (faces pulled in as
+  // emptyAlong's). Locates p for stage() either way.
+  MFADVR_HD MFADVR_INLINE bool boundedAt(const double p[3], bool maximum, int bound,
+                                         double& tLeave) {
+    located_ = true;
+    double u[3];
+    toParameter(p, u);
+    locatePoint<P>(m_.spline, u, loc_);
+    int c[3];
+    for (int a = 0; a < 3; ++a) c[a] = loc_[a].span - p_[a];
+    const std::uint8_t* cells = maximum ? m_.extremeUpper : m_.extremeLower;
+    const std::uint8_t* pyramid = maximum ? m_.extremeUpperPyramid : m_.extremeLowerPyramid;
+    const auto passes = [&](int byte) { return maximum ? byte <= bound : byte >= bound; };
+    if (!passes(cells[c[0] + cells_[0] * (c[1] + std::int64_t(cells_[1]) * c[2])])) return false;
+    int level = 0;  // the largest block (of 2^level cells per axis) around the cell that passes
+    while (level < m_.extremeLevels) {
+      const EmptyLevelView& L = m_.extremeLevel[level];
+      const int s = level + 1;
+      const std::int64_t block =
+          (c[0] >> s) + L.count[0] * ((c[1] >> s) + std::int64_t(L.count[1]) * (c[2] >> s));
+      if (!passes(pyramid[L.offset + block])) break;
+      ++level;
+    }
+    tLeave = INFINITY;
+    for (int a = 0; a < 3; ++a) {
+      const double t = blockExit(march_, a, (c[a] >> level) << level, level);
+      if (t < tLeave) tLeave = t;
+    }
+    return true;
+  }
+
+  // The levels of the extreme bounds' bytes (boundedAt).
+  MFADVR_HD MFADVR_INLINE const float* upperLevels() const { return m_.extremeUpperLevels; }
+  MFADVR_HD MFADVR_INLINE const float* lowerLevels() const { return m_.extremeLowerLevels; }
 
   MFADVR_HD MFADVR_INLINE void stage(int lane, const double p[3]) {
     if constexpr (kLocateLanes) {
