@@ -41,8 +41,7 @@ ModelRenderSetup::ModelRenderSetup(const ModelField& field, const RenderSettings
   // a dense field (Marschner-Lobb 256^3) rarely jump far, and the tests cost more than they
   // saved (4.76 s against 4.07 s at 1000x1000; 2.48 s against 4.20 s transparent below the
   // middle; docs/rendering.md). Minimum intensity gained in both (1.11 s against 4.30 s).
-  const bool maximumSkips =
-      blend == BlendMode::Maximum && tables_.table().transparentUpTo() > -INFINITY;
+  const bool maximumSkips = blend == BlendMode::Maximum && params_.transparentBeyond > -INFINITY;
   if (settings.skipEmptySpace && unshaded && (maximumSkips || blend == BlendMode::Minimum)) {
     if (EmptySpaceCache* cache = field.emptySpaceCache()) {
       extremes_ = cache->extremeBounds(model.spline());
