@@ -86,8 +86,12 @@ TEST(TransferFunctionTable, TransparentEndsBoundTheTransparentValues) {
     const float entry = 5.0f / (TransferFunctionTable::kEntries - 1);
     for (int i = 0; i <= 1000; ++i) {
       const float v = -4.0f + 8.0f * static_cast<float>(i) / 1000.0f;
-      if (v <= upTo) EXPECT_EQ(table.classify(v).alpha, 0.0f) << v;
-      if (v >= from) EXPECT_EQ(table.classify(v).alpha, 0.0f) << v;
+      if (v <= upTo) {
+        EXPECT_EQ(table.classify(v).alpha, 0.0f) << v;
+      }
+      if (v >= from) {
+        EXPECT_EQ(table.classify(v).alpha, 0.0f) << v;
+      }
     }
     if (std::isfinite(upTo)) {
       EXPECT_EQ(table.classify(upTo).alpha, 0.0f);

@@ -51,6 +51,11 @@ class TrilinearFilter {
     r.gradient = Vec3f(g[0], g[1], g[2]);
     return r;
   }
+  // The exact isosurface walk's pieces (kernel/IsoSurfaceWalk.h): a cubic along a ray per cell.
+  int rayDegree() const { return 3; }
+  double pieceEnd(const double o[3], const double d[3], double t) const {
+    return gridPieceEnd(g_, o, d, t);
+  }
 
  private:
   GridView g_;
@@ -64,6 +69,11 @@ class Cubic4Filter {
   explicit Cubic4Filter(const PaddedGrid& g) : g_(&g) {}
   [[gnu::always_inline]] float value(const Vec3d& x) const;
   [[gnu::always_inline]] ValueGradient valueGradient(const Vec3d& x) const;
+  // Tricubic in each cell between samples: degree 9 along a ray (kernel/IsoSurfaceWalk.h).
+  int rayDegree() const { return 9; }
+  double pieceEnd(const double o[3], const double d[3], double t) const {
+    return gridPieceEnd(g_->view(), o, d, t);
+  }
 
  private:
   const PaddedGrid* g_;
@@ -123,6 +133,11 @@ class TricubicFilter {
   explicit TricubicFilter(const PaddedGrid& g) : g_(&g) {}
   float value(const Vec3d& x) { return evaluate(x, false).value; }
   ValueGradient valueGradient(const Vec3d& x) { return evaluate(x, true); }
+  // One tricubic per cell: degree 9 along a ray (kernel/IsoSurfaceWalk.h).
+  int rayDegree() const { return 9; }
+  double pieceEnd(const double o[3], const double d[3], double t) const {
+    return gridPieceEnd(g_->view(), o, d, t);
+  }
 
  private:
   ValueGradient evaluate(const Vec3d& x, bool gradient);

@@ -46,6 +46,23 @@ class FieldRaySampler : public PointwiseBatch<FieldRaySampler<S, Shade>, kSample
 
   double differenceStep(int) const { return step_; }
 
+  // The polynomial pieces of a ray, where the field has them (the grid filters but nearest):
+  // the isosurface blend then walks them exactly (kernel/IsoSurfaceWalk.h) instead of sampling.
+  static constexpr bool kHasPieces = requires(const S& s, const double* o, double t) {
+    s.rayDegree();
+    s.pieceEnd(o, o, t);
+  };
+  int rayDegree() const
+    requires kHasPieces
+  {
+    return s_.rayDegree();
+  }
+  double pieceEnd(const double o[3], const double d[3], double t) const
+    requires kHasPieces
+  {
+    return s_.pieceEnd(o, d, t);
+  }
+
   // Whether samples can fall outside (a sampler without inside() cannot; one with masked()
   // says so: a model without a mask cannot).
   bool canBeOutside() const {

@@ -3,7 +3,8 @@
 // composited front to back as surfaces.
 //
 // Exact where the field is a polynomial along the ray piece by piece (the sampler tells where a
-// piece ends: the MFA model's knot-span cells, kernel/SplineRaySampler.h): the ray is walked
+// piece ends: the MFA model's knot-span cells, kernel/SplineRaySampler.h; the grid filters'
+// cells between samples, gridPieceEnd in kernel/TrilinearKernel.h): the ray is walked
 // piece by piece, not by samples, so nothing depends on the step. A piece whose cell the
 // empty-space flags mark (flags built for an isovalue band: no value the cell can take is an
 // isovalue, EmptySpaceGrid.h) is passed over without an evaluation. In the others the
@@ -16,9 +17,10 @@
 // falsi, Illinois variant) to the float precision of its values. A tangent touch without a sign
 // change is not a crossing.
 //
-// Samplers without pieces (grid filters, the analytic truth) are walked at the sample distance:
-// a sign change of f - c between two consecutive samples is a crossing, refined the same way
-// (as VTK's isosurface blend finds them, then solved rather than taken at the sample).
+// Samplers without pieces (the nearest-sample filter, the analytic truth) are walked at the
+// sample distance: a sign change of f - c between two consecutive samples is a crossing,
+// refined the same way (as VTK's isosurface blend finds them, then solved rather than taken at
+// the sample).
 //
 // A hit on isovalue i has colour rp.isoColor[i] (rgb) and opacity rp.isoColor[i][3], shaded
 // with the field's gradient at the hit for shaded renders, coloured and weighted by the surface's

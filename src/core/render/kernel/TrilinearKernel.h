@@ -3,6 +3,7 @@
 // plain view of a padded grid (host and device). TrilinearFilter (field/GridFilters.h) and the
 // CUDA renderer's grid sampler both call these functions: one formula for the baseline on every
 // device.
+#include <cmath>
 #include <cstdint>
 
 #include "core/render/kernel/SampleBatch.h"
@@ -42,6 +43,27 @@ MFADVR_HD MFADVR_INLINE const float* gridCell(const GridView& g, const double x[
   for (int a = 0; a < 3; ++a)
     gridCellOf(gridIndex(x[a], g.origin[a], g.inverseSpacing[a], g.dims[a]), g.dims[a], c[a], t[a]);
   return g.data + ((c[0] + 1) + g.sy * (c[1] + 1) + g.sz * (c[2] + 1));
+}
+
+// The isosurface walk's pieces on a grid (kernel/IsoSurfaceWalk.h): every grid filter is a
+// polynomial inside each cell between samples, so a ray's piece ends where it crosses the
+// nearest plane of whole continuous index beyond t on any axis (+inf for a ray parallel to
+// every axis's planes). Outside [0, n - 1] the lookup clamps, so the extra planes there only
+// split constant stretches.
+MFADVR_HD MFADVR_INLINE double gridPieceEnd(const GridView& g, const double o[3], const double d[3],
+                                            double t) {
+  double end = static_cast<double>(INFINITY);
+  for (int a = 0; a < 3; ++a) {
+    const double ud = d[a] * g.inverseSpacing[a];
+    if (ud == 0.0) continue;
+    const double uo = (o[a] - g.origin[a]) * g.inverseSpacing[a];
+    const double u = uo + t * ud;
+    double plane = ud > 0.0 ? floor(u) + 1.0 : ceil(u) - 1.0;
+    double ta = (plane - uo) / ud;
+    if (!(ta > t)) ta = (plane + (ud > 0.0 ? 1.0 : -1.0) - uo) / ud;  // rounding held it back
+    if (ta < end) end = ta;
+  }
+  return end;
 }
 
 MFADVR_HD MFADVR_INLINE float trilinearValue(const GridView& g, const double x[3]) {
@@ -97,6 +119,11 @@ class TrilinearRaySampler : public PointwiseBatch<TrilinearRaySampler<Shade>, kS
   // hundredth of the samples, where the trilinear gradient jumps.
   MFADVR_HD MFADVR_INLINE double differenceStep(int axis) const {
     return 0.01 / g_.inverseSpacing[axis];
+  }
+  // Trilinear in each cell: a cubic along a ray (the exact isosurface walk).
+  MFADVR_HD MFADVR_INLINE int rayDegree() const { return 3; }
+  MFADVR_HD MFADVR_INLINE double pieceEnd(const double o[3], const double d[3], double t) const {
+    return gridPieceEnd(g_, o, d, t);
   }
 
  private:
