@@ -5,12 +5,14 @@
 #include <gtest/gtest.h>
 
 #include <vtkActor.h>
+#include <vtkCamera.h>
 #include <vtkCallbackCommand.h>
 #include <vtkCommand.h>
 #include <vtkContourValues.h>
 #include <vtkDataSetTriangleFilter.h>
 #include <vtkFloatArray.h>
 #include <vtkImageData.h>
+#include <vtkMatrix4x4.h>
 #include <vtkPiecewiseFunction.h>
 #include <vtkPlane.h>
 #include <vtkPointData.h>
@@ -238,6 +240,80 @@ TEST(VolumeMapper, BlendsWithOpaqueGeometryByDepth) {
   EXPECT_GT(cut, 40.0);
   // Ignoring the depth (the volume drawn over the whole sphere) is clearly worse.
   EXPECT_LT(uncut, cut - 6.0) << "cut " << cut << " uncut " << uncut;
+}
+
+// The window depth buffer after a frame, row 0 at the bottom (VTK's order).
+std::vector<float> windowDepth(VtkVolumeScene& v) {
+  const int n = VtkVolumeScene::kSize;
+  std::vector<float> z(static_cast<size_t>(n) * n);
+  const LeakCheckPause pause;
+  v.window->GetZbufferData(0, 0, n - 1, n - 1, z.data());
+  return z;
+}
+
+// What the mapper writes into the depth buffer: isosurface hits by default, nothing with
+// WriteDepthNever, the composite depth (opacity 0.5) with WriteDepthAlways. Each written pixel,
+// taken back to a distance along its ray, is the core renderer's depth of that ray; the others
+// keep the cleared buffer (1).
+TEST(VolumeMapper, WritesItsDepthIntoTheDepthBuffer) {
+  struct Case {
+    const char* what;
+    bool iso;
+    int write;
+  };
+  for (const Case c : {Case{"iso, default", true, -1}, Case{"iso, never", true, 0},
+                       Case{"composite, default", false, -1}, Case{"composite, always", false, 2}}) {
+    VtkVolumeScene v(marschnerLobbModel(), false);
+    RenderSettings s = v.coreSettings();
+    if (c.iso) {
+      v.mapper->SetBlendModeToIsoSurface();
+      v.property->GetIsoSurfaceValues()->SetValue(0, 0.5);
+      s.blend = BlendMode::Iso;
+      s.isoSurfaces = {{0.5, {}, {}}};
+    }
+    if (c.write >= 0) v.mapper->SetWriteDepth(c.write);
+    const bool writes = c.write == 2 || (c.write < 0 && c.iso);
+    v.render();
+    const std::vector<float> z = windowDepth(v);
+    s.depth = true;
+    const Image core = renderVolume(ModelField(*marschnerLobbModel()), s);
+    vtkMatrix4x4* worldToClip =
+        v.renderer->GetActiveCamera()->GetCompositeProjectionTransformMatrix(1.0, -1, 1);
+    vtkNew<vtkMatrix4x4> clipToWorld;
+    vtkMatrix4x4::Invert(worldToClip, clipToWorld);
+    const RayGenerator rays(s.camera, s.width, s.height);
+    const int n = VtkVolumeScene::kSize;
+    int written = 0, hits = 0;
+    double worst = 0.0;
+    for (int y = 0; y < n; ++y)
+      for (int x = 0; x < n; ++x) {
+        const float t = core.depth[static_cast<size_t>(y) * n + x];
+        const float zw = z[static_cast<size_t>(n - 1 - y) * n + x];
+        if (zw < 1.0f) ++written;
+        if (!std::isfinite(t)) {
+          EXPECT_EQ(zw, 1.0f) << c.what << " pixel " << x << "," << y;
+          continue;
+        }
+        ++hits;
+        if (!writes) {
+          EXPECT_EQ(zw, 1.0f) << c.what;
+          continue;
+        }
+        const double clip[4] = {2.0 * (x + 0.5) / n - 1.0, 2.0 * (n - 1 - y + 0.5) / n - 1.0,
+                                2.0 * zw - 1.0, 1.0};
+        double world[4];
+        clipToWorld->MultiplyPoint(clip, world);
+        Vec3d o, d;
+        rays.ray(x, y, o, d);
+        const Vec3d p = Vec3d(world[0], world[1], world[2]) / world[3];
+        worst = std::max(worst, std::abs((p - o).dot(d) - t));
+      }
+    std::printf("depth buffer, %s: %d pixels written, %d rays with a depth, worst %.2e\n", c.what,
+                written, hits, worst);
+    EXPECT_GT(hits, n * n / 10) << c.what;
+    EXPECT_EQ(written, writes ? hits : 0) << c.what;
+    EXPECT_LT(worst, 2e-3) << c.what;  // the box is 2 wide; the buffer has 24 bits
+  }
 }
 
 // Moving the volume and the camera together, or scaling both (with the world-unit distances),

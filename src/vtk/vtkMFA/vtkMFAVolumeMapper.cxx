@@ -71,6 +71,7 @@ struct vtkMFAVolumeMapper::Internals {
   double CurvatureDefault = 0.0, CurvatureScale = 0.0;
   std::optional<mfadvr::CurvatureTransferFunction> Curvature;
   std::vector<float> Depth;
+  std::vector<float> VolumeDepth;  // the depth buffer with the volume's depth written in
   std::vector<unsigned char> Pixels;
   std::function<mfadvr::Image(const mfadvr::RenderSettings&)> FieldRenderer;
   double LastSeconds = 0.0;
@@ -132,6 +133,7 @@ void vtkMFAVolumeMapper::PrintSelf(ostream& os, vtkIndent indent) {
   os << indent << "CurvatureTransferFunction: "
      << (this->CurvatureTransferFunction ? this->CurvatureTransferFunction : "(none)") << "\n";
   os << indent << "ContourWidth: " << this->ContourWidth << "\n";
+  os << indent << "WriteDepth: " << this->WriteDepth << "\n";
   os << indent << "ContourColor: " << this->ContourColor[0] << " " << this->ContourColor[1] << " "
      << this->ContourColor[2] << "\n";
   os << indent << "Device: " << this->Device << "\n";
@@ -455,6 +457,9 @@ void vtkMFAVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol) {
       for (int a = 0; a < 3; ++a) s.contourColor[a] = static_cast<float>(this->ContourColor[a]);
     }
 
+    s.depth = this->WriteDepth == WriteDepthAlways ||
+              (this->WriteDepth == WriteDepthIsosurfaces && s.blend == mfadvr::BlendMode::Iso);
+
     // Ray ends from the depth buffer: the opaque geometry drawn so far.
     auto& depth = this->Internal->Depth;
     depth.resize(static_cast<size_t>(width) * height);
@@ -502,6 +507,11 @@ void vtkMFAVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol) {
       auto& in = *this->Internal;
       std::vector<mfadvr::DomainBox> regions;
       for (const auto& c : in.Carried) regions.push_back(c.region);
+      if (regions.size() > 1 && s.depth) {
+        s.depth = false;
+        this->WarnOnce("a volume of several pieces writes no depth (WriteDepth): its pieces' "
+                       "depths would need their opacities in order");
+      }
       image = mfadvr::renderPieces(
           s, regions, [&](size_t i, const mfadvr::RenderSettings& piece, mfadvr::RenderStats*) {
             return in.RenderModel(
@@ -515,6 +525,31 @@ void vtkMFAVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol) {
     }
     if (image.width != rw || image.height != rh) {
       throw std::runtime_error("the field renderer returned an image of the wrong size");
+    }
+    // The rays' depths as window depths, nearest ray per viewport pixel, over the depth buffer.
+    if (s.depth && image.depth.size() == static_cast<size_t>(rw) * rh) {
+      vtkNew<vtkMatrix4x4> modelToClip;
+      vtkMatrix4x4::Multiply4x4(worldToClip, vol->GetMatrix(), modelToClip);
+      auto& out = this->Internal->VolumeDepth;
+      out = depth;
+      for (int py = 0; py < height; ++py) {
+        const int y = std::min(rh - 1, static_cast<int>((height - 1 - py + 0.5) * rh / height));
+        for (int px = 0; px < width; ++px) {
+          const int x = std::min(rw - 1, static_cast<int>((px + 0.5) * rw / width));
+          const float t = image.depth[static_cast<size_t>(y) * rw + x];
+          if (!std::isfinite(t)) {
+            continue;
+          }
+          double o[3], d[3];
+          mfadvr::primaryRay(rays, x, y, o, d);
+          const double p[4] = {o[0] + t * d[0], o[1] + t * d[1], o[2] + t * d[2], 1.0};
+          double clip[4];
+          modelToClip->MultiplyPoint(p, clip);
+          const float z = static_cast<float>(std::clamp(0.5 * clip[2] / clip[3] + 0.5, 0.0, 1.0));
+          float& here = out[static_cast<size_t>(py) * width + px];
+          here = std::min(here, z);
+        }
+      }
     }
     // A coarse (interactive) frame is magnified smoothly to the viewport, not in blocks.
     if (rw != width || rh != height) {
@@ -562,6 +597,16 @@ void vtkMFAVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol) {
   glWindow->DrawPixels(originX, originY, originX + width - 1, originY + height - 1, 0, 0, width - 1,
                        height - 1, width, height, 4, VTK_UNSIGNED_CHAR,
                        this->Internal->Pixels.data());
+  if (s.depth) {
+    // Depths only: the colour buffer is left as drawn; the depth test passes every pixel.
+    vtkOpenGLState::ScopedglColorMask colorMask(state);
+    vtkOpenGLState::ScopedglDepthFunc depthFunction(state);
+    vtkOpenGLState::ScopedglViewport viewport(state);
+    vtkOpenGLState::ScopedglScissor scissor(state);
+    state->vtkglDepthMask(GL_TRUE);
+    glWindow->SetZbufferData(originX, originY, originX + width - 1, originY + height - 1,
+                             this->Internal->VolumeDepth.data());
+  }
 
   timer->StopTimer();
   this->TimeToDraw = timer->GetElapsedTime();
