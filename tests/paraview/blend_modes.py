@@ -1,7 +1,11 @@
 """ParaView's Blend Mode reaches the MFA Volume representation's mapper: Isosurface (the mode
 ParaView 5.11 offers besides Composite and Slice) with two Isosurface Values changes the image,
 which is not empty, and Composite brings the composite image back. The representation's
-curvature transfer function and contour width change the composite and isosurface images."""
+curvature transfer function and contour width change the composite and isosurface images. Its
+own MFA Blend Mode (maximum, minimum, average intensity, additive) overrides ParaView's and
+gives it back with "As Blend Mode"; ParaView's cropping box crops (fewer lit pixels, the
+uncropped image back when it is off); ParaView's 2-D transfer function (Use Transfer 2D, a box
+of the 2-D editor) replaces the 1-D maps."""
 import os
 import sys
 
@@ -58,4 +62,63 @@ if not differs(contours, iso):
     sys.exit("contours: the isosurface image did not change")
 display.MFAContourWidth = 0.0
 display.BlendMode = "Composite"
-print("blend modes, curvature and contours reach the mapper; ParaView offers", available)
+
+# The representation's own blend modes: each image differs from the composite one and from the
+# others, none is empty; "As Blend Mode" gives ParaView's back.
+offered = display.GetProperty("MFABlendMode").Available
+print("MFA blend modes offered:", offered)
+images = {}
+for mode in ("Maximum Intensity", "Minimum Intensity", "Average Intensity", "Additive"):
+    display.MFABlendMode = mode
+    images[mode] = pixels("mfa-blend-" + mode.split()[0].lower())
+    if not differs(images[mode], composite):
+        sys.exit(f"MFA Blend Mode {mode}: the image is the composite one")
+    if images[mode].max() < 40:
+        sys.exit(f"MFA Blend Mode {mode}: the image is empty")
+if not differs(images["Maximum Intensity"], images["Minimum Intensity"]):
+    sys.exit("maximum and minimum intensity give one image")
+display.MFABlendMode = "As Blend Mode"
+if differs(pixels("mfa-blend-as-paraview"), composite):
+    sys.exit("MFA Blend Mode As Blend Mode: the composite image did not come back")
+
+
+def lit(image):
+    """Pixels that differ from the background (the first pixel, a corner)."""
+    return int((abs(image - image[0]).max(axis=1) > 20).sum())
+
+
+# ParaView's cropping box: the data bounds scaled by CroppingScale, then moved by CroppingOrigin
+# (planes = origin + scale * bounds). Keep the half x >= centre: scale 1/2, origin xmax / 2.
+bounds = display.GetRepresentedDataInformation().GetBounds()
+display.UseCropping = 1
+display.CroppingScale = [0.5, 1.0, 1.0]
+display.CroppingOrigin = [0.5 * bounds[1], 0.0, 0.0]
+cropped = pixels("cropped")
+display.UseCropping = 0
+uncropped = pixels("uncropped")
+print("lit pixels: cropped", lit(cropped), "uncropped", lit(uncropped), "composite",
+      lit(composite))
+if not lit(cropped) < 0.8 * lit(composite):
+    sys.exit("cropping: the image is not smaller than the uncropped one")
+if differs(uncropped, composite):
+    sys.exit("cropping off: the uncropped image did not come back")
+
+# ParaView's 2-D transfer function: one opaque green box over the upper half of the values and
+# every gradient; the image turns green where the 1-D maps were cool to warm.
+array = display.ColorArrayName[1]
+tf2d = pvs.GetTransferFunction2D(array, display)
+lo, hi = display.LookupTable.RGBPoints[0], display.LookupTable.RGBPoints[-4]
+tf2d.Range = [lo, hi, 0.0, 1.0]
+tf2d.Boxes = [lo + 0.5 * (hi - lo), 0.0, 0.5 * (hi - lo), 1.0, 0.0, 1.0, 0.0, 0.8]
+display.TransferFunction2D = tf2d
+display.UseTransfer2D = 1
+green = pixels("transfer-2d")
+display.UseTransfer2D = 0
+mean = green.reshape(-1, green.shape[-1])[:, :3].mean(axis=0)
+print("2-D transfer function: mean colour", mean)
+if not differs(green, composite) or not (mean[1] > mean[0] and mean[1] > mean[2]):
+    sys.exit(f"2-D transfer function: the image is not the green box's (mean {mean})")
+if differs(pixels("transfer-1d-again"), composite):
+    sys.exit("Use Transfer 2D off: the composite image did not come back")
+print("blend modes, cropping, the 2-D transfer function, curvature and contours reach the "
+      "mapper; ParaView offers", available)

@@ -23,6 +23,8 @@ vtkMFAVolumeRepresentation::~vtkMFAVolumeRepresentation() = default;
 
 void vtkMFAVolumeRepresentation::PrintSelf(ostream& os, vtkIndent indent) {
   this->Superclass::PrintSelf(os, indent);
+  os << indent << "ParaViewBlendMode: " << this->ParaViewBlendMode << "\n";
+  os << indent << "MFABlendMode: " << this->MFABlendMode << "\n";
 }
 
 vtkMFAVolumeMapper* vtkMFAVolumeRepresentation::GetMFAMapper() {
@@ -62,6 +64,29 @@ void vtkMFAVolumeRepresentation::SetContourWidth(double pixels) {
 void vtkMFAVolumeRepresentation::SetContourColor(double r, double g, double b) {
   this->GetMFAMapper()->SetContourColor(r, g, b);
   this->Modified();
+}
+
+void vtkMFAVolumeRepresentation::SetBlendMode(int mode) {
+  this->ParaViewBlendMode = mode;
+  this->ApplyBlendMode();
+}
+
+void vtkMFAVolumeRepresentation::SetMFABlendMode(int mode) {
+  this->MFABlendMode = mode;
+  this->ApplyBlendMode();
+}
+
+void vtkMFAVolumeRepresentation::ApplyBlendMode() {
+  const int mode = this->MFABlendMode >= 0 ? this->MFABlendMode : this->ParaViewBlendMode;
+  if (this->VolumeMapper->GetBlendMode() != mode) {
+    this->VolumeMapper->SetBlendMode(mode);
+    this->Modified();
+  }
+}
+
+void vtkMFAVolumeRepresentation::UpdateMapperParameters() {
+  this->Superclass::UpdateMapperParameters();
+  this->ApplyBlendMode();
 }
 
 int vtkMFAVolumeRepresentation::RequestData(vtkInformation* request,

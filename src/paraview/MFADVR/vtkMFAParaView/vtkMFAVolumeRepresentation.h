@@ -45,6 +45,17 @@ class VTKMFAPARAVIEW_EXPORT vtkMFAVolumeRepresentation : public vtkImageVolumeRe
   void SetContourColor(double r, double g, double b);
   //@}
 
+  //@{
+  /**
+   * The blend mode: ParaView's Blend Mode (SetBlendMode, which in ParaView 5.11 lists
+   * Composite, Isosurface and Slice) unless the representation's own MFABlendMode is set to one
+   * of vtkVolumeMapper's modes (composite, maximum, minimum, average intensity, additive,
+   * isosurface); -1, the default: ParaView's.
+   */
+  void SetBlendMode(int mode);
+  void SetMFABlendMode(int mode);
+  //@}
+
  protected:
   vtkMFAVolumeRepresentation();
   ~vtkMFAVolumeRepresentation() override;
@@ -63,7 +74,16 @@ class VTKMFAPARAVIEW_EXPORT vtkMFAVolumeRepresentation : public vtkImageVolumeRe
    */
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
+  /**
+   * As the superclass, then the blend mode chosen by SetBlendMode / SetMFABlendMode.
+   */
+  void UpdateMapperParameters() override;
+
  private:
+  void ApplyBlendMode();
+  int ParaViewBlendMode = 0;  // vtkVolumeMapper::COMPOSITE_BLEND
+  int MFABlendMode = -1;
+
   vtkMFAVolumeRepresentation(const vtkMFAVolumeRepresentation&) = delete;
   void operator=(const vtkMFAVolumeRepresentation&) = delete;
 };
