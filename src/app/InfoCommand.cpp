@@ -5,13 +5,13 @@
 
 #include "app/Commands.h"
 #include "app/FitReportOutput.h"
+#include "app/ModelInfoJson.h"
 #include "core/model/BlockModelFile.h"
 #include "core/model/ModelFile.h"
 #include "core/model/ProvenanceJson.h"
 
 namespace mfadvr::app {
 namespace {
-
 // Kind "none", dims 0 and inside fraction 1 for a model without a mask.
 nlohmann::json maskJson(const DomainMask& mask) {
   if (mask.empty()) return {{"kind", "none"}, {"dims", {0, 0, 0}}, {"inside_fraction", 1.0}};
@@ -20,7 +20,9 @@ nlohmann::json maskJson(const DomainMask& mask) {
           {"inside_fraction", mask.insideFraction()}};
 }
 
-nlohmann::json infoJson(const Model& m, const std::string& path, std::uint32_t version) {
+}  // namespace
+
+nlohmann::json modelInfoJson(const Model& m, const std::string& path, std::uint32_t version) {
   const TensorBSpline& s = m.spline();
   nlohmann::json knots = nlohmann::json::array();
   for (int a = 0; a < 3; ++a)
@@ -48,6 +50,8 @@ nlohmann::json infoJson(const Model& m, const std::string& path, std::uint32_t v
   return j;
 }
 
+namespace {
+
 nlohmann::json boxJson(const DomainBox& b) {
   return {b.min[0], b.max[0], b.min[1], b.max[1], b.min[2], b.max[2]};
 }
@@ -59,7 +63,7 @@ int describeBlocks(const std::string& path, bool json) {
   std::int64_t controlPoints = 0;
   for (size_t i = 0; i < index.entries.size(); ++i) {
     const Model m = loadBlock(path, index, i);
-    nlohmann::json b = infoJson(m, "", 0);
+    nlohmann::json b = modelInfoJson(m, "", 0);
     b["region"] = boxJson(index.entries[i].region);
     b["bytes"] = index.entries[i].bytes;
     const Index3 n = m.spline().counts();
@@ -116,7 +120,7 @@ Command addInfoCommand(CLI::App& app) {
             if (isBlockModelFile(o->model)) return describeBlocks(o->model, o->json);
             std::uint32_t version = 0;
             const Model m = loadModel(o->model, &version);
-            const nlohmann::json j = infoJson(m, o->model, version);
+            const nlohmann::json j = modelInfoJson(m, o->model, version);
             if (o->json) {
               std::cout << j.dump(2) << "\n";
               return 0;

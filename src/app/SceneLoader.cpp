@@ -211,6 +211,29 @@ LoadedScene loadSceneData(const std::string& input, const SceneNeeds& needs,
 }
 }  // namespace
 
+LoadedScene sceneOfModel(Model model, const std::string& name) {
+  LoadedScene s;
+  s.input = name;
+  s.model = std::move(model);
+  takeModelFacts(s);
+  s.emptySpace = std::make_unique<EmptySpaceCache[]>(1);
+  return s;
+}
+
+LoadedScene sceneOfGrid(StructuredGrid grid, const SceneNeeds& needs, const EncodeOptions& encode) {
+  LoadedScene s;
+  s.input = grid.source;
+  s.grid = std::move(grid);
+  takeGridFacts(s);
+  if (needs.model) {
+    const auto encodeStart = Clock::now();
+    s.model = encodeStructured(*s.grid, encode);
+    s.encodeSeconds = since(encodeStart);
+  }
+  s.emptySpace = std::make_unique<EmptySpaceCache[]>(1);
+  return s;
+}
+
 LoadedScene loadScene(const std::string& input, const SceneNeeds& needs,
                       const SceneLoadOptions& options) {
   LoadedScene s = loadSceneData(input, needs, options);

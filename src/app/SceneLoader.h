@@ -55,6 +55,12 @@ struct SceneLoadOptions {
   bool streamBlocks = false;
 };
 
+// Scenes of data already in memory (the Python module's arrays and models), with the facts
+// loadScene would take from a file holding the same: `name` stands for the input.
+LoadedScene sceneOfModel(Model model, const std::string& name);
+// A grid, encoded with `encode` when needs.model.
+LoadedScene sceneOfGrid(StructuredGrid grid, const SceneNeeds& needs, const EncodeOptions& encode);
+
 // Throws mfadvr::Error when the input cannot provide what `needs` asks for.
 LoadedScene loadScene(const std::string& input, const SceneNeeds& needs,
                       const SceneLoadOptions& options);

@@ -1,0 +1,142 @@
+"""mfadvr's numpy functions against the command line on the same inputs: query values to float
+precision, render pixels identical, decode round trips, errors raised with the CLI's messages.
+Run by ctest (python.NumpyApi) with PYTHONPATH at the build's python folder and MFADVR_CLI the
+command."""
+import os
+import subprocess
+
+import numpy as np
+import pytest
+
+import mfadvr
+
+CLI = os.environ.get("MFADVR_CLI", "mfadvr")
+
+
+def sphere(nz=12, ny=14, nx=16, dtype=np.float32):
+    z, y, x = np.meshgrid(np.linspace(-1, 1, nz), np.linspace(-1, 1, ny), np.linspace(-1, 1, nx),
+                          indexing="ij")
+    return (1.0 - (x * x + 0.5 * y * y + 0.8 * z * z)).astype(dtype)
+
+
+def cli(*args):
+    return subprocess.run([CLI, *map(str, args)], check=True, capture_output=True,
+                          text=True).stdout
+
+
+@pytest.fixture(scope="module")
+def model():
+    return mfadvr.encode(sphere(), spacing=(0.1, 0.2, 0.3), origin=(1.0, -2.0, 0.5))
+
+
+def test_encode_places_the_array_z_y_x_with_spacing_and_origin(model):
+    info = model.info
+    assert info["control_counts"] == [16, 14, 12]  # x, y, z: interpolating
+    assert np.allclose(info["domain_min"], [1.0, -2.0, 0.5])
+    assert np.allclose(info["domain_max"], [1.0 + 1.5, -2.0 + 2.6, 0.5 + 3.3])
+    report = model.report
+    assert report["max_relative_error"] < 1e-4
+
+
+def test_query_equals_the_command_line(model, tmp_path):
+    path = tmp_path / "m.mfa"
+    model.save(str(path))
+    rng = np.random.default_rng(1)
+    lo, hi = np.array(model.info["domain_min"]), np.array(model.info["domain_max"])
+    points = lo + (hi - lo) * rng.random((200, 3))
+    np.savetxt(tmp_path / "p.txt", points, fmt="%.17g")
+    table = np.loadtxt(cli("query", path, "--points", tmp_path / "p.txt", "--derivatives", 2)
+                       .splitlines()[1:], delimiter=",")
+    ours = model.query(points, derivatives=2)
+    assert ours.shape == (200, 10)
+    assert np.allclose(table[:, :3], points)
+    # The CLI prints floats with 9 significant digits: equal to float precision.
+    assert np.allclose(ours, table[:, 3:], rtol=1e-6, atol=1e-6)
+    assert np.array_equal(model(points), model.query(points))
+    assert np.allclose(model(points), ours[:, 0], rtol=1e-6, atol=1e-6)
+    assert model.query(points, derivatives=1).shape == (200, 4)
+    # A model loaded from the file answers the same.
+    assert np.array_equal(mfadvr.load(str(path)).query(points), model.query(points))
+
+
+def test_decode_round_trips_in_the_input_type():
+    volume = (100 * (1 + sphere())).astype(np.uint8)
+    # Lossless: the default zfp coding of so small a volume is capped at its 2,688 bytes.
+    m = mfadvr.encode(volume, coding="lossless")
+    decoded = m.decode()
+    assert decoded.dtype == np.uint8 and decoded.shape == volume.shape
+    assert np.array_equal(decoded, volume)  # an interpolating model rounds back to every sample
+    assert mfadvr.encode(volume).report["coding"]["method"] == "zfp"  # the integer-scan default
+    floats = mfadvr.encode(sphere()).decode()
+    assert floats.dtype == np.float32
+    assert np.abs(floats - sphere()).max() < 1e-4
+    assert m.decode(shape=(3, 4, 5), dtype="float64").shape == (3, 4, 5)
+
+
+def test_fortran_ordered_arrays_are_read_by_index():
+    volume = sphere()
+    a = mfadvr.encode(volume).query([[0.3, 0.4, 0.5]])
+    b = mfadvr.encode(np.asfortranarray(volume)).query([[0.3, 0.4, 0.5]])
+    assert np.array_equal(a, b)
+
+
+def test_options_are_the_command_line_s(model):
+    coarse = mfadvr.encode(sphere(), ctrl=(8, 7, 6), degree=2)
+    assert coarse.info["control_counts"] == [8, 7, 6]
+    assert coarse.info["degree"] == [2, 2, 2]
+    adaptive = mfadvr.encode(sphere(24, 24, 24), max_error=1e-3)
+    assert adaptive.report["adaptive"]["reached"]
+    assert adaptive.report["max_relative_error"] <= 1e-3
+
+
+def test_render_gives_the_command_line_s_pixels(model, tmp_path):
+    path = tmp_path / "m.mfa"
+    model.save(str(path))
+    options = dict(tf="ramp", shade=True, azimuth=30, elevation=20, blend="composite")
+    image = mfadvr.render(model, size=(64, 48), **options)
+    assert image.shape == (48, 64, 3) and image.dtype == np.uint8
+    assert image.max() > 40
+    cli("render", path, "-o", tmp_path / "r.png", "--size", "64x48", "--tf", "ramp", "--shade",
+        "--azimuth", 30, "--elevation", 20, "-q")
+    from vtkmodules.vtkIOImage import vtkPNGReader
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    reader = vtkPNGReader()
+    reader.SetFileName(str(tmp_path / "r.png"))
+    reader.Update()
+    png = vtk_to_numpy(reader.GetOutput().GetPointData().GetScalars()).reshape(48, 64, -1)
+    assert np.array_equal(image, png[::-1, :, :3])  # PNG rows from the top, VTK's from the bottom
+    rgba = mfadvr.render(model, size=(64, 48), alpha=True, **options)
+    assert rgba.shape == (48, 64, 4)
+    linear = mfadvr.render(model, size=(64, 48), float=True, **options)
+    assert linear.dtype == np.float32 and linear.shape == (48, 64, 4)
+    # An array renders with a grid filter, or encoded.
+    assert mfadvr.render(sphere(), size=(32, 32), method="trilinear").shape == (32, 32, 3)
+    assert mfadvr.render(sphere(), size=(32, 32), blend="max").max() > 0
+
+
+def test_points_encode():
+    rng = np.random.default_rng(2)
+    xyz = rng.random((3000, 3))
+    values = xyz[:, 0] + 2 * xyz[:, 1]
+    m = mfadvr.encode_points(xyz, values, ctrl=(6, 6, 6))
+    probe = np.array([[0.5, 0.5, 0.5]])
+    assert abs(m.query(probe)[0] - 1.5) < 0.05
+
+
+def test_bad_input_raises_the_command_line_s_message():
+    with pytest.raises(ValueError, match="max-error"):
+        mfadvr.encode(sphere(), max_error="abc")
+    with pytest.raises(ValueError):
+        mfadvr.encode(sphere(), no_such_option=3)
+    with pytest.raises(ValueError, match="3 dimensions"):
+        mfadvr.encode(np.zeros((4, 4)))
+    bad = sphere()
+    bad[1, 2, 3] = np.nan
+    with pytest.raises(ValueError, match="NaN"):
+        mfadvr.encode(bad)
+    with pytest.raises(ValueError, match=r"\(N, 3\)"):
+        mfadvr.encode(sphere()).query(np.zeros((5, 2)))
+    with pytest.raises(RuntimeError):
+        mfadvr.load("/nonexistent/model.mfa")
+    with pytest.raises(ValueError):
+        mfadvr.render(sphere(), size=(32, 32), blend="nonsense")
