@@ -5,6 +5,7 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
+#include <tbb/task_arena.h>
 
 #include <cmath>
 #include <memory>
@@ -25,6 +26,7 @@
 #include "core/render/ReconstructionMethod.h"
 #include "core/util/Error.h"
 #include "core/util/MemoryBudget.h"
+#include "vtkMFAModelData.h"
 
 namespace py = pybind11;
 using namespace mfadvr;
@@ -239,8 +241,10 @@ PyModel encodePoints(const py::array& xyz, const py::array& values, const py::kw
 
 // (N,) values, (N, 4) value and gradient, (N, 10) with the Hessian (dxx, dxy, dxz, dyy, dyz,
 // dzz): the columns of `mfadvr query`.
-py::array_t<float> query(const PyModel& m, const py::object& points, int derivatives) {
+py::array_t<float> query(const PyModel& m, const py::object& points, int derivatives,
+                         int threads) {
   if (derivatives < 0 || derivatives > 2) throw py::value_error("derivatives must be 0, 1 or 2");
+  if (threads < 0) throw py::value_error("threads must be 0 (all cores) or more");
   const auto p = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(points);
   if (!p || !((p.ndim() == 2 && p.shape(1) == 3) || (p.ndim() == 1 && p.shape(0) == 3)))
     throw py::value_error("points must be an (N, 3) array of x, y, z (physical coordinates)");
@@ -251,18 +255,25 @@ py::array_t<float> query(const PyModel& m, const py::object& points, int derivat
   // Vec3d is three packed doubles: the array's rows are read in place.
   static_assert(sizeof(Vec3d) == 3 * sizeof(double));
   const std::span<const Vec3d> at(reinterpret_cast<const Vec3d*>(xyz), n);
-  std::vector<float> values(n);
-  std::vector<Vec3f> gradients(derivatives >= 1 ? n : 0);
-  std::vector<Sym3f> hessians(derivatives >= 2 ? n : 0);
-  {
+  const auto evaluate = [&](std::span<float> values, std::span<Vec3f> gradients,
+                            std::span<Sym3f> hessians) {
     py::gil_scoped_release release;
-    m.model->evaluate(at, values, gradients, hessians);
-  }
-  if (derivatives == 0) {
+    if (threads == 0) {
+      m.model->evaluate(at, values, gradients, hessians);
+    } else {
+      tbb::task_arena arena(threads);
+      arena.execute([&] { m.model->evaluate(at, values, gradients, hessians); });
+    }
+  };
+  if (derivatives == 0) {  // straight into the returned array
     py::array_t<float> out(static_cast<py::ssize_t>(n));
-    std::copy(values.begin(), values.end(), out.mutable_data());
+    evaluate({out.mutable_data(), n}, {}, {});
     return out;
   }
+  std::vector<float> values(n);
+  std::vector<Vec3f> gradients(n);
+  std::vector<Sym3f> hessians(derivatives >= 2 ? n : 0);
+  evaluate(values, gradients, hessians);
   const int columns = derivatives == 1 ? 4 : 10;
   py::array_t<float> out({static_cast<py::ssize_t>(n), static_cast<py::ssize_t>(columns)});
   float* o = out.mutable_data();
@@ -360,6 +371,21 @@ py::array render(const py::object& input, const py::object& size, const py::obje
   return out;
 }
 
+// The VTK object behind a VTK Python object: its `__this__` reads "_<hex address>_p_<class>".
+vtkMFAModelData* vtkModelData(const py::object& object) {
+  if (!py::hasattr(object, "__this__"))
+    throw py::type_error("expected a vtkMFAModelData (a VTK object), got " +
+                         py::str(py::type::of(object)).cast<std::string>());
+  const std::string text = object.attr("__this__").cast<std::string>();
+  const size_t end = text.find("_p_");
+  if (text.size() < 2 || text[0] != '_' || end == std::string::npos)
+    throw py::type_error("not a VTK object: " + text);
+  const auto address = static_cast<std::uintptr_t>(std::stoull(text.substr(1, end - 1), nullptr, 16));
+  vtkMFAModelData* data = vtkMFAModelData::SafeDownCast(reinterpret_cast<vtkObjectBase*>(address));
+  if (!data) throw py::type_error("expected a vtkMFAModelData, got a " + text.substr(end + 3));
+  return data;
+}
+
 }  // namespace
 
 PYBIND11_MODULE(_mfadvr, m) {
@@ -386,13 +412,26 @@ PYBIND11_MODULE(_mfadvr, m) {
              });
            },
            py::arg("path"), "Writes the model to a .mfa file (atomically)")
-      .def("query", &query, py::arg("points"), py::arg("derivatives") = 0,
+      .def("query", &query, py::arg("points"), py::arg("derivatives") = 0, py::arg("threads") = 0,
            "Values (N,), with derivatives=1 (N, 4) value, dx, dy, dz; with 2 (N, 10) adding "
-           "dxx, dxy, dxz, dyy, dyz, dzz; points an (N, 3) array of physical x, y, z")
+           "dxx, dxy, dxz, dyy, dyz, dzz; points an (N, 3) array of physical x, y, z; threads: "
+           "0 for all cores")
       .def("__call__",
-           [](const PyModel& self, const py::object& points) { return query(self, points, 0); },
+           [](const PyModel& self, const py::object& points) { return query(self, points, 0, 0); },
            py::arg("points"), "The values at (N, 3) points")
-      .def("_decode_values", &decodeValues, py::arg("shape") = py::none());
+      .def("_decode_values", &decodeValues, py::arg("shape") = py::none())
+      .def(
+          "_into_vtk",
+          [](const PyModel& self, const py::object& data) { vtkModelData(data)->SetModel(self.model); },
+          py::arg("data"))
+      .def_static(
+          "_from_vtk",
+          [](const py::object& data) {
+            const std::shared_ptr<const Model>& model = vtkModelData(data)->GetModel();
+            if (!model) throw py::value_error("the vtkMFAModelData holds no model");
+            return PyModel{model, nullptr};
+          },
+          py::arg("data"));
 
   m.def("_encode", &encodeArray, py::arg("array"), py::arg("spacing") = py::none(),
         py::arg("origin") = py::none());

@@ -47,6 +47,24 @@ def _decode(model, shape=None, dtype=None):
 Model.decode = _decode
 
 
+def _to_vtk(model):
+    """The model as a vtkMFAModelData (for vtkMFAVolumeMapper and VTK pipelines), sharing it:
+    no copy."""
+    from .vtkMFA import vtkMFAModelData
+    data = vtkMFAModelData()
+    model._into_vtk(data)
+    return data
+
+
+def _from_vtk(data):
+    """The Model a vtkMFAModelData holds (vtkMFAReader's or vtkMFAEncoder's output), shared."""
+    return Model._from_vtk(data)
+
+
+Model.to_vtk = _to_vtk
+Model.from_vtk = staticmethod(_from_vtk)
+
+
 def render(model_or_array, size=(512, 512), method="mfa", spacing=None, origin=None,
            alpha=False, float=False, **options):
     """A rendered image as an (h, w, 3) uint8 array ((h, w, 4) with alpha=True; linear float RGBA

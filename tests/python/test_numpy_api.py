@@ -140,3 +140,24 @@ def test_bad_input_raises_the_command_line_s_message():
         mfadvr.load("/nonexistent/model.mfa")
     with pytest.raises(ValueError):
         mfadvr.render(sphere(), size=(32, 32), blend="nonsense")
+
+
+def test_models_move_to_vtk_and_back_without_files(model, tmp_path):
+    data = model.to_vtk()
+    assert data.GetClassName() == "vtkMFAModelData"
+    bounds = data.GetBounds()
+    assert np.allclose(bounds[::2], model.info["domain_min"])
+    back = mfadvr.Model.from_vtk(data)
+    points = np.array([[1.5, -1.0, 2.0], [2.0, -0.5, 1.0]])
+    assert np.array_equal(back.query(points), model.query(points))
+    # A model read by VTK's pipeline (vtkMFAReader) comes to numpy.
+    model.save(str(tmp_path / "m.mfa"))
+    reader = mfadvr.vtkMFAReader()
+    reader.SetFileName(str(tmp_path / "m.mfa"))
+    reader.Update()
+    assert np.array_equal(mfadvr.Model.from_vtk(reader.GetOutput()).query(points),
+                          model.query(points))
+    with pytest.raises(TypeError):
+        mfadvr.Model.from_vtk(reader)
+    with pytest.raises(TypeError):
+        mfadvr.Model.from_vtk(3)
