@@ -164,6 +164,11 @@ StructuredGrid gridOf(const py::array& input, const py::object& spacing, const p
 
 PyModel encodeArray(const py::array& array, const py::object& spacing, const py::object& origin,
                     const py::kwargs& kwargs) {
+  for (const char* name : {"blocks", "ghost", "memory_limit"})
+    if (kwargs.contains(name))
+      throw py::value_error(std::string(name) +
+                            ": multi-block models are the command line's (mfadvr encode --blocks "
+                            "on a file); the Python module encodes an array whole");
   app::EncodeCliOptions encode;
   app::CodingCliOptions coding;
   CLI::App cli("mfadvr.encode");

@@ -128,6 +128,8 @@ def test_bad_input_raises_the_command_line_s_message():
         mfadvr.encode(sphere(), max_error="abc")
     with pytest.raises(ValueError):
         mfadvr.encode(sphere(), no_such_option=3)
+    with pytest.raises(ValueError, match="multi-block"):
+        mfadvr.encode(sphere(), blocks=(2, 2, 1))
     with pytest.raises(ValueError, match="3 dimensions"):
         mfadvr.encode(np.zeros((4, 4)))
     bad = sphere()
