@@ -11,6 +11,7 @@
 #include "app/SceneLoader.h"
 #include "core/image/FloatImageFile.h"
 #include "core/image/PngFile.h"
+#include "core/render/BlendMode.h"
 #include "core/render/kernel/EmptySpaceProfile.h"
 #include "core/util/Error.h"
 #include "device/RenderDevice.h"
@@ -61,6 +62,8 @@ SceneLoadOptions loadOptions(const Options& o, bool progress) {
   load.encode = o.encode.parse();
   load.volume = parseVolumeLoadOptions(o.spacing, o.origin, o.field);
   load.progress = progress;
+  const auto blend = parseBlendMode(o.render.blend);
+  load.extremeBounds = blend == BlendMode::Maximum || blend == BlendMode::Minimum;
   return load;
 }
 

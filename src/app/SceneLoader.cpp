@@ -66,14 +66,15 @@ void takeScatteredFacts(LoadedScene& s, const ScatteredData& data, const EncodeO
 // not hold.
 // oneAtATime: for blocks, the memory of rendering them one at a time (also too much).
 void requireRenderMemory(const std::string& input, const std::vector<ModelFileSummary>& models,
-                         std::int64_t oneAtATime = 0) {
+                         bool extremeBounds, std::int64_t oneAtATime = 0) {
   requireSceneRenderMemory(
       models, "rendering " + input,
       models.size() > 1
           ? " in " + std::to_string(models.size()) + " blocks, about " + formatBytes(oneAtATime) +
                 " one at a time; ParaView's MFA reader spreads the blocks over "
                 "MPI ranks"
-          : "");
+          : "",
+      extremeBounds);
 }
 
 }  // namespace
@@ -112,16 +113,20 @@ LoadedScene loadSceneData(const std::string& input, const SceneNeeds& needs,
   if (isBlockModelInput(input)) {
     BlockIndex index = readBlockIndex(input);
     const std::vector<ModelFileSummary> summaries = summarizeBlocks(input, index);
-    const std::int64_t all = sceneRenderBytes(summaries), available = availableMemoryBytes();
+    const bool bounds = options.extremeBounds;
+    const std::int64_t all = sceneRenderBytes(summaries, bounds),
+                       available = availableMemoryBytes();
     // Blocks are read one at a time as they are rendered (every frame reading them again)
     // when asked to, or when they do not fit in memory together; either way only if one at a
     // time fits (the largest, and the first, kept for the scene's facts). Otherwise all are
     // loaded, or refused with the figures for both.
     const auto largest = std::max_element(
         summaries.begin(), summaries.end(),
-        [](const auto& a, const auto& b) { return modelRenderBytes(a) < modelRenderBytes(b); });
+        [&](const auto& a, const auto& b) {
+          return modelRenderBytes(a, bounds) < modelRenderBytes(b, bounds);
+        });
     const std::vector<ModelFileSummary> held{summaries.front(), *largest};
-    const std::int64_t oneAtATime = sceneRenderBytes(held);
+    const std::int64_t oneAtATime = sceneRenderBytes(held, bounds);
     const bool tooLarge = available > 0 && all > available;
     const bool stream = summaries.size() > 1 && (options.streamBlocks || tooLarge) &&
                         (available <= 0 || oneAtATime <= available);
@@ -138,7 +143,7 @@ LoadedScene loadSceneData(const std::string& input, const SceneNeeds& needs,
       s.model = loadBlock(input, index, 0);
       s.streamedBlocks = BlockModelStream{input, std::move(index)};
     } else {
-      requireRenderMemory(input, summaries, oneAtATime);
+      requireRenderMemory(input, summaries, bounds, oneAtATime);
       s.blocks = loadBlockModels(input);
       s.model = s.blocks.front().model;
     }
@@ -149,7 +154,7 @@ LoadedScene loadSceneData(const std::string& input, const SceneNeeds& needs,
     return s;
   }
   if (isModelFile(input)) {
-    requireRenderMemory(input, {summarizeModelFile(input)});
+    requireRenderMemory(input, {summarizeModelFile(input)}, options.extremeBounds);
     s.model = loadModel(input);
     takeModelFacts(s);
     const Provenance& p = s.model->provenance();

@@ -49,6 +49,9 @@ struct SceneLoadOptions {
   VolumeLoadOptions volume;
   EncodeOptions encode;  // when a volume, mesh or point cloud must be encoded for the mfa method
   bool progress = false;
+  // A maximum or minimum intensity render: the memory check counts the cells' bounds it builds
+  // (core/render/RenderMemory.h).
+  bool extremeBounds = false;
   // Read a multi-block file's blocks one at a time as they are rendered even when they would
   // fit in memory together (a single frame: each block is read once either way). Without it,
   // only blocks that do not fit together are.

@@ -37,6 +37,11 @@ TEST(RenderMemory, ControlPointsAndFlags) {
   zfp.coder = ControlCoder::kZfp;
   zfp.fileBytes = 1'000'000;
   EXPECT_EQ(modelRenderBytes(zfp) - modelRenderBytes(f32), 1'000'000);
+  // Maximum and minimum intensity renders hold two bytes of bounds per cell and their pyramids.
+  const double cells = 509.0 * 509 * 509;
+  const double bounds = static_cast<double>(modelRenderBytes(f32, true) - modelRenderBytes(f32));
+  EXPECT_GT(bounds, 2.0 * cells);
+  EXPECT_LT(bounds, 2.0 * cells * 8.0 / 7.0 + 2.0);
   // A scene adds the largest file once (it is read whole before it is decoded).
   // Headers that claim the most control points a file may name do not wrap around.
   ModelFileSummary huge = f32;
