@@ -162,6 +162,38 @@ StructuredGrid gridOf(const py::array& input, const py::object& spacing, const p
   return g;
 }
 
+// `encode`'s fitting and storage options from keywords, as the command line registers them.
+struct EncodeKeywords {
+  app::EncodeCliOptions encode;
+  app::CodingCliOptions coding;
+
+  EncodeKeywords(const char* function, const py::kwargs& kwargs) {
+    CLI::App cli(function);
+    encode.addTo(&cli, "Encoding");
+    coding.addTo(&cli, "Storage");
+    parseOptions(cli, commandLine(kwargs));
+  }
+  // Throws CLI::ValidationError (translated() makes it a ValueError).
+  EncodeOptions options() const {
+    EncodeOptions o = encode.parse();
+    o.coding = coding.parse();
+    return o;
+  }
+};
+
+// Runs fit(report) with the GIL released; the model with the fit report of `encode --json`.
+template <class Fit>
+PyModel fitted(Fit&& fit) {
+  FitReport report;
+  auto model = std::make_shared<Model>();
+  {
+    py::gil_scoped_release release;
+    *model = fit(report);
+  }
+  report.peakMemoryBytes = peakResidentBytes();
+  return PyModel{model, app::fitReportJson(report, "")};
+}
+
 PyModel encodeArray(const py::array& array, const py::object& spacing, const py::object& origin,
                     const py::kwargs& kwargs) {
   for (const char* name : {"blocks", "ghost", "memory_limit"})
@@ -169,16 +201,11 @@ PyModel encodeArray(const py::array& array, const py::object& spacing, const py:
       throw py::value_error(std::string(name) +
                             ": multi-block models are the command line's (mfadvr encode --blocks "
                             "on a file); the Python module encodes an array whole");
-  app::EncodeCliOptions encode;
-  app::CodingCliOptions coding;
-  CLI::App cli("mfadvr.encode");
-  encode.addTo(&cli, "Encoding");
-  coding.addTo(&cli, "Storage");
-  parseOptions(cli, commandLine(kwargs));
+  const EncodeKeywords keywords("mfadvr.encode", kwargs);
+  const app::EncodeCliOptions& encode = keywords.encode;
   StructuredGrid grid = gridOf(array, spacing, origin);
   return translated([&] {
-    EncodeOptions options = encode.parse();
-    options.coding = coding.parse();
+    EncodeOptions options = keywords.options();
     if (!encode.maskRes.empty() || encode.noMask)
       throw CLI::ValidationError("mask_res/no_mask", "apply to meshes and point clouds");
     for (const std::string& note : encode.fitDefaultDegreeToGrid(options, grid.dims))
@@ -191,24 +218,12 @@ PyModel encodeArray(const py::array& array, const py::object& spacing, const py:
       requireMemory(structuredFitPeakBytes(grid.dims, counts),
                     "encoding the array (fewer control points, ctrl=, need less)");
     }
-    FitReport report;
-    auto model = std::make_shared<Model>();
-    {
-      py::gil_scoped_release release;
-      *model = encodeStructured(grid, options, &report);
-    }
-    report.peakMemoryBytes = peakResidentBytes();
-    return PyModel{model, app::fitReportJson(report, "")};
+    return fitted([&](FitReport& report) { return encodeStructured(grid, options, &report); });
   });
 }
 
 PyModel encodePoints(const py::array& xyz, const py::array& values, const py::kwargs& kwargs) {
-  app::EncodeCliOptions encode;
-  app::CodingCliOptions coding;
-  CLI::App cli("mfadvr.encode_points");
-  encode.addTo(&cli, "Encoding");
-  coding.addTo(&cli, "Storage");
-  parseOptions(cli, commandLine(kwargs));
+  const EncodeKeywords keywords("mfadvr.encode_points", kwargs);
   const auto p = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(xyz);
   const auto v = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(values);
   if (!p || p.ndim() != 2 || p.shape(1) != 3)
@@ -230,18 +245,10 @@ PyModel encodePoints(const py::array& xyz, const py::array& values, const py::kw
   }
   data.inputBytes = static_cast<std::int64_t>(values.nbytes());
   return translated([&] {
-    EncodeOptions options = encode.parse();
-    options.coding = coding.parse();
+    const EncodeOptions options = keywords.options();
     if (options.autoSmoothing)
       throw CLI::ValidationError("smooth", "'auto' is for regular grids; give points a weight");
-    FitReport report;
-    auto model = std::make_shared<Model>();
-    {
-      py::gil_scoped_release release;
-      *model = encodeScattered(data, options, &report);
-    }
-    report.peakMemoryBytes = peakResidentBytes();
-    return PyModel{model, app::fitReportJson(report, "")};
+    return fitted([&](FitReport& report) { return encodeScattered(data, options, &report); });
   });
 }
 

@@ -77,6 +77,31 @@ Image renderIso(const Model& model, const RenderSettings& s) {
   return renderVolume(field, s);
 }
 
+// Each ray whose analytic hit distance t = analytic(o, d) is a number must have hit (a missed
+// one counts as an infinite error); returns how many such rays and the worst |hit - t| as a
+// fraction of the box diagonal.
+struct HitErrors {
+  int rays = 0;
+  double worst = 0.0;
+};
+template <class Analytic>
+HitErrors hitErrors(const Image& image, const RenderSettings& s, double diagonal,
+                    Analytic&& analytic) {
+  const RayGenerator rays(s.camera, s.width, s.height);
+  HitErrors e;
+  for (int y = 0; y < s.height; ++y)
+    for (int x = 0; x < s.width; ++x) {
+      Vec3d o, d;
+      rays.ray(x, y, o, d);
+      const double t = analytic(o, d);
+      if (std::isnan(t)) continue;
+      const float hit = image.depth[size_t(y) * s.width + x];
+      e.worst = std::isnan(hit) ? INFINITY : std::max(e.worst, std::abs(hit - t) / diagonal);
+      ++e.rays;
+    }
+  return e;
+}
+
 TEST(IsoSurface, HitsSpheresAndCylindersAtTheirAnalyticDistance) {
   for (bool cylinder : {false, true}) {
     const StructuredGrid g = quadratic(cylinder);
@@ -84,25 +109,14 @@ TEST(IsoSurface, HitsSpheresAndCylindersAtTheirAnalyticDistance) {
     const double r = 0.6;
     const RenderSettings s = isoSettings(g, {{r * r, {}, {}}});
     const Image image = renderIso(model, s);
-    const double diagonal = (g.boxMax() - g.boxMin()).norm();
-    const RayGenerator rays(s.camera, s.width, s.height);
-    int checked = 0;
-    double worst = 0.0;
-    for (int y = 0; y < s.height; ++y)
-      for (int x = 0; x < s.width; ++x) {
-        Vec3d o, d;
-        rays.ray(x, y, o, d);
-        const double t = analyticHit(g, o, d, r, cylinder);
-        if (std::isnan(t)) continue;
-        const float hit = image.depth[size_t(y) * s.width + x];
-        ASSERT_FALSE(std::isnan(hit)) << "pixel " << x << "," << y << " missed the surface";
-        worst = std::max(worst, std::abs(hit - t) / diagonal);
-        ++checked;
-      }
-    EXPECT_GT(checked, 100);
-    EXPECT_LT(worst, 1e-5) << (cylinder ? "cylinder" : "sphere");
+    const HitErrors e =
+        hitErrors(image, s, (g.boxMax() - g.boxMin()).norm(), [&](const Vec3d& o, const Vec3d& d) {
+          return analyticHit(g, o, d, r, cylinder);
+        });
+    EXPECT_GT(e.rays, 100);
+    EXPECT_LT(e.worst, 1e-5) << (cylinder ? "cylinder" : "sphere");  // a miss is infinite
     std::printf("%s: %d rays, worst hit error %.2e of the diagonal\n",
-                cylinder ? "cylinder" : "sphere", checked, worst);
+                cylinder ? "cylinder" : "sphere", e.rays, e.worst);
   }
 }
 
@@ -202,29 +216,19 @@ TEST(IsoSurface, GridFiltersAreWalkedCellByCellToo) {
     RenderSettings s = isoSettings(linear, {{c, {}, {}}});
     s.sampleDistance = 4.0 * g.spacing.minCoeff();
     const Image image = renderGridIso(linear, m, s);
-    const RayGenerator rays(s.camera, s.width, s.height);
-    int checked = 0;
-    double worst = 0.0;
-    for (int y = 0; y < s.height; ++y)
-      for (int x = 0; x < s.width; ++x) {
-        Vec3d o, d;
-        rays.ray(x, y, o, d);
-        const double t = (c - gradient.dot(o)) / gradient.dot(d);
-        const Vec3d p = o + t * d;
-        // Inside the box, away from its faces (where a ray may graze the plane's edge).
-        const Vec3d margin = 0.05 * (g.boxMax() - g.boxMin());
-        if (!((p.array() > (g.boxMin() + margin).array()).all() &&
-              (p.array() < (g.boxMax() - margin).array()).all()))
-          continue;
-        const float hit = image.depth[size_t(y) * s.width + x];
-        ASSERT_FALSE(std::isnan(hit)) << methodName(m) << " pixel " << x << "," << y;
-        worst = std::max(worst, std::abs(hit - t) / diagonal);
-        ++checked;
-      }
-    EXPECT_GT(checked, 50) << methodName(m);
-    EXPECT_LT(worst, 1e-5) << methodName(m);
+    const HitErrors e = hitErrors(image, s, diagonal, [&](const Vec3d& o, const Vec3d& d) {
+      const double t = (c - gradient.dot(o)) / gradient.dot(d);
+      const Vec3d p = o + t * d;
+      // Inside the box, away from its faces (where a ray may graze the plane's edge).
+      const Vec3d margin = 0.05 * (g.boxMax() - g.boxMin());
+      const bool inside = (p.array() > (g.boxMin() + margin).array()).all() &&
+                          (p.array() < (g.boxMax() - margin).array()).all();
+      return inside ? t : NAN;
+    });
+    EXPECT_GT(e.rays, 50) << methodName(m);
+    EXPECT_LT(e.worst, 1e-5) << methodName(m);  // a miss is infinite
     std::printf("%s, plane: %d rays, worst hit error %.2e of the diagonal\n",
-                methodName(m).c_str(), checked, worst);
+                methodName(m).c_str(), e.rays, e.worst);
   }
 }
 
