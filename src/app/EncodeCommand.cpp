@@ -9,6 +9,7 @@
 #include <numeric>
 #include <optional>
 
+#include "app/BlockChoice.h"
 #include "app/CodingCliOptions.h"
 #include "app/Commands.h"
 #include "app/EncodeCliOptions.h"
@@ -34,84 +35,11 @@ namespace {
 // Exit status when --strict is given and the bound was not reached.
 constexpr int kBoundNotReached = 3;
 
-// "8G", "512MB", "2e9": bytes, decimal units.
-std::int64_t parseByteCount(const std::string& option, const std::string& text) {
-  size_t used = 0;
-  double value = 0.0;
-  try {
-    value = std::stod(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  std::string unit = text.substr(used);
-  std::transform(unit.begin(), unit.end(), unit.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::toupper(c)); });
-  if (!unit.empty() && unit.back() == 'B') unit.pop_back();
-  const double scale = unit.empty()  ? 1.0
-                       : unit == "K" ? 1e3
-                       : unit == "M" ? 1e6
-                       : unit == "G" ? 1e9
-                       : unit == "T" ? 1e12
-                                     : 0.0;
-  if (used == 0 || scale == 0.0 || !(value > 0.0) || !std::isfinite(value * scale) ||
-      value * scale > 9e18)
-    throw CLI::ValidationError(option,
-                               "expected a positive size such as 8G, 512M or 2e9 (bytes), "
-                               "got '" +
-                                   text + "'");
-  return static_cast<std::int64_t>(value * scale);
-}
-
-// The memory an in-core encoding of `dims` samples needs: the fit's peak, and for zfp coding
-// one decoded candidate and its code beside the fit (measured: 15 B per sample at 512^3, 9 B
-// with float32 coding).
-std::int64_t inCoreEncodeBytes(const Index3& dims, const EncodeOptions& options) {
-  Index3 counts = options.controlCounts;
-  for (int a = 0; a < 3; ++a)
-    if (counts[a] <= 0) counts[a] = dims[a];
-  const std::int64_t ctrl = counts[0] * counts[1] * counts[2];
-  const bool zfp = resolvedCoder(options.coding) == ControlCoder::kZfp;
-  return structuredFitPeakBytes(dims, counts) + (zfp ? 8 * ctrl : 0);
-}
-
-// --blocks auto: at most kDefaultBlockIntervals intervals per block, then halved along the longest
-// block axis until one block's encoding (ghost layers included) fits `limit`, or the blocks
-// are as small as is worth it (ghost layers would then outweigh the block; the fit refuses with
-// its own estimate when the memory really lacks).
-constexpr std::int64_t kMinAutoBlockIntervals = 32;
-Index3 autoBlockCounts(const Index3& dims, int ghost, const EncodeOptions& options,
-                       std::int64_t limit) {
-  Index3 blocks = defaultBlockCounts(dims);
-  auto blockDims = [&](const Index3& b) {
-    Index3 d;
-    for (int a = 0; a < 3; ++a)
-      d[a] = std::min<std::int64_t>(dims[a], (dims[a] - 1 + b[a] - 1) / b[a] + 1 + 2 * ghost);
-    return d;
-  };
-  while (limit > 0 && inCoreEncodeBytes(blockDims(blocks), options) > limit) {
-    const Index3 d = blockDims(blocks);
-    int axis = -1;
-    for (int a = 0; a < 3; ++a)
-      if ((dims[a] - 1) / (2 * blocks[a]) >= kMinAutoBlockIntervals && (axis < 0 || d[a] > d[axis]))
-        axis = a;
-    if (axis < 0) break;
-    blocks[axis] *= 2;
-  }
-  return blocks;
-}
-
 // `encode --blocks`: fits the blocks one at a time, appends each to the multi-block file as it
 // is done, reports per block.
 int encodeBlocks(GridSampleSource& source, const Index3& blocks, int ghost, EncodeOptions options,
                  const std::string& output, bool json, bool progress) {
   const StructuredGrid& layout = source.layout();
-  for (int a = 0; a < 3; ++a)
-    if (blocks[a] < 1 || blocks[a] > layout.dims[a] - 1 + (layout.dims[a] == 1))
-      throw CLI::ValidationError(
-          "--blocks", "each axis needs 1 to (samples - 1) blocks; the grid has " +
-                          std::to_string(layout.dims[0]) + "x" + std::to_string(layout.dims[1]) +
-                          "x" + std::to_string(layout.dims[2]) + " samples");
-  if (ghost < 0) ghost = defaultGhostLayers(options.degree);
   const auto start = std::chrono::steady_clock::now();
   auto elapsed = [&] {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -132,29 +60,12 @@ int encodeBlocks(GridSampleSource& source, const Index3& blocks, int ghost, Enco
   if (file) file->commit();
   const double seconds = elapsed();
   const std::int64_t peak = peakResidentBytes();
-  double worst = 0.0, fitSeconds = 0.0;
-  for (const FitReport& r : reports) {
-    worst = std::max(worst, r.maxRelativeError());
-    fitSeconds += r.seconds;
-  }
+  double worst = 0.0;
+  for (const FitReport& r : reports) worst = std::max(worst, r.maxRelativeError());
   const double samples = double(layout.sampleCount());
   if (json) {
-    nlohmann::json list = nlohmann::json::array();
-    for (size_t i = 0; i < reports.size(); ++i) {
-      nlohmann::json j = fitReportJson(reports[i], "");
-      const DomainBox& r = regions[i];
-      j["region"] = {r.min[0], r.max[0], r.min[1], r.max[1], r.min[2], r.max[2]};
-      list.push_back(j);
-    }
-    std::cout << nlohmann::json{{"output", output},
-                                {"blocks", blocks},
-                                {"ghost_layers", ghost},
-                                {"max_relative_error", worst},
-                                {"fit_seconds", fitSeconds},
-                                {"seconds", seconds},
-                                {"input_megabytes_per_second", megabytes / seconds},
-                                {"peak_memory_bytes", peak},
-                                {"block_reports", list}}
+    std::cout << blockFitReportJson(reports, regions, blocks, ghost, seconds, peak,
+                                    double(layout.inputBytes), output)
                      .dump(2)
               << "\n";
   } else {
@@ -257,13 +168,11 @@ Command addEncodeCommand(CLI::App& app) {
     if (!scattered && (!o->encode.maskRes.empty() || o->encode.noMask))
       throw CLI::ValidationError("--mask-res/--no-mask", "apply to meshes and point clouds; " +
                                                              o->input + " is a regular grid");
-    if (o->ghost >= 0 && o->blocks.empty())
-      throw CLI::ValidationError("--ghost", "applies with --blocks");
+    const BlockRequest blockRequest{o->blocks, o->ghost, o->memoryLimit};
     if (!o->blocks.empty() && scattered)
       throw CLI::ValidationError(
           "--blocks", "applies to regular grids; " + o->input + " holds scattered points");
-    if (!o->blocks.empty() && (options.adaptive || o->strict))
-      throw CLI::ValidationError("--blocks", "does not combine with --max-error yet");
+    requireBlockOptions(blockRequest, options, o->strict);
     if (scattered && (!o->spacing.empty() || !o->origin.empty()))
       throw CLI::ValidationError("--spacing/--origin",
                                  "apply to regular grids; " + o->input + " holds scattered points");
@@ -317,44 +226,21 @@ Command addEncodeCommand(CLI::App& app) {
         boxes =
             openStreamedVolume(o->input, load, GzipPayloads::kInflateToTemporaryFile, inflating);
       }
-      const std::int64_t limit = o->memoryLimit.empty()
-                                     ? availableMemoryBytes() / 2
-                                     : parseByteCount("--memory-limit", o->memoryLimit);
       // The blocks to encode: given, or chosen when an in-core encoding would not fit.
-      auto chooseBlocks = [&](const StructuredGrid& layout) -> std::optional<Index3> {
+      auto chooseBlocksOf = [&](const StructuredGrid& layout) {
         for (const std::string& note : o->encode.fitDefaultDegreeToGrid(options, layout.dims))
           std::cerr << "mfadvr: note: " << note << "\n";
         CodingCliOptions::applyGridDefault(options.coding, layout.sampleType);
-        const int ghost = o->ghost >= 0 ? o->ghost : defaultGhostLayers(options.degree);
-        if (o->blocks == "auto") return autoBlockCounts(layout.dims, ghost, options, limit);
-        if (!o->blocks.empty()) {
-          const auto n = parseIntTriple("--blocks", o->blocks);
-          return Index3{n[0], n[1], n[2]};
-        }
-        const std::int64_t need = inCoreEncodeBytes(layout.dims, options);
-        if (options.adaptive || limit <= 0 || need <= limit) return std::nullopt;
-        const Index3 b = autoBlockCounts(layout.dims, ghost, options, limit);
-        if (b[0] * b[1] * b[2] == 1) return std::nullopt;
-        if (b[0] * b[1] * b[2] > kMaxBlockCount)
-          throw mfadvr::Error(
-              "encoding " + layout.source + " needs about " + formatBytes(need) +
-              " of memory, more than " + formatBytes(limit) + " (" +
-              (o->memoryLimit.empty() ? "half of what is available" : "--memory-limit") +
-              "), and out of core it would take " + std::to_string(b[0] * b[1] * b[2]) +
-              " blocks, more than a multi-block model holds (" + std::to_string(kMaxBlockCount) +
-              ")");
-        std::cerr << "mfadvr: note: encoding " << layout.source << " in memory would need about "
-                  << formatBytes(need) << ", more than " << formatBytes(limit)
-                  << (o->memoryLimit.empty() ? " (half the available memory)" : " (--memory-limit)")
-                  << ": encoding it in " << b[0] << "x" << b[1] << "x" << b[2]
-                  << " blocks (--blocks auto), a multi-block model\n";
-        return b;
+        BlockChoice choice = chooseBlocks(layout, blockRequest, options);
+        if (!choice.note.empty()) std::cerr << "mfadvr: note: " << choice.note << "\n";
+        return choice;
       };
       // --smooth auto chooses lambda on the whole grid: it is read into memory first.
       if (boxes && !options.autoSmoothing) {
-        if (const auto blocks = chooseBlocks(boxes->layout())) {
+        if (const BlockChoice choice = chooseBlocksOf(boxes->layout()); choice.blocks) {
           printReaderNotes(boxes->layout());
-          return encodeBlocks(*boxes, *blocks, o->ghost, options, o->output, o->json, progress);
+          return encodeBlocks(*boxes, *choice.blocks, choice.ghost, options, o->output, o->json,
+                              progress);
         }
       }
       if (isBuiltinSpec(o->input)) boxes.reset();  // sampled whole below, after a memory check
@@ -376,9 +262,10 @@ Command addEncodeCommand(CLI::App& app) {
         grid = loadStructuredVolume(o->input, load);
       }
       printReaderNotes(grid);
-      if (const auto blocks = chooseBlocks(grid)) {
+      if (const BlockChoice choice = chooseBlocksOf(grid); choice.blocks) {
         InMemoryGridSource inMemory(grid);
-        return encodeBlocks(inMemory, *blocks, o->ghost, options, o->output, o->json, progress);
+        return encodeBlocks(inMemory, *choice.blocks, choice.ghost, options, o->output, o->json,
+                            progress);
       }
       model = encodeStructured(grid, options, &report);
     }

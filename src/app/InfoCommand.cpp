@@ -50,35 +50,44 @@ nlohmann::json modelInfoJson(const Model& m, const std::string& path, std::uint3
   return j;
 }
 
-namespace {
-
-nlohmann::json boxJson(const DomainBox& b) {
-  return {b.min[0], b.max[0], b.min[1], b.max[1], b.min[2], b.max[2]};
+nlohmann::json blockEntryJson(const Model& m, const DomainBox& region) {
+  nlohmann::json b = modelInfoJson(m, "", 0);
+  b["region"] = {region.min[0], region.max[0], region.min[1],
+                 region.max[1], region.min[2], region.max[2]};
+  return b;
 }
 
-// `info` of a multi-block file: the index, then each block's region and model.
+nlohmann::json blockModelsInfoJson(const Index3& blocks, const DomainBox& box, double valueMin,
+                                   double valueMax, nlohmann::json entries) {
+  std::int64_t controlPoints = 0;
+  for (const auto& e : entries) {
+    const auto& c = e["control_counts"];
+    controlPoints += c[0].get<std::int64_t>() * c[1].get<std::int64_t>() * c[2].get<std::int64_t>();
+  }
+  return {{"format", "mfadvr-blocks"},
+          {"blocks", blocks},
+          {"box", {box.min[0], box.max[0], box.min[1], box.max[1], box.min[2], box.max[2]}},
+          {"value_range", {valueMin, valueMax}},
+          {"control_points", controlPoints},
+          {"entries", std::move(entries)}};
+}
+
+namespace {
+
+// `info` of a multi-block file: the index, then each block's region and model (read one at a
+// time).
 int describeBlocks(const std::string& path, bool json) {
   const BlockIndex index = readBlockIndex(path);
   nlohmann::json list = nlohmann::json::array();
-  std::int64_t controlPoints = 0;
   for (size_t i = 0; i < index.entries.size(); ++i) {
-    const Model m = loadBlock(path, index, i);
-    nlohmann::json b = modelInfoJson(m, "", 0);
-    b["region"] = boxJson(index.entries[i].region);
+    nlohmann::json b = blockEntryJson(loadBlock(path, index, i), index.entries[i].region);
     b["bytes"] = index.entries[i].bytes;
-    const Index3 n = m.spline().counts();
-    controlPoints += n[0] * n[1] * n[2];
-    list.push_back(b);
+    list.push_back(std::move(b));
   }
-  const nlohmann::json j = {{"file", path},
-                            {"file_bytes", std::filesystem::file_size(path)},
-                            {"format", "mfadvr-blocks"},
-                            {"format_version", kBlockFormatVersion},
-                            {"blocks", index.blocks},
-                            {"box", boxJson(index.box)},
-                            {"value_range", {index.valueMin, index.valueMax}},
-                            {"control_points", controlPoints},
-                            {"entries", list}};
+  nlohmann::json j = {{"file", path}, {"file_bytes", std::filesystem::file_size(path)}};
+  j.update(blockModelsInfoJson(index.blocks, index.box, index.valueMin, index.valueMax, list));
+  j["format_version"] = kBlockFormatVersion;
+  const std::int64_t controlPoints = j["control_points"];
   if (json) {
     std::cout << j.dump(2) << "\n";
     return 0;

@@ -6,6 +6,7 @@
 #include <iostream>
 
 #include "app/OptionParsing.h"
+#include "core/model/BlockLocator.h"
 #include "core/model/BlockModelFile.h"
 #include "core/model/ModelFile.h"
 #include "core/render/RenderMemory.h"
@@ -236,6 +237,20 @@ LoadedScene sceneOfGrid(StructuredGrid grid, const SceneNeeds& needs, const Enco
     s.encodeSeconds = since(encodeStart);
   }
   s.emptySpace = std::make_unique<EmptySpaceCache[]>(1);
+  return s;
+}
+
+LoadedScene sceneOfBlocks(std::vector<ModelBlock> blocks, const std::string& name) {
+  if (blocks.empty()) throw Error(name + ": a multi-block model without blocks");
+  LoadedScene s;
+  s.input = name;
+  s.blocks = std::move(blocks);
+  s.model = s.blocks.front().model;
+  takeModelFacts(s);
+  const DomainBox box = regionsBox(s.blocks);
+  s.boxMin = box.min;  // the union of the blocks' regions
+  s.boxMax = box.max;
+  s.emptySpace = std::make_unique<EmptySpaceCache[]>(s.blocks.size());
   return s;
 }
 

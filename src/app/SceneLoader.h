@@ -63,6 +63,8 @@ struct SceneLoadOptions {
 LoadedScene sceneOfModel(Model model, const std::string& name);
 // A grid, encoded with `encode` when needs.model.
 LoadedScene sceneOfGrid(StructuredGrid grid, const SceneNeeds& needs, const EncodeOptions& encode);
+// A multi-block model's blocks (non-empty; regions tiling their box), as a multi-block file's.
+LoadedScene sceneOfBlocks(std::vector<ModelBlock> blocks, const std::string& name);
 
 // Throws mfadvr::Error when the input cannot provide what `needs` asks for.
 LoadedScene loadScene(const std::string& input, const SceneNeeds& needs,

@@ -7,11 +7,15 @@
 #include <pybind11/stl.h>
 #include <tbb/task_arena.h>
 
+#include <array>
+#include <chrono>
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "app/BlockChoice.h"
 #include "app/CodingCliOptions.h"
 #include "app/EncodeCliOptions.h"
 #include "app/FitReportOutput.h"
@@ -20,8 +24,11 @@
 #include "app/SceneLoader.h"
 #include "core/decode/GridDecoder.h"
 #include "core/encode/Encoder.h"
+#include "core/encode/PieceEncoder.h"
 #include "core/encode/StructuredEncoder.h"
 #include "core/image/Image.h"
+#include "core/model/BlockLocator.h"
+#include "core/model/BlockModelFile.h"
 #include "core/model/ModelFile.h"
 #include "core/render/ReconstructionMethod.h"
 #include "core/util/Error.h"
@@ -33,14 +40,39 @@ using namespace mfadvr;
 
 namespace {
 
-// A model and, when it was encoded here, the fit report (`encode --json`'s).
+// A model, or a multi-block model (`encode --blocks`: blocks, each a model with the region it
+// stands for), and, when it was encoded here, the fit report (`encode --json`'s).
 struct PyModel {
-  std::shared_ptr<const Model> model;
-  nlohmann::json report;  // null for a loaded model
+  std::shared_ptr<const Model> model;  // the model, or a multi-block model's first block's
+  std::shared_ptr<const std::vector<ModelBlock>> blocks;  // null for a single model
+  Index3 blockGrid{1, 1, 1};                               // blocks per axis
+  nlohmann::json report;                                   // null for a loaded model
+
+  PyModel(std::shared_ptr<const Model> m, nlohmann::json r)
+      : model(std::move(m)), report(std::move(r)) {}
+  PyModel(std::vector<ModelBlock> b, const Index3& grid, nlohmann::json r)
+      : blocks(std::make_shared<const std::vector<ModelBlock>>(std::move(b))),
+        blockGrid(grid),
+        report(std::move(r)) {
+    BlockLocator(*blocks, grid);  // checks that the blocks form the grid
+    model = std::shared_ptr<const Model>(blocks, &blocks->front().model);  // shares, no copy
+  }
 };
 
 py::object toPython(const nlohmann::json& j) {
   return py::module_::import("json").attr("loads")(j.dump());
+}
+
+// A keyword's value as the command line's text: a sequence's items joined by commas.
+std::string optionText(const py::handle value) {
+  if (py::isinstance<py::str>(value)) return value.cast<std::string>();
+  if (!py::isinstance<py::sequence>(value)) return py::str(value).cast<std::string>();
+  std::string joined;
+  for (const py::handle v : value.cast<py::sequence>()) {
+    if (!joined.empty()) joined += ",";
+    joined += py::str(v).cast<std::string>();
+  }
+  return joined;
 }
 
 // Keyword arguments as the command line's arguments: name_with_underscores=value becomes
@@ -76,16 +108,7 @@ std::vector<std::string> commandLine(const py::kwargs& kwargs) {
       continue;
     }
     args.push_back("--" + name);
-    if (sequence) {
-      std::string joined;
-      for (const py::handle v : value.cast<py::sequence>()) {
-        if (!joined.empty()) joined += ",";
-        joined += py::str(v).cast<std::string>();
-      }
-      args.push_back(joined);
-    } else {
-      args.push_back(py::str(value).cast<std::string>());
-    }
+    args.push_back(optionText(value));
   }
   return args;
 }
@@ -163,15 +186,35 @@ StructuredGrid gridOf(const py::array& input, const py::object& spacing, const p
 }
 
 // `encode`'s fitting and storage options from keywords, as the command line registers them.
+// The block keywords (blocks, ghost, memory_limit: `encode --blocks/--ghost/--memory-limit`) are
+// taken apart: they are the encode command's own options, not EncodeCliOptions'.
 struct EncodeKeywords {
   app::EncodeCliOptions encode;
   app::CodingCliOptions coding;
+  app::BlockRequest blocks;
 
   EncodeKeywords(const char* function, const py::kwargs& kwargs) {
+    py::kwargs rest;
+    for (const auto& item : kwargs) {
+      const std::string name = py::str(item.first);
+      const py::handle value = item.second;
+      if (name == "blocks") {
+        if (!value.is_none()) blocks.blocks = optionText(value);
+      } else if (name == "ghost") {
+        if (!value.is_none()) blocks.ghost = value.cast<int>();
+        if (blocks.ghost < -1 || blocks.ghost > 1024)
+          throw py::value_error("--ghost: " + std::to_string(blocks.ghost) +
+                                " not in range [0 - 1024]");
+      } else if (name == "memory_limit") {
+        if (!value.is_none()) blocks.memoryLimit = optionText(value);
+      } else {
+        rest[item.first] = value;
+      }
+    }
     CLI::App cli(function);
     encode.addTo(&cli, "Encoding");
     coding.addTo(&cli, "Storage");
-    parseOptions(cli, commandLine(kwargs));
+    parseOptions(cli, commandLine(rest));
   }
   // Throws CLI::ValidationError (translated() makes it a ValueError).
   EncodeOptions options() const {
@@ -191,16 +234,33 @@ PyModel fitted(Fit&& fit) {
     *model = fit(report);
   }
   report.peakMemoryBytes = peakResidentBytes();
-  return PyModel{model, app::fitReportJson(report, "")};
+  return PyModel(model, app::fitReportJson(report, ""));
+}
+
+// The blocks of `grid` fitted one at a time (all cores each) with the GIL released, and the
+// report of `encode --blocks --json`.
+PyModel encodeBlocks(const StructuredGrid& grid, const app::BlockChoice& choice,
+                     const EncodeOptions& options) {
+  std::vector<FitReport> reports;
+  std::vector<ModelBlock> blocks;
+  const auto start = std::chrono::steady_clock::now();
+  {
+    py::gil_scoped_release release;
+    blocks = encodeStructuredBlocks(grid, *choice.blocks, choice.ghost, options, &reports);
+  }
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::vector<DomainBox> regions;
+  for (const ModelBlock& b : blocks) regions.push_back(b.region);
+  nlohmann::json report =
+      app::blockFitReportJson(reports, regions, *choice.blocks, choice.ghost, seconds,
+                              peakResidentBytes(), double(grid.inputBytes), "");
+  report.erase("output");
+  return PyModel(std::move(blocks), *choice.blocks, std::move(report));
 }
 
 PyModel encodeArray(const py::array& array, const py::object& spacing, const py::object& origin,
                     const py::kwargs& kwargs) {
-  for (const char* name : {"blocks", "ghost", "memory_limit"})
-    if (kwargs.contains(name))
-      throw py::value_error(std::string(name) +
-                            ": multi-block models are the command line's (mfadvr encode --blocks "
-                            "on a file); the Python module encodes an array whole");
   const EncodeKeywords keywords("mfadvr.encode", kwargs);
   const app::EncodeCliOptions& encode = keywords.encode;
   StructuredGrid grid = gridOf(array, spacing, origin);
@@ -208,9 +268,15 @@ PyModel encodeArray(const py::array& array, const py::object& spacing, const py:
     EncodeOptions options = keywords.options();
     if (!encode.maskRes.empty() || encode.noMask)
       throw CLI::ValidationError("mask_res/no_mask", "apply to meshes and point clouds");
+    app::requireBlockOptions(keywords.blocks, options, false);
     for (const std::string& note : encode.fitDefaultDegreeToGrid(options, grid.dims))
       PyErr_WarnEx(PyExc_UserWarning, note.c_str(), 1);
     app::CodingCliOptions::applyGridDefault(options.coding, grid.sampleType);
+    // As `mfadvr encode`: blocks when asked for, or when an in-core fit would need more than the
+    // memory limit (a warning says so).
+    const app::BlockChoice choice = app::chooseBlocks(grid, keywords.blocks, options);
+    if (!choice.note.empty()) PyErr_WarnEx(PyExc_UserWarning, choice.note.c_str(), 1);
+    if (choice.blocks) return encodeBlocks(grid, choice, options);
     if (!options.adaptive) {
       Index3 counts = options.controlCounts;
       for (int a = 0; a < 3; ++a)
@@ -223,6 +289,10 @@ PyModel encodeArray(const py::array& array, const py::object& spacing, const py:
 }
 
 PyModel encodePoints(const py::array& xyz, const py::array& values, const py::kwargs& kwargs) {
+  for (const char* name : {"blocks", "ghost", "memory_limit"})
+    if (kwargs.contains(name))
+      throw py::value_error(std::string("--") + name +
+                            ": applies to regular grids (mfadvr.encode of an array)");
   const EncodeKeywords keywords("mfadvr.encode_points", kwargs);
   const auto p = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(xyz);
   const auto v = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(values);
@@ -252,6 +322,36 @@ PyModel encodePoints(const py::array& xyz, const py::array& values, const py::kw
   });
 }
 
+// A multi-block model's values (and derivatives, where the spans are not empty) at `at`: each
+// point by the block whose region holds it (core/model/BlockLocator.h), the points of a block
+// gathered and evaluated together over all cores.
+void evaluateBlocks(const PyModel& m, std::span<const Vec3d> at, std::span<float> values,
+                    std::span<Vec3f> gradients, std::span<Sym3f> hessians) {
+  const std::vector<ModelBlock>& blocks = *m.blocks;
+  const BlockLocator locator(blocks, m.blockGrid);
+  std::vector<std::vector<size_t>> members(blocks.size());
+  for (size_t i = 0; i < at.size(); ++i) members[locator.blockOf(at[i])].push_back(i);
+  std::vector<Vec3d> points;
+  std::vector<float> v;
+  std::vector<Vec3f> g;
+  std::vector<Sym3f> h;
+  for (size_t b = 0; b < blocks.size(); ++b) {
+    const std::vector<size_t>& mine = members[b];
+    if (mine.empty()) continue;
+    points.resize(mine.size());
+    for (size_t k = 0; k < mine.size(); ++k) points[k] = at[mine[k]];
+    v.resize(mine.size());
+    g.resize(gradients.empty() ? 0 : mine.size());
+    h.resize(hessians.empty() ? 0 : mine.size());
+    blocks[b].model.evaluate(points, v, g, h);
+    for (size_t k = 0; k < mine.size(); ++k) {
+      values[mine[k]] = v[k];
+      if (!g.empty()) gradients[mine[k]] = g[k];
+      if (!h.empty()) hessians[mine[k]] = h[k];
+    }
+  }
+}
+
 // (N,) values, (N, 4) value and gradient, (N, 10) with the Hessian (dxx, dxy, dxz, dyy, dyz,
 // dzz): the columns of `mfadvr query`.
 py::array_t<float> query(const PyModel& m, const py::object& points, int derivatives,
@@ -271,11 +371,17 @@ py::array_t<float> query(const PyModel& m, const py::object& points, int derivat
   const auto evaluate = [&](std::span<float> values, std::span<Vec3f> gradients,
                             std::span<Sym3f> hessians) {
     py::gil_scoped_release release;
+    const auto run = [&] {
+      if (m.blocks)
+        evaluateBlocks(m, at, values, gradients, hessians);
+      else
+        m.model->evaluate(at, values, gradients, hessians);
+    };
     if (threads == 0) {
-      m.model->evaluate(at, values, gradients, hessians);
+      run();
     } else {
       tbb::task_arena arena(threads);
-      arena.execute([&] { m.model->evaluate(at, values, gradients, hessians); });
+      arena.execute(run);
     }
   };
   if (derivatives == 0) {  // straight into the returned array
@@ -299,21 +405,92 @@ py::array_t<float> query(const PyModel& m, const py::object& points, int derivat
   return out;
 }
 
+// A multi-block model's grid: the input's spacing over the union of the regions, or `dims`
+// samples over it.
+DecodeGrid blocksDecodeGrid(const PyModel& m, const std::optional<Index3>& dims) {
+  const DomainBox box = regionsBox(*m.blocks);
+  DecodeGrid grid;
+  grid.origin = box.min;
+  const Vec3d spacing = defaultDecodeGrid(*m.model).spacing;
+  for (int a = 0; a < 3; ++a) {
+    const double extent = box.max[a] - box.min[a];
+    if (dims) {
+      if ((*dims)[a] < 2) throw Error("decoding needs at least 2 samples per axis");
+      grid.dims[a] = (*dims)[a];
+    } else {
+      grid.dims[a] = std::llround(extent / spacing[a]) + 1;
+    }
+    grid.spacing[a] = extent / double(grid.dims[a] - 1);
+  }
+  return grid;
+}
+
+// Decodes a multi-block model on `grid` into `out` ([z, y, x]): each block the samples in its
+// region (along each axis, those BlockLocator gives it).
+void decodeBlocks(const PyModel& m, const DecodeGrid& grid, double* out) {
+  const BlockLocator locator(*m.blocks, m.blockGrid);
+  // Per axis and block along it: the first sample and one past the last.
+  std::array<std::vector<std::int64_t>, 3> first;
+  for (int a = 0; a < 3; ++a) {
+    first[a].assign(static_cast<size_t>(m.blockGrid[a] + 1), grid.dims[a]);
+    for (std::int64_t k = grid.dims[a] - 1; k >= 0; --k)
+      first[a][locator.axisBlock(a, grid.origin[a] + double(k) * grid.spacing[a])] = k;
+    for (std::int64_t b = m.blockGrid[a] - 1; b >= 0; --b)  // blocks with no sample: empty
+      first[a][b] = std::min(first[a][b], first[a][b + 1]);
+  }
+  for (std::int64_t bz = 0; bz < m.blockGrid[2]; ++bz)
+    for (std::int64_t by = 0; by < m.blockGrid[1]; ++by)
+      for (std::int64_t bx = 0; bx < m.blockGrid[0]; ++bx) {
+        const Index3 b{bx, by, bz};
+        Index3 k0, count;
+        for (int a = 0; a < 3; ++a) {
+          k0[a] = first[a][b[a]];
+          count[a] = first[a][b[a] + 1] - k0[a];
+        }
+        if (count[0] <= 0 || count[1] <= 0 || count[2] <= 0) continue;
+        const Model& model = (*m.blocks)[static_cast<size_t>(
+            bx + m.blockGrid[0] * (by + m.blockGrid[1] * bz))].model;
+        // The block's samples a z plane at a time, by point evaluation (a block's samples lie
+        // in its region, not on a grid spanning its model's box, which decodeBySlabs takes).
+        std::vector<Vec3d> points(static_cast<size_t>(count[0] * count[1]));
+        std::vector<float> values(points.size());
+        for (std::int64_t z = k0[2]; z < k0[2] + count[2]; ++z) {
+          for (std::int64_t y = 0; y < count[1]; ++y)
+            for (std::int64_t x = 0; x < count[0]; ++x)
+              points[static_cast<size_t>(y * count[0] + x)] =
+                  grid.origin + Vec3d(double(k0[0] + x), double(k0[1] + y), double(z))
+                                    .cwiseProduct(grid.spacing);
+          model.evaluate(points, values, {}, {});
+          for (std::int64_t y = 0; y < count[1]; ++y)
+            std::copy_n(values.begin() + y * count[0], count[0],
+                        out + (z * grid.dims[1] + k0[1] + y) * grid.dims[0] + k0[0]);
+        }
+      }
+}
+
 // The model on its grid (or `shape` samples over its box), float64 [z, y, x]; NaN outside a
 // domain mask. The Python side converts to the input's type.
 py::array_t<double> decodeValues(const PyModel& m, const py::object& shape) {
   return translated([&] {
-    DecodeGrid grid = defaultDecodeGrid(*m.model);
+    std::optional<Index3> dims;
     if (!shape.is_none()) {
       const auto s = shape.cast<std::vector<std::int64_t>>();
       if (s.size() != 3) throw py::value_error("shape must be (nz, ny, nx)");
-      grid = decodeGridWithSamples(*m.model, {s[2], s[1], s[0]});
+      dims = Index3{s[2], s[1], s[0]};
     }
+    const DecodeGrid grid = m.blocks ? blocksDecodeGrid(m, dims)
+                            : dims   ? decodeGridWithSamples(*m.model, *dims)
+                                     : defaultDecodeGrid(*m.model);
     const std::int64_t count = grid.dims[0] * grid.dims[1] * grid.dims[2];
     requireMemory(8 * count, "decoding the model");
     py::array_t<double> out({grid.dims[2], grid.dims[1], grid.dims[0]});
     double* dst = out.mutable_data();
     const std::int64_t plane = grid.dims[0] * grid.dims[1];
+    if (m.blocks) {
+      py::gil_scoped_release release;
+      decodeBlocks(m, grid, dst);
+      return out;
+    }
     {
       py::gil_scoped_release release;
       decodeBySlabs(*m.model, grid, std::int64_t(1) << 24,
@@ -354,7 +531,8 @@ py::array render(const py::object& input, const py::object& size, const py::obje
   if (py::isinstance<PyModel>(input)) {
     if (spec.method != ReconstructionMethod::Mfa)
       throw py::value_error("a model renders with method 'mfa'; grid methods need the array");
-    scene = app::sceneOfModel(*input.cast<const PyModel&>().model, "model");
+    const PyModel& m = input.cast<const PyModel&>();
+    scene = m.blocks ? app::sceneOfBlocks(*m.blocks, "model") : app::sceneOfModel(*m.model, "model");
   } else {
     StructuredGrid grid = gridOf(input.cast<py::array>(), spacing, origin);
     app::SceneNeeds needs;
@@ -411,8 +589,25 @@ PYBIND11_MODULE(_mfadvr, m) {
           },
           "The fit report of encode (the CLI's `encode --json`), None for a loaded model")
       .def_property_readonly(
-          "info", [](const PyModel& self) { return toPython(app::modelInfoJson(*self.model, "", 0)); },
-          "The model's description (the CLI's `info --json`)")
+          "info",
+          [](const PyModel& self) {
+            if (!self.blocks) return toPython(app::modelInfoJson(*self.model, "", 0));
+            nlohmann::json entries = nlohmann::json::array();
+            for (const ModelBlock& b : *self.blocks)
+              entries.push_back(app::blockEntryJson(b.model, b.region));
+            return toPython(app::blockModelsInfoJson(self.blockGrid, regionsBox(*self.blocks),
+                                                     self.model->valueMin(),
+                                                     self.model->valueMax(), entries));
+          },
+          "The model's description (the CLI's `info --json`; for a multi-block model its "
+          "blocks, with format 'mfadvr-blocks')")
+      .def_property_readonly(
+          "blocks",
+          [](const PyModel& self) -> py::object {
+            if (!self.blocks) return py::none();
+            return py::make_tuple(self.blockGrid[0], self.blockGrid[1], self.blockGrid[2]);
+          },
+          "Blocks per axis (x, y, z) of a multi-block model (encode's blocks=), None for one model")
       .def_property_readonly(
           "sample_type",
           [](const PyModel& self) { return self.model->provenance().sampleType; },
@@ -420,11 +615,16 @@ PYBIND11_MODULE(_mfadvr, m) {
       .def("save",
            [](const PyModel& self, const std::string& path) {
              translated([&] {
-               saveModel(*self.model, path);
+               if (self.blocks)
+                 saveBlockModels(*self.blocks, self.blockGrid, path);
+               else
+                 saveModel(*self.model, path);
                return 0;
              });
            },
-           py::arg("path"), "Writes the model to a .mfa file (atomically)")
+           py::arg("path"),
+           "Writes the model to a .mfa file (atomically; a multi-block model as a multi-block "
+           "file)")
       .def("query", &query, py::arg("points"), py::arg("derivatives") = 0, py::arg("threads") = 0,
            "Values (N,), with derivatives=1 (N, 4) value, dx, dy, dz; with 2 (N, 10) adding "
            "dxx, dxy, dxz, dyy, dyz, dzz; points an (N, 3) array of physical x, y, z; threads: "
@@ -435,14 +635,20 @@ PYBIND11_MODULE(_mfadvr, m) {
       .def("_decode_values", &decodeValues, py::arg("shape") = py::none())
       .def(
           "_into_vtk",
-          [](const PyModel& self, const py::object& data) { vtkModelData(data)->SetModel(self.model); },
+          [](const PyModel& self, const py::object& data) {
+            if (self.blocks)
+              throw py::value_error(
+                  "a multi-block model is not one vtkMFAModelData: save it and read it with "
+                  "vtkMFAReader (OutputImageData), which spreads its blocks over MPI ranks");
+            vtkModelData(data)->SetModel(self.model);
+          },
           py::arg("data"))
       .def_static(
           "_from_vtk",
           [](const py::object& data) {
             const std::shared_ptr<const Model>& model = vtkModelData(data)->GetModel();
             if (!model) throw py::value_error("the vtkMFAModelData holds no model");
-            return PyModel{model, nullptr};
+            return PyModel(model, nullptr);
           },
           py::arg("data"));
 
@@ -453,10 +659,12 @@ PYBIND11_MODULE(_mfadvr, m) {
       "load",
       [](const std::string& path) {
         return translated([&] {
-          return PyModel{std::make_shared<Model>(loadModel(path)), nullptr};
+          if (isBlockModelFile(path))
+            return PyModel(loadBlockModels(path), readBlockIndex(path).blocks, nullptr);
+          return PyModel(std::make_shared<Model>(loadModel(path)), nullptr);
         });
       },
-      py::arg("path"), "Reads a .mfa model file");
+      py::arg("path"), "Reads a .mfa model file (one model or multi-block)");
   m.def("_render", &render, py::arg("input"), py::arg("size") = py::none(),
         py::arg("spacing") = py::none(), py::arg("origin") = py::none(),
         py::arg("method") = "mfa", py::arg("alpha") = false, py::arg("float") = false);

@@ -17,7 +17,9 @@ def encode(array, spacing=None, origin=None, **options):
     transposed first: array.transpose(2, 1, 0)). Any numeric dtype; integer arrays get the
     CLI's integer-scan default coding. spacing and origin: one number or (x, y, z).
     Options: degree, ctrl, max_error, max_ctrl, max_rounds, smooth, coding, tolerance,
-    bits_per_sample, psnr, rms_error, lossless (encode --help). model.report is the fit report."""
+    bits_per_sample, psnr, rms_error, lossless (encode --help); blocks=(bx, by, bz) or "auto",
+    ghost, memory_limit for a multi-block model (encode --blocks; also chosen when an in-core
+    fit would not fit the memory limit). model.report is the fit report."""
     return _mfadvr._encode(np.asanyarray(array), spacing, origin, **options)
 
 

@@ -18,7 +18,10 @@ TEST(MemoryBudget, ByteCountsWithUnits) {
   EXPECT_EQ(parseByteCount("1.5e9"), 1'500'000'000);
   EXPECT_EQ(parseByteCount("2T"), 2'000'000'000'000);
   EXPECT_EQ(parseByteCount("4096"), 4096);
-  for (const char* bad : {"", "G", "-1", "0", "8X", "8GB", " 8G", "1e30", "nan"})
+  EXPECT_EQ(parseByteCount("8GB"), 8'000'000'000);  // as --memory-limit took it
+  EXPECT_EQ(parseByteCount("512mb"), 512'000'000);
+  EXPECT_EQ(parseByteCount("4096B"), 4096);
+  for (const char* bad : {"", "G", "B", "-1", "0", "8X", "8BB", "8GBB", " 8G", "1e30", "nan"})
     EXPECT_THROW(parseByteCount(bad), Error) << bad;
 }
 

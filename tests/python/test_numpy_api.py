@@ -128,8 +128,16 @@ def test_bad_input_raises_the_command_line_s_message():
         mfadvr.encode(sphere(), max_error="abc")
     with pytest.raises(ValueError):
         mfadvr.encode(sphere(), no_such_option=3)
-    with pytest.raises(ValueError, match="multi-block"):
-        mfadvr.encode(sphere(), blocks=(2, 2, 1))
+    with pytest.raises(ValueError, match="--ghost: applies with --blocks"):
+        mfadvr.encode(sphere(), ghost=2)
+    with pytest.raises(ValueError, match="each axis needs 1 to"):
+        mfadvr.encode(sphere(), blocks=(0, 1, 1))
+    with pytest.raises(ValueError, match="max-error"):
+        mfadvr.encode(sphere(), blocks=2, max_error=1e-3)
+    with pytest.raises(ValueError, match="memory-limit"):
+        mfadvr.encode(sphere(), memory_limit="lots")
+    with pytest.raises(ValueError, match="regular grids"):
+        mfadvr.encode_points(np.zeros((10, 3)), np.zeros(10), blocks=2)
     with pytest.raises(ValueError, match="3 dimensions"):
         mfadvr.encode(np.zeros((4, 4)))
     bad = sphere()
@@ -163,3 +171,62 @@ def test_models_move_to_vtk_and_back_without_files(model, tmp_path):
         mfadvr.Model.from_vtk(reader)
     with pytest.raises(TypeError):
         mfadvr.Model.from_vtk(3)
+
+
+def test_blocks_encode_query_decode_save_and_render_as_the_command_line(tmp_path):
+    volume = sphere(20, 22, 24)
+    spacing, origin = (0.1, 0.2, 0.3), (1.0, -2.0, 0.5)
+    m = mfadvr.encode(volume, spacing=spacing, origin=origin, blocks=(2, 1, 2), ghost=3)
+    assert m.blocks == (2, 1, 2)
+    report = m.report
+    assert report["blocks"] == [2, 1, 2] and report["ghost_layers"] == 3
+    assert len(report["block_reports"]) == 4 and report["max_relative_error"] < 1e-4
+    info = m.info
+    assert info["format"] == "mfadvr-blocks" and len(info["entries"]) == 4
+    assert np.allclose(info["box"], [1.0, 1.0 + 2.3, -2.0, -2.0 + 4.2, 0.5, 0.5 + 5.7])
+
+    # Interpolating in every block: the samples come back, and so does the whole grid.
+    decoded = m.decode()
+    assert decoded.shape == volume.shape and decoded.dtype == np.float32
+    assert np.abs(decoded - volume).max() < 1e-4
+    z, y, x = np.meshgrid(*(o + s * np.arange(n) for o, s, n in
+                            zip(origin[::-1], spacing[::-1], volume.shape)), indexing="ij")
+    grid_points = np.stack([x.ravel(), y.ravel(), z.ravel()], axis=1)
+    assert np.allclose(m.query(grid_points), volume.ravel(), atol=1e-4)
+    # Near the one model of the whole grid everywhere (each block's ghost layers).
+    whole = mfadvr.encode(volume, spacing=spacing, origin=origin)
+    rng = np.random.default_rng(3)
+    lo, hi = np.array(info["box"][::2]), np.array(info["box"][1::2])
+    points = lo + (hi - lo) * rng.random((500, 3))
+    assert np.allclose(m.query(points, derivatives=1)[:, 0], m(points))
+    assert np.abs(m(points) - whole(points)).max() < 2e-3
+
+    # Saved as the command line's multi-block file; loaded back the same.
+    path = tmp_path / "b.mfa"
+    m.save(str(path))
+    import json
+    assert json.loads(cli("info", "--json", path))["blocks"] == [2, 1, 2]
+    back = mfadvr.load(str(path))
+    assert back.blocks == (2, 1, 2) and back.report is None
+    assert np.array_equal(back(points), m(points))
+    # The CLI's encode of the same samples (a raw file) gives the same blocks.
+    raw = tmp_path / "v_24x22x20_float32.raw"
+    volume.tofile(raw)
+    cli("encode", raw, "--spacing", "0.1,0.2,0.3", "--origin",
+        "1,-2,0.5", "--blocks", "2,1,2", "--ghost", 3, "-q", "-o", tmp_path / "c.mfa")
+    assert np.allclose(mfadvr.load(str(tmp_path / "c.mfa"))(points), m(points), rtol=1e-6,
+                       atol=1e-6)
+
+    # Rendered: the pixels of `mfadvr render` of the saved file.
+    image = mfadvr.render(m, size=(40, 30), tf="ramp", shade=True)
+    cli("render", path, "-o", tmp_path / "b.png", "--size", "40x30", "--tf", "ramp", "--shade",
+        "-q")
+    from vtkmodules.vtkIOImage import vtkPNGReader
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    reader = vtkPNGReader()
+    reader.SetFileName(str(tmp_path / "b.png"))
+    reader.Update()
+    png = vtk_to_numpy(reader.GetOutput().GetPointData().GetScalars()).reshape(30, 40, -1)
+    assert image.max() > 40 and np.array_equal(image, png[::-1, :, :3])
+    with pytest.raises(ValueError, match="vtkMFAReader"):
+        m.to_vtk()

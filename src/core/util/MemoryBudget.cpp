@@ -66,6 +66,8 @@ std::int64_t cgroupHeadroom() {
 std::int64_t parseByteCount(const std::string& text) {
   double v = 0.0;
   const char* end = text.data() + text.size();
+  // "512MB" as "512M"; a bare "B" after the number is bytes.
+  if (end != text.data() && (end[-1] == 'B' || end[-1] == 'b')) --end;
   const auto [at, ec] = std::from_chars(text.data(), end, v);
   double scale = 1.0;
   if (ec == std::errc() && at + 1 == end) {
@@ -94,7 +96,8 @@ std::int64_t parseByteCount(const std::string& text) {
   }
   const double bytes = v * scale;
   if (!(scale > 0.0 && bytes >= 1.0 && bytes < 9e18))
-    throw Error("'" + text + "' is not a memory size (bytes, or a number with K, M, G or T: 8G)");
+    throw Error("'" + text +
+                "' is not a memory size (bytes, or a number with K, M, G or T: 8G, 512MB)");
   return static_cast<std::int64_t>(bytes);
 }
 

@@ -13,7 +13,8 @@ namespace mfadvr {
 // user's cap, e.g. "8G"; an invalid value is an Error); 0 when unknown.
 std::int64_t availableMemoryBytes();
 
-// "8G", "512M", "1.5e9": bytes (K, M, G, T are powers of 1000, as formatBytes prints them).
+// "8G", "512M", "512MB", "1.5e9": bytes (K, M, G, T are powers of 1000, as formatBytes prints
+// them; a B after the unit is optional).
 // Throws mfadvr::Error for anything else, or for less than one byte.
 std::int64_t parseByteCount(const std::string& text);
 
