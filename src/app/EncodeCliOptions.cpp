@@ -53,6 +53,15 @@ void EncodeCliOptions::addTo(CLI::App* sub, const std::string& group) {
       ->capture_default_str()
       ->check(CLI::Range(1, 1000))
       ->group(group);
+  dequantizeOption_ =
+      sub->add_option("--dequantize", dequantize,
+                      "Grids of quantized samples (integer scans): the smoothest model whose value "
+                      "at every sample stays within half a quantization step STEP of it (default "
+                      "1 for integer samples; float data give theirs), so that it still rounds "
+                      "back to every sample: no terraces (docs/encoding.md). --smooth LAMBDA sets "
+                      "the roughness it minimizes")
+          ->expected(0, 1)
+          ->group(group);
   sub->add_option("--smooth", smooth,
                   "Smoothing weight lambda >= 0 of the roughness penalty, or 'auto' (grids: "
                   "chosen by generalized cross-validation). Damps wavelengths below about "
@@ -97,6 +106,8 @@ EncodeOptions EncodeCliOptions::parse() const {
                                  "must be a finite number >= 0 or 'auto', got '" + smooth + "'");
     o.smoothing = v;
   }
+  if (dequantizeOption_ && dequantizeOption_->count() > 0)
+    o.dequantizeStep = dequantize.empty() ? 0.0 : parsePositive("--dequantize", dequantize, false);
   if (!maxError.empty()) {
     AdaptiveOptions a;
     a.maxRelativeError = parsePositive("--max-error", maxError, false);

@@ -11,7 +11,7 @@ namespace mfadvr::app {
 
 class EncodeCliOptions {
  public:
-  std::string degree = "3", ctrl, smooth, maxError, maxCtrl, maskRes;
+  std::string degree = "3", ctrl, smooth, maxError, maxCtrl, maskRes, dequantize;
   int maxRounds = 30;
   bool noMask = false;
 
@@ -30,6 +30,7 @@ class EncodeCliOptions {
 
  private:
   CLI::Option* degreeOption_ = nullptr;
+  CLI::Option* dequantizeOption_ = nullptr;
 };
 
 }  // namespace mfadvr::app

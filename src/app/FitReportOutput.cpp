@@ -46,6 +46,14 @@ std::string formatFitReport(const FitReport& r, const std::string& modelPath) {
   else if (r.smoothing > 0.0 || !r.smoothingNote.empty())
     o << "smoothing       "
       << (r.smoothingNote.empty() ? "lambda " + fmt("%g", r.smoothing) : r.smoothingNote) << "\n";
+  if (r.dequantizeStep > 0.0)
+    o << "dequantize      step " << fmt("%g", r.dequantizeStep) << ", roughness of lambda "
+      << fmt("%g", r.dequantizeLambda) << ": "
+      << r.dequantizeIterations << " iterations" << (r.dequantizeConverged ? "" : " (NOT converged)")
+      << ", " << fmt("%.1f", 100.0 * r.dequantizeEdgeShare) << " % of the samples on an "
+      << "interval's edge, " << fmt("%.2f", r.dequantizeSeconds) << " s; max |model - sample| "
+      << fmt("%.3g", r.maxError) << (r.maxError <= 0.5 * r.dequantizeStep ? " <= " : " > ")
+      << "step/2\n";
   if (r.rounds > 0)
     o << "adaptive        bound " << fmt("%.3e", r.targetRelativeError)
       << " of the value range: " << (r.reachedTarget ? "reached" : "NOT reached") << " after "
@@ -136,6 +144,15 @@ nlohmann::json fitReportJson(const FitReport& r, const std::string& modelPath) {
                     {"noise_estimate", r.smoothingNote.empty() ? nlohmann::json(nullptr)
                                                                : nlohmann::json(r.noiseEstimate)},
                     {"note", r.smoothingNote}};
+  j["dequantize"] = r.dequantizeStep > 0.0
+                       ? nlohmann::json{{"step", r.dequantizeStep},
+                                        {"lambda", r.dequantizeLambda},
+                                        {"iterations", r.dequantizeIterations},
+                                        {"converged", r.dequantizeConverged},
+                                        {"edge_share", r.dequantizeEdgeShare},
+                                        {"seconds", r.dequantizeSeconds},
+                                        {"rounds_back", r.maxError <= 0.5 * r.dequantizeStep}}
+                       : nlohmann::json(nullptr);
   j["adaptive"] = r.rounds > 0 ? nlohmann::json{{"max_relative_error_bound", r.targetRelativeError},
                                                 {"rounds", r.rounds},
                                                 {"reached", r.reachedTarget},

@@ -43,6 +43,39 @@ nlohmann::json jsonOf(const test::CliResult& r) {
   }
 }
 
+// --dequantize: the smoothest model within half a step of every sample decodes back exactly
+// too, and says so in its report; bad steps and combinations are usage errors.
+TEST(CompressionCli, DequantizedScansDecodeBackExactly) {
+  const auto dir = test::scratchDir();
+  std::vector<std::uint8_t> input;
+  const std::string raw = writeByteVolume(dir, &input);
+  const std::string model = (dir / "smooth.mfa").string();
+  const auto r = runMfadvr("encode " + raw + " --dequantize --json -q -o " + model);
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = jsonOf(r);
+  EXPECT_EQ(j["dequantize"]["step"], 1.0);
+  EXPECT_TRUE(j["dequantize"]["rounds_back"].get<bool>());
+  EXPECT_GT(j["dequantize"]["iterations"].get<int>(), 1);
+  EXPECT_LE(j["max_error"].get<double>(), 0.5);
+  EXPECT_EQ(j["coding"]["method"], "zfp");
+  const std::string out = (dir / "back.raw").string();
+  ASSERT_EQ(runMfadvr("decode " + model + " -q -o " + out).status, 0);
+  const std::string back = test::slurp(out);
+  ASSERT_EQ(back.size(), input.size());
+  EXPECT_EQ(std::memcmp(back.data(), input.data(), input.size()), 0);
+  const auto text = runMfadvr("encode " + raw + " --dequantize 1");
+  EXPECT_NE(text.out.find("dequantize      step 1"), std::string::npos) << text.out;
+
+  EXPECT_EQ(runMfadvr("encode " + raw + " --dequantize -1 -q").status, 2);
+  EXPECT_EQ(runMfadvr("encode " + raw + " --dequantize abc -q").status, 2);
+  const auto offLattice = runMfadvr("encode " + raw + " --dequantize 0.3 -q");
+  EXPECT_NE(offLattice.status, 0);
+  EXPECT_NE(offLattice.err.find("not multiples of the step"), std::string::npos) << offLattice.err;
+  const auto floats = runMfadvr("encode builtin:marschner-lobb:12 --dequantize -q");
+  EXPECT_NE(floats.status, 0);
+  EXPECT_NE(floats.err.find("give the step"), std::string::npos) << floats.err;
+}
+
 TEST(CompressionCli, IntegerScansAreCodedByDefaultAndDecodeBackExactly) {
   const auto dir = test::scratchDir();
   std::vector<std::uint8_t> input;

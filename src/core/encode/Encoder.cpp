@@ -1,5 +1,9 @@
 #include "core/encode/Encoder.h"
 
+#include <cmath>
+
+#include "core/encode/CodingChoice.h"
+#include "core/encode/Dequantizer.h"
 #include "core/mask/MaskVoxelizer.h"
 #include "core/model/ModelFile.h"
 #include "core/util/Error.h"
@@ -73,6 +77,64 @@ Model encodeStructuredFit(const StructuredGrid& grid, const EncodeOptions& optio
   return m;
 }
 
+// --dequantize: the targets within the quantization intervals (Dequantizer.h), the model fitted
+// to them, coded and judged against the samples themselves (within half a step).
+Model encodeDequantized(const StructuredGrid& grid, const EncodeOptions& options,
+                        FitReport* report) {
+  if (options.adaptive)
+    throw Error("--dequantize does not combine with --max-error (its bound is half a step)");
+  if (options.coding.budget.kind != BudgetKind::kNone)
+    throw Error("--dequantize does not combine with a size or quality budget yet");
+  if (options.autoSmoothing)
+    throw Error(
+        "--dequantize chooses the smoothest model within the quantization; --smooth auto does "
+        "not combine with it (--smooth LAMBDA sets the smoother whose roughness it minimizes)");
+  double step = *options.dequantizeStep;
+  if (step == 0.0) {
+    if (!isIntegerSampleType(grid.sampleType))
+      throw Error("--dequantize: " + grid.source + " holds " + grid.sampleType +
+                  " samples; give the step they were quantized with (--dequantize STEP)");
+    step = 1.0;
+  }
+  StructuredFitOptions fit = fitOptionsOf(options);
+  fit.smoothing = 0.0;
+  const std::array<KnotVector, 3> knots = knotsOfFit(grid, fit);
+  DequantizeOptions dq;
+  dq.step = step;
+  if (options.smoothing) dq.smoothing = *options.smoothing;
+  if (options.progress)
+    dq.progress = [&](double f, const std::string& stage) { options.progress(0.6 * f, stage); };
+  DequantizeResult d = dequantizeTargets(grid, knots, dq);
+  StructuredGrid targets = grid;
+  targets.values = std::move(d.targets);
+  FitReport local;
+  FitReport& r = report ? *report : local;
+  if (options.progress)
+    fit.progress = [&](double f, const std::string& stage) { options.progress(0.6 + 0.3 * f, stage); };
+  Model fitted = fitStructuredWithKnots(targets, knots, fit, &r);
+  targets = {};
+  // Its errors are those against the samples, not the targets.
+  const SampleErrors e = errorsOnGrid(fitted.spline(), grid);
+  Provenance& p = fitted.provenance();
+  p.maxError = e.max;
+  p.rmsError = e.rms;
+  p.encoder = "structured-dequantize";
+  p.smoothing = dq.smoothing;
+  p.fitSeconds += d.seconds;
+  CodingOptions coding = options.coding;
+  if (!coding.coder) coding.coder = ControlCoder::kFloat32;
+  Model m = codeFittedModel(std::move(fitted), grid, coding, std::nextafter(0.5 * step, 0.0),
+                            options.controlCounts[0] > 0, &r);
+  r.smoothing = 0.0;  // not a smoothing fit: dequantizeLambda is the roughness it minimized
+  r.dequantizeLambda = dq.smoothing;
+  r.dequantizeStep = step;
+  r.dequantizeIterations = d.iterations;
+  r.dequantizeConverged = d.converged;
+  r.dequantizeEdgeShare = d.edgeShare;
+  r.dequantizeSeconds = d.seconds;
+  return m;
+}
+
 }  // namespace
 
 EncodeOptions withChosenSmoothing(const StructuredGrid& grid, const EncodeOptions& options,
@@ -97,6 +159,7 @@ EncodeOptions withChosenSmoothing(const StructuredGrid& grid, const EncodeOption
 Model encodeStructured(const StructuredGrid& grid, const EncodeOptions& options,
                        FitReport* report) {
   if (options.smoothing) validateSmoothing(*options.smoothing);
+  if (options.dequantizeStep) return encodeDequantized(grid, options, report);
   SmoothingChoice choice;
   const EncodeOptions resolved = withChosenSmoothing(grid, options, &choice);
   FitReport local;
@@ -112,7 +175,7 @@ Model encodeStructured(const StructuredGrid& grid, const EncodeOptions& options,
 
 Model encodeStructured(const StructuredGrid& layout, const GridSamples& samples,
                        const EncodeOptions& options, FitReport* report) {
-  const bool planeByPlane = !options.autoSmoothing && !options.adaptive &&
+  const bool planeByPlane = !options.autoSmoothing && !options.adaptive && !options.dequantizeStep &&
                             options.coding.budget.kind == BudgetKind::kNone &&
                             !options.coding.coder;
   if (!planeByPlane) {
@@ -146,6 +209,8 @@ Model encodeScattered(const ScatteredData& data, const EncodeOptions& options, F
     throw Error(
         "automatic smoothing (--smooth auto) is for regular grids; give meshes and "
         "point clouds a weight (--smooth L; default 1e-2)");
+  if (options.dequantizeStep)
+    throw Error("--dequantize is for regular grids of quantized samples, not meshes or points");
   fit.smoothing = options.smoothing.value_or(kDefaultSmoothing);
   fit.progress = options.progress;
   if (options.coding.budget.kind != BudgetKind::kNone ||

@@ -39,6 +39,9 @@ struct EncodeOptions {
   // (SmoothingChoice.h). Off unless given: measured on quantized phantoms it over-smooths more
   // often than it helps (docs/denoise.md), so integer scans get plain GCV too.
   std::optional<double> quantizationStep;
+  // Grids: the smoothest model within half a quantization step of every sample
+  // (core/encode/Dequantizer.h), with this step; 0: 1, for integer samples.
+  std::optional<double> dequantizeStep;
   std::optional<AdaptiveOptions> adaptive;
   MaskOptions mask;
   CodingOptions coding;  // grids; scattered inputs take a given float32 or lossless coder

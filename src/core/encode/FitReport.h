@@ -39,6 +39,15 @@ struct FitReport {
   double noiseEstimate = 0.0;
   std::string smoothingNote;
 
+  // Grids with --dequantize (dequantizeStep == 0 without): the step, the ADMM iterations, whether
+  // they met the tolerance, the share of samples on an interval's edge and the time taken.
+  double dequantizeStep = 0.0;
+  double dequantizeLambda = 0.0;  // of the smoother whose roughness was minimized
+  int dequantizeIterations = 0;
+  bool dequantizeConverged = true;
+  double dequantizeEdgeShare = 0.0;
+  double dequantizeSeconds = 0.0;
+
   // Adaptive encoding (rounds == 0 when the control counts were fixed).
   int rounds = 0;
   double targetRelativeError = 0.0;

@@ -446,9 +446,6 @@ Index3 resolveControlCounts(const StructuredGrid& grid, const StructuredFitOptio
   return n;
 }
 
-namespace {
-
-// The knot vectors of a fit with options.controlCounts (0: as many as samples).
 std::array<KnotVector, 3> knotsOfFit(const StructuredGrid& layout,
                                      const StructuredFitOptions& options) {
   const Index3 n = resolveControlCounts(layout, options);
@@ -458,7 +455,46 @@ std::array<KnotVector, 3> knotsOfFit(const StructuredGrid& layout,
   return knots;
 }
 
-}  // namespace
+struct GridSmoother::Axes {
+  std::array<AxisSampling, 3> sampling;
+  std::array<std::unique_ptr<AxisFitter>, 3> fitters;
+};
+
+GridSmoother::GridSmoother(const std::array<KnotVector, 3>& knots, const Index3& dims,
+                           double smoothing)
+    : dims_(dims), axes_(std::make_unique<Axes>()) {
+  validateSmoothing(smoothing);
+  for (int a = 0; a < 3; ++a) {
+    if (knots[a].controlCount() > dims[a])
+      throw Error("more control points than samples along " + std::string(axisName(a)));
+    axes_->sampling[a] = sampleAxis(knots[a], dims[a]);
+    axes_->fitters[a] = std::make_unique<AxisFitter>(axes_->sampling[a], smoothing);
+  }
+}
+
+GridSmoother::~GridSmoother() = default;
+
+void GridSmoother::apply(std::vector<double>& values) const {
+  if (static_cast<std::int64_t>(values.size()) != dims_[0] * dims_[1] * dims_[2])
+    throw Error("GridSmoother: the values do not fill the grid");
+  Index3 dims = dims_;
+  std::vector<double> tmp;
+  for (int a = 0; a < 3; ++a) {
+    const AxisSampling& s = axes_->sampling[a];
+    const AxisFitter& fit = *axes_->fitters[a];
+    const AxisEvaluator evaluate(s);
+    passAlongFastest(values, dims, s.samples, tmp,
+                     [&](const Eigen::Map<const Eigen::MatrixXd>& lines, Eigen::MatrixXd& out) {
+                       Eigen::MatrixXd coeffs(s.controlCount, lines.cols());
+                       fit(lines, coeffs);
+                       evaluate(Eigen::Map<const Eigen::MatrixXd>(coeffs.data(), coeffs.rows(),
+                                                                  coeffs.cols()),
+                                out);
+                     });
+    values.swap(tmp);
+    dims = rotate(dims, s.samples);
+  }
+}
 
 Model fitStructured(const StructuredGrid& grid, const StructuredFitOptions& options,
                     FitReport* report) {

@@ -11,6 +11,7 @@
 // still one banded factorization per axis: the tensor product of 1-D smoothers.
 #include <array>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -89,6 +90,25 @@ std::int64_t structuredFitPeakBytes(const Index3& dims, const Index3& counts);
 
 // Resolves 0 entries of options.controlCounts and validates everything against the grid.
 Index3 resolveControlCounts(const StructuredGrid& grid, const StructuredFitOptions& options);
+// The knot vectors of a fit with options.degree and options.controlCounts (uniform, clamped).
+std::array<KnotVector, 3> knotsOfFit(const StructuredGrid& layout,
+                                     const StructuredFitOptions& options);
+
+// The separable smoother in value space, for iterative fits on one grid (encode --dequantize):
+// apply() replaces the values of a `dims` grid (x fastest) by those of its fit with `knots` and
+// smoothing weight lambda (the fit of fitStructuredWithKnots, in double, not rounded to float),
+// evaluated back at the samples. Each axis's factorization is made once, at construction.
+class GridSmoother {
+ public:
+  GridSmoother(const std::array<KnotVector, 3>& knots, const Index3& dims, double smoothing);
+  ~GridSmoother();
+  void apply(std::vector<double>& values) const;
+
+ private:
+  struct Axes;
+  Index3 dims_;
+  std::unique_ptr<Axes> axes_;
+};
 
 // The effective number of parameters of the fit with these knots and smoothing weight: the
 // trace of its hat matrix (the product over the axes of the 1-D traces; the control count when
