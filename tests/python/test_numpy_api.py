@@ -71,6 +71,11 @@ def test_decode_round_trips_in_the_input_type():
     assert floats.dtype == np.float32
     assert np.abs(floats - sphere()).max() < 1e-4
     assert m.decode(shape=(3, 4, 5), dtype="float64").shape == (3, 4, 5)
+    # --dequantize: the smoothest model that still rounds back (a flag, or the step).
+    smooth = mfadvr.encode(volume, dequantize=True)
+    assert smooth.report["dequantize"]["rounds_back"]
+    assert np.array_equal(smooth.decode(), volume)
+    assert mfadvr.encode(volume / np.float32(4), dequantize=0.25).report["dequantize"]["step"] == 0.25
 
 
 def test_fortran_ordered_arrays_are_read_by_index():
