@@ -25,6 +25,7 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <sstream>
 
 #include "app/Commands.h"
@@ -157,6 +158,7 @@ vtkSmartPointer<vtkDataArray> vtkArrayOf(const SampleType& t, const std::string&
 Command addDecodeCommand(CLI::App& app) {
   struct Options {
     std::string model, output, samples, type;
+    std::optional<double> time;
     bool quiet = false;
   };
   auto o = std::make_shared<Options>();
@@ -174,6 +176,9 @@ Command addDecodeCommand(CLI::App& app) {
                   "Sample type: float32, float64, uint8, int8, uint16, int16, uint32, int32 "
                   "(default: the input's type when the model records one of these, else "
                   "float32); integers are rounded and clamped to the type");
+  sub->add_option("--time", o->time,
+                  "Time-varying models: the instant T to decode (any time in the model's range; "
+                  "default: the first step)");
   sub->add_flag("-q,--quiet", o->quiet, "No progress on stderr");
 
   auto run = [o]() -> int {
@@ -186,7 +191,18 @@ Command addDecodeCommand(CLI::App& app) {
     requireMemory(loadedModelBytes(summary) + static_cast<std::int64_t>(summary.fileBytes) +
                       (std::int64_t(8) << 24),
                   "decoding " + o->model);
-    const Model model = loadModel(o->model);
+    const TimeVaryingModel series = loadTimeVaryingModel(o->model);
+    if (o->time && !series.hasTime())
+      throw CLI::ValidationError(
+          "--time", "applies to time-varying models; " + o->model + " has no time axis");
+    if (o->time && !series.timeAxis().contains(*o->time)) {
+      std::ostringstream m;
+      m << "--time " << *o->time << " lies outside the time range of " << o->model << " ("
+        << series.timeAxis().begin << " .. " << series.timeAxis().end << ")";
+      throw Error(m.str());
+    }
+    const Model model =
+        series.hasTime() ? series.at(o->time.value_or(series.defaultTime())) : series.first();
     const std::string ext = lower(std::filesystem::path(o->output).extension().string());
     if (ext != ".nrrd" && ext != ".nhdr" && ext != ".raw" && ext != ".vti")
       throw CLI::ValidationError("--output",

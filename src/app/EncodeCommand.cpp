@@ -17,8 +17,10 @@
 #include "app/OptionParsing.h"
 #include "app/SceneLoader.h"
 #include "core/analytic/BuiltinGridSource.h"
+#include "core/analytic/BuiltinSeries.h"
 #include "core/encode/Encoder.h"
 #include "core/encode/PieceEncoder.h"
+#include "core/encode/TimeSeriesEncoder.h"
 #include "core/model/BlockModelFile.h"
 #include "core/model/ModelFile.h"
 #include "core/util/Error.h"
@@ -27,6 +29,7 @@
 #include "io/ScatteredLoader.h"
 #include "io/StreamedVolumeReader.h"
 #include "io/VolumeLoader.h"
+#include "io/VolumeSeriesReader.h"
 
 namespace mfadvr::app {
 
@@ -102,6 +105,59 @@ int encodeBlocks(GridSampleSource& source, const Index3& blocks, int ghost, Enco
   return 0;
 }
 
+// The options of a time series (docs/time-varying.md).
+struct SeriesCliOptions {
+  int degree = kDefaultTimeDegree;
+  int controlCount = 0;
+  std::string times;
+  CLI::Option* degreeOption = nullptr;
+  CLI::Option* controlOption = nullptr;
+  bool given() const {
+    return degreeOption->count() > 0 || controlOption->count() > 0 || !times.empty();
+  }
+};
+
+// `encode SERIES`: one 4-D model of every step.
+int encodeSeries(const std::string& input, const VolumeLoadOptions& load,
+                 const SeriesCliOptions& cli, EncodeOptions options, const std::string& output,
+                 bool json, bool progress) {
+  std::optional<std::vector<double>> times;
+  if (!cli.times.empty()) times = parseNumberList("--times", cli.times, 2, 1 << 20);
+  std::unique_ptr<VolumeSeries> series;
+  if (isBuiltinSeriesSpec(input)) {
+    if (load.spacing || load.origin || load.field.chosen())
+      throw CLI::ValidationError("--spacing/--origin/--field",
+                                 "apply to files, not to built-in functions");
+    auto builtin = std::make_unique<BuiltinVolumeSeries>(input);
+    if (times)
+      builtin =
+          std::make_unique<BuiltinVolumeSeries>(std::shared_ptr<const BuiltinSeriesFunction>(
+                                                    makeBuiltinSeries(builtin->function().name())),
+                                                builtin->dims(), *times);
+    series = std::move(builtin);
+  } else {
+    series = openVolumeSeries(input, load, times);
+  }
+  if (progress)
+    std::cerr << "  " << series->size() << " steps, t = " << series->time(0) << " .. "
+              << series->time(series->size() - 1) << "\n";
+  TimeSeriesOptions time;
+  time.degree = cli.degree;
+  time.controlCount = cli.controlCount;
+  time.zfpForIntegerSamples = true;
+  FitReport report;
+  std::vector<std::string> notes;
+  const TimeVaryingModel model = encodeTimeSeries(*series, options, time, &report, &notes);
+  for (const std::string& note : notes) std::cerr << "mfadvr: note: " << note << "\n";
+  if (!output.empty()) saveModel(model, output);
+  report.peakMemoryBytes = peakResidentBytes();
+  if (json)
+    std::cout << fitReportJson(report, output).dump(2) << "\n";
+  else
+    std::cout << formatFitReport(report, output);
+  return 0;
+}
+
 }  // namespace
 
 Command addEncodeCommand(CLI::App& app) {
@@ -112,13 +168,16 @@ Command addEncodeCommand(CLI::App& app) {
     bool json = false, quiet = false, strict = false;
     EncodeCliOptions encode;
     CodingCliOptions coding;
+    SeriesCliOptions series;
   };
   auto o = std::make_shared<Options>();
   CLI::App* sub = app.add_subcommand(
       "encode", "Fit an MFA model (tensor-product B-spline) to a volume, mesh or point cloud");
   sub->add_option(
          "input", o->input,
-         "Volume, mesh or point file, or a built-in function builtin:NAME[:N|:NXxNYxNZ]\n" +
+         "Volume, mesh or point file, a built-in function builtin:NAME[:N|:NXxNYxNZ], or a time "
+         "series (a .pvd or .series collection, a pattern name_%03d.nrrd, a folder of numbered "
+         "volumes, builtin:orbiting-blobs[:NXxNYxNZxNT])\n" +
              supportedVolumeFormats() + "\n" + supportedScatteredFormats())
       ->required();
   sub->add_option("-o,--output", o->output,
@@ -152,12 +211,51 @@ Command addEncodeCommand(CLI::App& app) {
                   "with (default 2 x (degree + 1))")
       ->check(CLI::Range(0, 1024))
       ->group("Blocks");
+  o->series.degreeOption =
+      sub->add_option("--time-degree", o->series.degree,
+                      "Time series: degree of the model in time (1..7; lowered to steps - 1 for "
+                      "fewer steps)")
+          ->capture_default_str()
+          ->check(CLI::Range(1, 7))
+          ->group("Time series (docs/time-varying.md)");
+  o->series.controlOption =
+      sub->add_option("--time-ctrl", o->series.controlCount,
+                      "Time series: control points in time (default: as many as steps, "
+                      "interpolating every step; fewer: a least-squares fit in time)")
+          ->check(CLI::PositiveNumber)
+          ->group("Time series (docs/time-varying.md)");
+  sub->add_option("--times", o->series.times,
+                  "Time series: the time of each step T0,T1,... (increasing; default: the "
+                  "collection's times, else the file numbers)")
+      ->group("Time series (docs/time-varying.md)");
   sub->add_flag("--json", o->json, "Print the report as JSON");
   sub->add_flag("-q,--quiet", o->quiet, "No progress on stderr");
 
   auto run = [o]() -> int {
     EncodeOptions options = o->encode.parse();
     options.coding = o->coding.parse();
+    const bool series = isBuiltinSeriesSpec(o->input) || isVolumeSeriesInput(o->input);
+    if (series) {
+      if (!o->blocks.empty() || !o->memoryLimit.empty() || o->ghost >= 0)
+        throw CLI::ValidationError("--blocks", "does not apply to time series yet");
+      if (o->strict) throw CLI::ValidationError("--strict", "applies to adaptive encoding");
+      if (!o->encode.maskRes.empty() || o->encode.noMask)
+        throw CLI::ValidationError("--mask-res/--no-mask", "apply to meshes and point clouds");
+      const bool progress = wantProgress(o->quiet || o->json);
+      if (progress) {
+        std::cerr << "reading the series " << o->input << "\n";
+        options.progress = [](double f, const std::string& stage) {
+          printProgress("encoding", f, stage);
+        };
+      }
+      return encodeSeries(o->input, parseVolumeLoadOptions(o->spacing, o->origin, o->field),
+                          o->series, options, o->output, o->json, progress);
+    }
+    if (o->series.given())
+      throw CLI::ValidationError("--time-degree/--time-ctrl/--times",
+                                 "apply to time series; " + o->input +
+                                     " is one volume (docs/time-varying.md lists the series "
+                                     "inputs)");
     const bool scattered = isScatteredInput(o->input);
     if (o->strict && !options.adaptive)
       throw CLI::ValidationError("--strict", "applies to adaptive encoding; give --max-error too");

@@ -37,6 +37,9 @@ std::string formatFitReport(const FitReport& r, const std::string& modelPath) {
     o << "samples         " << r.samples[0] << " x " << r.samples[1] << " x " << r.samples[2]
       << "  (" << groupDigits(r.inputBytes) << " bytes)\n";
   o << "value range     " << fmt("%.6g", r.valueMin) << " .. " << fmt("%.6g", r.valueMax) << "\n";
+  if (r.timeSteps > 0)
+    o << "time steps      " << r.timeSteps << "  (one 4-D model: degree " << r.timeDegree << " and "
+      << r.timeControlCount << " control points in time)\n";
   o << "degree          " << r.degree[0] << " " << r.degree[1] << " " << r.degree[2] << "\n";
   o << "control points  " << r.controlCounts[0] << " x " << r.controlCounts[1] << " x "
     << r.controlCounts[2] << "\n";
@@ -48,9 +51,9 @@ std::string formatFitReport(const FitReport& r, const std::string& modelPath) {
       << (r.smoothingNote.empty() ? "lambda " + fmt("%g", r.smoothing) : r.smoothingNote) << "\n";
   if (r.dequantizeStep > 0.0)
     o << "dequantize      step " << fmt("%g", r.dequantizeStep) << ", roughness of lambda "
-      << fmt("%g", r.dequantizeLambda) << ": "
-      << r.dequantizeIterations << " iterations" << (r.dequantizeConverged ? "" : " (NOT converged)")
-      << ", " << fmt("%.1f", 100.0 * r.dequantizeEdgeShare) << " % of the samples on an "
+      << fmt("%g", r.dequantizeLambda) << ": " << r.dequantizeIterations << " iterations"
+      << (r.dequantizeConverged ? "" : " (NOT converged)") << ", "
+      << fmt("%.1f", 100.0 * r.dequantizeEdgeShare) << " % of the samples on an "
       << "interval's edge, " << fmt("%.2f", r.dequantizeSeconds) << " s; max |model - sample| "
       << fmt("%.3g", r.maxError) << (r.maxError <= 0.5 * r.dequantizeStep ? " <= " : " > ")
       << "step/2\n";
@@ -93,7 +96,8 @@ std::string formatFitReport(const FitReport& r, const std::string& modelPath) {
                        "not counted)\n"
                      : " : 1  (input bytes / model bytes)\n");
   if (r.peakMemoryBytes > 0) {
-    const std::int64_t samples = r.samples[0] * r.samples[1] * r.samples[2];
+    const std::int64_t samples =
+        r.samples[0] * r.samples[1] * r.samples[2] * std::max<std::int64_t>(r.timeSteps, 1);
     const double perSample = static_cast<double>(r.peakMemoryBytes) /
                              static_cast<double>(std::max<std::int64_t>(samples, 1));
     o << "peak memory     " << groupDigits(r.peakMemoryBytes) << " bytes"
@@ -145,14 +149,14 @@ nlohmann::json fitReportJson(const FitReport& r, const std::string& modelPath) {
                                                                : nlohmann::json(r.noiseEstimate)},
                     {"note", r.smoothingNote}};
   j["dequantize"] = r.dequantizeStep > 0.0
-                       ? nlohmann::json{{"step", r.dequantizeStep},
-                                        {"lambda", r.dequantizeLambda},
-                                        {"iterations", r.dequantizeIterations},
-                                        {"converged", r.dequantizeConverged},
-                                        {"edge_share", r.dequantizeEdgeShare},
-                                        {"seconds", r.dequantizeSeconds},
-                                        {"rounds_back", r.maxError <= 0.5 * r.dequantizeStep}}
-                       : nlohmann::json(nullptr);
+                        ? nlohmann::json{{"step", r.dequantizeStep},
+                                         {"lambda", r.dequantizeLambda},
+                                         {"iterations", r.dequantizeIterations},
+                                         {"converged", r.dequantizeConverged},
+                                         {"edge_share", r.dequantizeEdgeShare},
+                                         {"seconds", r.dequantizeSeconds},
+                                         {"rounds_back", r.maxError <= 0.5 * r.dequantizeStep}}
+                        : nlohmann::json(nullptr);
   j["adaptive"] = r.rounds > 0 ? nlohmann::json{{"max_relative_error_bound", r.targetRelativeError},
                                                 {"rounds", r.rounds},
                                                 {"reached", r.reachedTarget},
@@ -162,6 +166,10 @@ nlohmann::json fitReportJson(const FitReport& r, const std::string& modelPath) {
                                  : nlohmann::json{{"kind", r.maskKind},
                                                   {"dims", r.maskDims},
                                                   {"inside_fraction", r.maskInsideFraction}};
+  j["time"] = r.timeSteps > 0 ? nlohmann::json{{"steps", r.timeSteps},
+                                               {"degree", r.timeDegree},
+                                               {"control_count", r.timeControlCount}}
+                              : nlohmann::json(nullptr);
   return j;
 }
 

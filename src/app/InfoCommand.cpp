@@ -1,4 +1,5 @@
 // mfadvr info MODEL [--json]
+#include <cmath>
 #include <filesystem>
 #include <iostream>
 #include <sstream>
@@ -48,6 +49,21 @@ nlohmann::json modelInfoJson(const Model& m, const std::string& path, std::uint3
     j["format_version"] = version;
   }
   return j;
+}
+
+nlohmann::json timeAxisJson(const TimeVaryingModel& m) {
+  if (!m.hasTime()) return nullptr;
+  const TimeAxis& t = m.timeAxis();
+  bool uniform = true;
+  const double step = (t.end - t.begin) / static_cast<double>(t.steps.size() - 1);
+  for (size_t i = 0; i < t.steps.size(); ++i)
+    uniform = uniform && std::abs(t.steps[i] - (t.begin + step * static_cast<double>(i))) <=
+                             1e-9 * std::abs(step) * t.steps.size();
+  return {{"degree", t.degree()},
+          {"control_count", t.controlCount()},
+          {"range", {t.begin, t.end}},
+          {"steps", t.steps},
+          {"uniform_steps", uniform}};
 }
 
 nlohmann::json blockEntryJson(const Model& m, const DomainBox& region) {
@@ -128,8 +144,18 @@ Command addInfoCommand(CLI::App& app) {
   return {sub, [o]() {
             if (isBlockModelFile(o->model)) return describeBlocks(o->model, o->json);
             std::uint32_t version = 0;
-            const Model m = loadModel(o->model, &version);
-            const nlohmann::json j = modelInfoJson(m, o->model, version);
+            const TimeVaryingModel series = loadTimeVaryingModel(o->model, &version);
+            const Model& m = series.first();
+            nlohmann::json j = modelInfoJson(m, o->model, version);
+            if (series.hasTime()) {
+              // The coding of every slab, as the file stores it.
+              const ControlCoding& c = series.controlCoding();
+              j["control_coding"] = {
+                  {"method", controlCoderName(c.coder)},
+                  {"tolerance", c.coder == ControlCoder::kZfp ? nlohmann::json(c.tolerance)
+                                                              : nlohmann::json(nullptr)}};
+            }
+            j["time"] = timeAxisJson(series);
             if (o->json) {
               std::cout << j.dump(2) << "\n";
               return 0;
@@ -148,6 +174,13 @@ Command addInfoCommand(CLI::App& app) {
                 << j["degree"][2] << "\n";
             out << "control points  " << j["control_counts"][0] << " x " << j["control_counts"][1]
                 << " x " << j["control_counts"][2] << "\n";
+            if (series.hasTime()) {
+              const TimeAxis& t = series.timeAxis();
+              out << "time            " << t.steps.size() << " steps, t = " << t.begin << " .. "
+                  << t.end << "; degree " << t.degree() << ", " << t.controlCount()
+                  << " control points in time"
+                  << (j["time"]["uniform_steps"].get<bool>() ? "" : " (uneven steps)") << "\n";
+            }
             out << "knots           " << j["knots"][0].get<std::string>() << ", "
                 << j["knots"][1].get<std::string>() << ", " << j["knots"][2].get<std::string>()
                 << "\n";
@@ -172,7 +205,11 @@ Command addInfoCommand(CLI::App& app) {
                   << (p.fieldAssociation.empty() ? "" : "  (" + p.fieldAssociation + ")") << "\n";
             else
               out << "samples         " << p.sampleDims[0] << " x " << p.sampleDims[1] << " x "
-                  << p.sampleDims[2] << "  " << p.sampleType << "\n";
+                  << p.sampleDims[2] << "  " << p.sampleType
+                  << (series.hasTime()
+                          ? ", " + std::to_string(series.timeAxis().steps.size()) + " steps"
+                          : std::string())
+                  << "\n";
             out << "encoder         " << p.encoder << ", " << p.fitSeconds << " s, " << p.created
                 << ", mfadvr " << p.toolVersion << "\n";
             if (p.smoothing > 0.0) out << "smoothing       lambda " << p.smoothing << "\n";

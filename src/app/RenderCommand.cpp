@@ -1,8 +1,12 @@
 // mfadvr render INPUT -o OUT.png [--method M] [--gradient-from M] [scene options] [--json]
 #include <nlohmann/json.hpp>
 
+#include <cctype>
 #include <chrono>
+#include <cmath>
+#include <cstdio>
 #include <iostream>
+#include <sstream>
 
 #include "app/Commands.h"
 #include "app/EncodeCliOptions.h"
@@ -48,7 +52,7 @@ std::string methodList(const std::vector<std::string>& names) {
 struct Options {
   std::string input, output, floatOutput, depthOutput, method, gradientFrom, gradient = "analytic";
   std::string device = "auto";
-  std::string spacing, origin;
+  std::string spacing, origin, time, times;
   FieldOptionTexts field;
   EncodeCliOptions encode;
   bool json = false, quiet = false, alpha = false;
@@ -64,7 +68,51 @@ SceneLoadOptions loadOptions(const Options& o, bool progress) {
   load.progress = progress;
   const auto blend = parseBlendMode(o.render.blend);
   load.extremeBounds = blend == BlendMode::Maximum || blend == BlendMode::Minimum;
+  if (!o.time.empty()) load.time = parseNumberList("--time", o.time, 1, 1)[0];
   return load;
+}
+
+// --times T0:T1:N: N instants from T0 to T1.
+std::vector<double> parseTimes(const std::string& text) {
+  const auto colon1 = text.find(':'), colon2 = text.rfind(':');
+  if (colon1 == std::string::npos || colon1 == colon2)
+    throw CLI::ValidationError("--times", "expected T0:T1:N, got '" + text + "'");
+  const double t0 = parseNumberList("--times", text.substr(0, colon1), 1, 1)[0];
+  const double t1 =
+      parseNumberList("--times", text.substr(colon1 + 1, colon2 - colon1 - 1), 1, 1)[0];
+  const double n = parseNumberList("--times", text.substr(colon2 + 1), 1, 1)[0];
+  if (!(n >= 1 && n <= 100000 && n == std::floor(n)))
+    throw CLI::ValidationError("--times", "N must be a whole number of frames in 1..100000");
+  std::vector<double> out;
+  for (int i = 0; i < static_cast<int>(n); ++i)
+    out.push_back(n == 1 ? t0 : t0 + (t1 - t0) * i / (n - 1));
+  return out;
+}
+
+// The file of frame i of an animation: the output's printf pattern (%d, %03d, ...) applied.
+std::string frameFileName(const std::string& pattern, int i) {
+  const int size = std::snprintf(nullptr, 0, pattern.c_str(), i);
+  std::string out(static_cast<size_t>(std::max(size, 0)), '\0');
+  std::snprintf(out.data(), out.size() + 1, pattern.c_str(), i);
+  return out;
+}
+
+// Whether `pattern` holds exactly one integer conversion (%d, %Nd, %0Nd) and no other %.
+bool isFramePattern(const std::string& pattern) {
+  int conversions = 0;
+  for (size_t i = 0; i < pattern.size(); ++i) {
+    if (pattern[i] != '%') continue;
+    size_t j = i + 1;
+    if (j < pattern.size() && pattern[j] == '%') {
+      i = j;
+      continue;
+    }
+    while (j < pattern.size() && std::isdigit(static_cast<unsigned char>(pattern[j]))) ++j;
+    if (j >= pattern.size() || pattern[j] != 'd' || j - i > 4) return false;
+    ++conversions;
+    i = j;
+  }
+  return conversions == 1;
 }
 
 // --method vtk-*: VTK's own renderer on the input's grid or mesh.
@@ -210,11 +258,21 @@ Command addRenderCommand(CLI::App& app) {
       ->group(in);
   sub->add_option("--origin", o->origin, "Position of the first sample X,Y,Z")->group(in);
   o->field.addTo(sub, in);
+  sub->add_option("--time", o->time,
+                  "Time-varying models: the instant T to render (any time in the model's range, "
+                  "not only its steps; default: the first step)")
+      ->group("Time (docs/time-varying.md)");
+  sub->add_option("--times", o->times,
+                  "Time-varying models: an animation of N frames from T0 to T1 (T0:T1:N), "
+                  "written to the output pattern (e.g. -o frame_%03d.png)")
+      ->group("Time (docs/time-varying.md)");
   sub->add_flag("--json", o->json, "Print timings and counts as JSON");
   sub->add_flag("-q,--quiet", o->quiet, "No progress on stderr");
 
   auto run = [o]() -> int {
     const auto start = Clock::now();
+    if ((!o->time.empty() || !o->times.empty()) && findVtkMethod(o->method))
+      throw CLI::ValidationError("--time", "applies to models rendered with our ray caster");
     if (const auto vtk = findVtkMethod(o->method)) {
       if (o->device == "cuda")
         throw Error("device 'cuda': " + o->method +
@@ -248,10 +306,82 @@ Command addRenderCommand(CLI::App& app) {
     SceneLoadOptions load = loadOptions(*o, progress);
     // One frame reads every block once either way; one at a time, it holds one.
     load.streamBlocks = frames == 1;
-    const LoadedScene scene = loadScene(o->input, needs, load);
+    std::vector<double> animation;
+    if (!o->times.empty()) {
+      if (!o->time.empty())
+        throw CLI::ValidationError("--times", "renders several instants; --time renders one");
+      if (!isFramePattern(o->output))
+        throw CLI::ValidationError("--times",
+                                   "needs an output pattern with one %d (e.g. frame_%03d.png), "
+                                   "got '" +
+                                       o->output + "'");
+      if (!o->floatOutput.empty() || !o->depthOutput.empty())
+        throw CLI::ValidationError("--times", "writes PNG frames only (no --float or --depth)");
+      animation = parseTimes(o->times);
+      load.time = animation.front();
+    }
+    LoadedScene scene = loadScene(o->input, needs, load);
     std::string tfWarning;
     RenderSettings settings = o->render.settingsFor(scene, &tfWarning);
     settings.depth = !o->depthOutput.empty();
+    if (!animation.empty()) {
+      if (!scene.timeVarying)
+        throw Error("--times animates a time-varying model; " + o->input + " has no time axis");
+      const TimeAxis& axis = scene.timeVarying->timeAxis();
+      for (double t : animation)
+        if (!axis.contains(t)) {
+          std::ostringstream m;
+          m << "--times: t = " << t << " lies outside the model's time range (" << axis.begin
+            << " .. " << axis.end << ")";
+          throw Error(m.str());
+        }
+      if (!o->quiet && !o->json && !tfWarning.empty())
+        std::cerr << "mfadvr render: warning: " << tfWarning << "\n";
+      nlohmann::json list = nlohmann::json::array();
+      double renderSum = 0.0, contractSum = 0.0;
+      for (size_t i = 0; i < animation.size(); ++i) {
+        const auto contractStart = Clock::now();
+        if (i > 0) scene.setTime(animation[i]);
+        const double contract = i > 0 ? secondsSince(contractStart) : 0.0;
+        MethodRenderStats stats;
+        const Image image = renderMethod(scene.view(), spec, settings, &stats);
+        const std::string file = frameFileName(o->output, static_cast<int>(i));
+        writePng(file, toImage8(image, o->alpha));
+        renderSum += stats.seconds;
+        contractSum += contract;
+        list.push_back({{"file", file},
+                        {"time", animation[i]},
+                        {"render", stats.seconds},
+                        {"contract", contract}});
+        if (progress) printProgress("frames", double(i + 1) / double(animation.size()));
+      }
+      const double n = static_cast<double>(animation.size());
+      if (o->json) {
+        nlohmann::json j;
+        j["input"] = o->input;
+        j["output"] = o->output;
+        j["method"] = methodName(spec.method);
+        j["device"] = device.name;
+        j["width"] = settings.width;
+        j["height"] = settings.height;
+        j["frames"] = list;
+        j["seconds"] = {{"load", scene.loadSeconds},
+                        {"mean_render", renderSum / n},
+                        {"mean_contract", animation.size() > 1 ? contractSum / (n - 1) : 0.0},
+                        {"total", secondsSince(start)}};
+        std::cout << j.dump(2) << "\n";
+      } else {
+        std::printf(
+            "%s .. %s: %zu frames, t = %g .. %g, %dx%d, mean render %.3f s, mean time "
+            "contraction %.4f s, total %.3f s\n  on the %s\n",
+            list.front()["file"].get<std::string>().c_str(),
+            list.back()["file"].get<std::string>().c_str(), animation.size(), animation.front(),
+            animation.back(), settings.width, settings.height, renderSum / n,
+            animation.size() > 1 ? contractSum / (n - 1) : 0.0, secondsSince(start),
+            device.description.c_str());
+      }
+      return 0;
+    }
     if (!o->quiet && !o->json && !tfWarning.empty())
       std::cerr << "mfadvr render: warning: " << tfWarning << "\n";
     if (progress) settings.progress = [](double f) { printProgress("rendering", f); };
@@ -307,6 +437,7 @@ Command addRenderCommand(CLI::App& app) {
       j["device"] = device.name;
       j["device_description"] = device.description;
       j["value_range"] = {scene.valueMin, scene.valueMax};
+      j["time"] = scene.timeVarying ? nlohmann::json(scene.time) : nlohmann::json(nullptr);
       j["frames"] = frames;
       j["frame_seconds"] = frameSeconds;
       j["seconds"] = {{"load", scene.loadSeconds},   {"encode", scene.encodeSeconds},
@@ -329,9 +460,10 @@ Command addRenderCommand(CLI::App& app) {
 #endif
       std::cout << j.dump(2) << "\n";
     } else {
-      std::printf("%s: %s, %dx%d, step %.4g, %s\n", o->output.c_str(), label.c_str(),
-                  settings.width, settings.height, settings.sampleDistance,
-                  settings.shade ? "shaded" : "unshaded");
+      std::printf("%s: %s, %dx%d, step %.4g, %s", o->output.c_str(), label.c_str(), settings.width,
+                  settings.height, settings.sampleDistance, settings.shade ? "shaded" : "unshaded");
+      if (scene.timeVarying) std::printf(", t = %g", scene.time);
+      std::printf("\n");
       std::printf("  render %.3f s (%.1f M samples, %.1f M samples/s)", frameTime,
                   stats.samples / 1e6, frameTime > 0 ? stats.samples / frameTime / 1e6 : 0.0);
       if (stats.skipped > 0) std::printf(", %.1f M empty samples skipped", stats.skipped / 1e6);

@@ -4,8 +4,10 @@
 #include <chrono>
 #include <cstdio>
 #include <iostream>
+#include <sstream>
 
 #include "app/OptionParsing.h"
+#include "core/analytic/BuiltinSeries.h"
 #include "core/model/BlockLocator.h"
 #include "core/model/BlockModelFile.h"
 #include "core/model/ModelFile.h"
@@ -121,9 +123,8 @@ LoadedScene loadSceneData(const std::string& input, const SceneNeeds& needs,
     // when asked to, or when they do not fit in memory together; either way only if one at a
     // time fits (the largest, and the first, kept for the scene's facts). Otherwise all are
     // loaded, or refused with the figures for both.
-    const auto largest = std::max_element(
-        summaries.begin(), summaries.end(),
-        [&](const auto& a, const auto& b) {
+    const auto largest =
+        std::max_element(summaries.begin(), summaries.end(), [&](const auto& a, const auto& b) {
           return modelRenderBytes(a, bounds) < modelRenderBytes(b, bounds);
         });
     const std::vector<ModelFileSummary> held{summaries.front(), *largest};
@@ -156,7 +157,33 @@ LoadedScene loadSceneData(const std::string& input, const SceneNeeds& needs,
   }
   if (isModelFile(input)) {
     requireRenderMemory(input, {summarizeModelFile(input)}, options.extremeBounds);
-    s.model = loadModel(input);
+    auto model = std::make_shared<TimeVaryingModel>(loadTimeVaryingModel(input));
+    if (model->hasTime()) {
+      const TimeAxis& axis = model->timeAxis();
+      if (options.time && !axis.contains(*options.time)) {
+        std::ostringstream m;
+        m << "--time " << *options.time << " lies outside the time range of " << input << " ("
+          << axis.begin << " .. " << axis.end << ")";
+        throw Error(m.str());
+      }
+      s.timeVarying = model;
+      const std::string& source = model->provenance().source;
+      if (needs.grid || needs.cells) {
+        if (!isBuiltinSeriesSpec(source))
+          throw Error(
+              "grid methods and VTK's renderers need the samples, which a model file "
+              "does not hold; render one step of the series it was encoded from (" +
+              source + ") instead");
+        s.grid.emplace();  // filled by setTime
+      }
+      s.setTime(options.time.value_or(model->defaultTime()));
+      s.loadSeconds = since(start);
+      return s;
+    }
+    if (options.time)
+      throw Error("--time applies to time-varying models; " + input + " has no time axis");
+    s.model = model->first();
+    model.reset();
     takeModelFacts(s);
     const Provenance& p = s.model->provenance();
     if (isBuiltinSpec(p.source)) {
@@ -254,8 +281,26 @@ LoadedScene sceneOfBlocks(std::vector<ModelBlock> blocks, const std::string& nam
   return s;
 }
 
+void LoadedScene::setTime(double t) {
+  if (!timeVarying) throw Error(input + " has no time axis");
+  const TimeAxis& axis = timeVarying->timeAxis();
+  time = std::clamp(t, axis.begin, axis.end);
+  model = timeVarying->at(time);
+  takeModelFacts(*this);
+  const Provenance& p = model->provenance();
+  if (isBuiltinSeriesSpec(p.source)) {
+    const BuiltinVolumeSeries series(p.source);
+    truth = builtinAtTime(series.sharedFunction(), time, p.sampleDims);
+    if (grid) grid = series.sampleAt(time);
+  }
+}
+
 LoadedScene loadScene(const std::string& input, const SceneNeeds& needs,
                       const SceneLoadOptions& options) {
+  if (options.time && !isModelFile(input))
+    throw Error(
+        "--time applies to time-varying model files; encode the series first (mfadvr "
+        "encode SERIES -o MODEL.mfa)");
   LoadedScene s = loadSceneData(input, needs, options);
   s.emptySpace = std::make_unique<EmptySpaceCache[]>(std::max<size_t>(s.blocks.size(), 1));
   return s;

@@ -12,6 +12,7 @@
 #include "core/mesh/ScatteredData.h"
 #include "core/model/BlockModelFile.h"
 #include "core/model/Model.h"
+#include "core/model/TimeVaryingModel.h"
 #include "core/render/EmptySpaceGrid.h"
 #include "core/render/ReconstructionMethod.h"
 #include "io/VolumeLoader.h"
@@ -41,8 +42,14 @@ struct LoadedScene {
   double loadSeconds = 0.0, encodeSeconds = 0.0;
   // The model's (or each block's) empty-space flags, kept from one frame to the next.
   std::unique_ptr<EmptySpaceCache[]> emptySpace;
+  // A time-varying model file: every instant; `model` is the one at `time`.
+  std::shared_ptr<const TimeVaryingModel> timeVarying;
+  double time = 0.0;
 
   SceneData view() const;
+  // A time-varying scene at time t (clamped onto the model's range): the model, and the truth and
+  // samples of a model of a time-varying built-in. Throws mfadvr::Error without a time axis.
+  void setTime(double t);
 };
 
 struct SceneLoadOptions {
@@ -52,6 +59,9 @@ struct SceneLoadOptions {
   // A maximum or minimum intensity render: the memory check counts the cells' bounds it builds
   // (core/render/RenderMemory.h).
   bool extremeBounds = false;
+  // The instant of a time-varying model file (default: its first step); an error for other
+  // inputs.
+  std::optional<double> time;
   // Read a multi-block file's blocks one at a time as they are rendered even when they would
   // fit in memory together (a single frame: each block is read once either way). Without it,
   // only blocks that do not fit together are.

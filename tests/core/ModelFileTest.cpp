@@ -421,8 +421,8 @@ TEST(ModelFile, ClearMessages) {
             std::string::npos);
   EXPECT_NE(errorOf({}).find("not an .mfa model"), std::string::npos);
   auto v2 = full;
-  v2[10] = 4;
-  EXPECT_NE(errorOf(v2).find("version 4 is not supported"), std::string::npos);
+  v2[10] = 5;
+  EXPECT_NE(errorOf(v2).find("version 5 is not supported"), std::string::npos);
   v2[10] = 0;
   EXPECT_NE(errorOf(v2).find("version 0 is not supported"), std::string::npos);
   auto crc = full;

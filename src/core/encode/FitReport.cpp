@@ -1,5 +1,6 @@
 #include "core/encode/FitReport.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -41,7 +42,8 @@ double FitReport::psnr() const {
 }
 
 double FitReport::bitsPerSample() const {
-  const std::int64_t n = points > 0 ? points : samples[0] * samples[1] * samples[2];
+  const std::int64_t n = (points > 0 ? points : samples[0] * samples[1] * samples[2]) *
+                         std::max<std::int64_t>(timeSteps, 1);
   return n > 0 ? 8.0 * static_cast<double>(modelBytes) / static_cast<double>(n) : 0.0;
 }
 

@@ -48,6 +48,11 @@ struct FitReport {
   double dequantizeEdgeShare = 0.0;
   double dequantizeSeconds = 0.0;
 
+  // Time series (timeSteps == 0 for one volume): steps, the time axis's degree and control
+  // count; the errors above are over every sample of every step.
+  std::int64_t timeSteps = 0;
+  int timeDegree = 0;
+  int timeControlCount = 0;
   // Adaptive encoding (rounds == 0 when the control counts were fixed).
   int rounds = 0;
   double targetRelativeError = 0.0;

@@ -1,7 +1,11 @@
 #include "core/encode/KnotPlacement.h"
 
+#include <algorithm>
 #include <cmath>
+#include <string>
 #include <vector>
+
+#include "core/util/Error.h"
 
 namespace mfadvr {
 
@@ -16,6 +20,33 @@ KnotVector knotsForSamples(int degree, int controlCount, std::int64_t sampleCoun
   } else {
     const double d = static_cast<double>(sampleCount) / (n - p);
     for (int j = 1; j < n - p; ++j) knots[p + j] = (j * d - 1.0) / last;
+  }
+  return KnotVector::fromKnots(p, std::move(knots));
+}
+
+KnotVector knotsForParameters(int degree, int controlCount, std::span<const double> t) {
+  const int p = degree, n = controlCount;
+  const auto N = static_cast<std::int64_t>(t.size());
+  if (n < p + 1 || N < n)
+    throw Error("a spline of degree " + std::to_string(p) + " with " + std::to_string(n) +
+                " control points needs at least " + std::to_string(std::max(n, p + 1)) +
+                " samples, not " + std::to_string(N));
+  std::vector<double> knots(static_cast<size_t>(n + p + 1), 0.0);
+  for (int i = 0; i <= p; ++i) knots[static_cast<size_t>(n + i)] = 1.0;
+  if (n == N) {
+    for (int j = 1; j < n - p; ++j) {
+      double sum = 0.0;
+      for (int i = j; i < j + p; ++i) sum += t[static_cast<size_t>(i)];
+      knots[static_cast<size_t>(p + j)] = sum / p;
+    }
+  } else {
+    const double d = static_cast<double>(N) / (n - p);
+    for (int j = 1; j < n - p; ++j) {
+      const auto i = static_cast<std::int64_t>(std::floor(j * d));
+      const double a = j * d - static_cast<double>(i);
+      knots[static_cast<size_t>(p + j)] = (1.0 - a) * t[static_cast<size_t>(i - 1)] +
+                                          a * t[static_cast<size_t>(std::min(i, N - 1))];
+    }
   }
   return KnotVector::fromKnots(p, std::move(knots));
 }

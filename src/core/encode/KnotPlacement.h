@@ -12,11 +12,16 @@
 // with t_i = i / (N - 1). For equally spaced samples both leave the interior knots equally
 // spaced (only the end spans differ), so span lookup stays O(1).
 #include <cstdint>
+#include <span>
 
 #include "core/spline/KnotVector.h"
 
 namespace mfadvr {
 
 KnotVector knotsForSamples(int degree, int controlCount, std::int64_t sampleCount);
+// The same placements for samples at any non-decreasing parameters t_i in [0, 1] (the times of a
+// series' steps), at least controlCount of them. Throws mfadvr::Error when the knots they give
+// are not a valid vector (samples too close together for the degree).
+KnotVector knotsForParameters(int degree, int controlCount, std::span<const double> parameters);
 
 }  // namespace mfadvr

@@ -14,6 +14,7 @@
 #include <sstream>
 #include <type_traits>
 
+#include "core/encode/AxisFit.h"
 #include "core/encode/KnotPlacement.h"
 #include "core/model/ModelFile.h"
 #include "core/spline/BasisFunctions.h"
@@ -27,36 +28,6 @@ namespace {
 
 const char* axisName(int a) {
   return a == 0 ? "x" : (a == 1 ? "y" : "z");
-}
-
-// The non-zero basis functions at each sample of one axis: sample i touches control points
-// first[i] .. first[i] + p with weights w[i*(p+1) ..].
-struct AxisSampling {
-  KnotVector knots;
-  int degree = 0;
-  int controlCount = 0;
-  std::int64_t samples = 0;
-  std::vector<int> first;
-  std::vector<double> weights;
-};
-
-AxisSampling sampleAxis(const KnotVector& kv, std::int64_t samples) {
-  AxisSampling s;
-  s.knots = kv;
-  s.degree = kv.degree();
-  s.controlCount = kv.controlCount();
-  s.samples = samples;
-  const int w = s.degree + 1;
-  s.first.resize(static_cast<size_t>(samples));
-  s.weights.resize(static_cast<size_t>(samples * w));
-  for (std::int64_t i = 0; i < samples; ++i) {
-    // Grid samples are equally spaced in physical space, hence in parameter space.
-    const double u = static_cast<double>(i) / static_cast<double>(samples - 1);
-    const int span = kv.findSpan(u);
-    s.first[i] = span - s.degree;
-    basisFunctions(kv, s.degree, span, u, &s.weights[static_cast<size_t>(i * w)]);
-  }
-  return s;
 }
 
 // Applies a linear map along the fastest axis of an (A, B, C) array and writes the result as a
@@ -78,115 +49,6 @@ void passAlongFastest(const std::vector<double>& in, const Index3& dims, std::in
     }
   });
 }
-
-// Least-squares fit of every line of one axis: solves (N^T N + m mu D^T D) c = N^T f, where m is
-// the sample count, D the axis's penalty of order p + 1 (core/spline/DerivativePenalty.h) and
-// mu = penaltyWeight(lambda, p + 1): the 1-D form of the mean squared error plus lambda's
-// penalty. The tensor product of these solves is the separable smoother; to first order in
-// lambda it minimizes the scattered fit's objective (the penalty of each axis weighted by the
-// other axes' data terms), plus products of two or three axes' penalties.
-class AxisFitter {
- public:
-  explicit AxisFitter(AxisSampling s, double smoothing = 0.0) : s_(std::move(s)) {
-    const int w = s_.degree + 1;
-    std::vector<Eigen::Triplet<double>> t;
-    t.reserve(static_cast<size_t>(s_.samples * w * w));
-    for (std::int64_t i = 0; i < s_.samples; ++i) {
-      const double* wi = &s_.weights[static_cast<size_t>(i * w)];
-      for (int r = 0; r < w; ++r)
-        for (int q = 0; q < w; ++q) t.emplace_back(s_.first[i] + r, s_.first[i] + q, wi[r] * wi[q]);
-    }
-    const int n = s_.controlCount;
-    if (smoothing > 0.0) {
-      const DerivativePenalty d = derivativePenalty(s_.knots, s_.degree + 1);
-      const double mu = static_cast<double>(s_.samples) * penaltyWeight(smoothing, d.order);
-      const int k = d.order + 1;
-      for (int r = 0; r < d.rows(); ++r) {
-        const double* dr = &d.weights[static_cast<size_t>(r * k)];
-        const int f = d.first[static_cast<size_t>(r)];
-        for (int a = 0; a < k; ++a)
-          for (int b = 0; b < k; ++b) t.emplace_back(f + a, f + b, mu * dr[a] * dr[b]);
-      }
-    } else {
-      // A vanishing second-difference penalty (1e-10 of the mean diagonal) keeps the system
-      // definite when sample and knot phases drift against each other (n just below N) and
-      // a basis function is seen only at the tails of its support; on well-conditioned systems
-      // it changes the fit far below float32 resolution.
-      double trace = 0.0;
-      for (const auto& e : t)
-        if (e.row() == e.col()) trace += e.value();
-      const double lambda = 1e-10 * trace / s_.controlCount;
-      for (int r = 1; r + 1 < n; ++r) {
-        const int idx[3] = {r - 1, r, r + 1};
-        const double d[3] = {1.0, -2.0, 1.0};
-        for (int a = 0; a < 3; ++a)
-          for (int b = 0; b < 3; ++b) t.emplace_back(idx[a], idx[b], lambda * d[a] * d[b]);
-      }
-    }
-    Eigen::SparseMatrix<double> normal(n, n);
-    normal.setFromTriplets(t.begin(), t.end());
-    llt_.compute(normal);
-    if (llt_.info() != Eigen::Success)
-      throw Error("the least-squares system is singular (too few samples per knot span)");
-  }
-
-  // The trace of the axis's hat matrix N (N^T N + m mu D^T D)^-1 N^T: its effective number of
-  // parameters (the control count without smoothing).
-  double hatTrace() const {
-    const int w = s_.degree + 1, n = s_.controlCount;
-    Eigen::MatrixXd gram = Eigen::MatrixXd::Zero(n, n);
-    for (std::int64_t i = 0; i < s_.samples; ++i) {
-      const double* wi = &s_.weights[static_cast<size_t>(i * w)];
-      for (int r = 0; r < w; ++r)
-        for (int q = 0; q < w; ++q) gram(s_.first[i] + r, s_.first[i] + q) += wi[r] * wi[q];
-    }
-    return llt_.solve(gram).trace();
-  }
-
-  void operator()(const Eigen::Map<const Eigen::MatrixXd>& lines, Eigen::MatrixXd& out) const {
-    // rhs = N^T f, one column (one contiguous grid line) at a time.
-    const int w = s_.degree + 1;
-    Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(s_.controlCount, lines.cols());
-    for (Eigen::Index b = 0; b < lines.cols(); ++b) {
-      const double* f = lines.col(b).data();
-      double* r = rhs.col(b).data();
-      for (std::int64_t i = 0; i < s_.samples; ++i) {
-        const double* wi = &s_.weights[static_cast<size_t>(i * w)];
-        double* ri = r + s_.first[i];
-        for (int k = 0; k < w; ++k) ri[k] += wi[k] * f[i];
-      }
-    }
-    out = llt_.solve(rhs);
-  }
-
- private:
-  AxisSampling s_;
-  // Natural ordering keeps the band: the factor has the bandwidth of the degree.
-  Eigen::SimplicialLLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::NaturalOrdering<int>> llt_;
-};
-
-// Evaluates the spline on the grid samples of one axis: y_i = sum_r N_r(u_i) c_{first_i + r}.
-class AxisEvaluator {
- public:
-  explicit AxisEvaluator(const AxisSampling& s) : s_(s) {}
-  void operator()(const Eigen::Map<const Eigen::MatrixXd>& coeffs, Eigen::MatrixXd& out) const {
-    const int w = s_.degree + 1;
-    for (Eigen::Index b = 0; b < coeffs.cols(); ++b) {
-      const double* c = coeffs.col(b).data();
-      double* y = out.col(b).data();
-      for (std::int64_t i = 0; i < s_.samples; ++i) {
-        const double* wi = &s_.weights[static_cast<size_t>(i * w)];
-        const double* ci = c + s_.first[i];
-        double v = 0.0;
-        for (int k = 0; k < w; ++k) v += wi[k] * ci[k];
-        y[i] = v;
-      }
-    }
-  }
-
- private:
-  const AxisSampling& s_;
-};
 
 // The control points of the separable fit, float32, x fastest. x and y are fitted plane by plane
 // (both lie within a z plane) into one float array of n0 x n1 x N2 coefficients; z is then
@@ -483,14 +345,14 @@ void GridSmoother::apply(std::vector<double>& values) const {
     const AxisSampling& s = axes_->sampling[a];
     const AxisFitter& fit = *axes_->fitters[a];
     const AxisEvaluator evaluate(s);
-    passAlongFastest(values, dims, s.samples, tmp,
-                     [&](const Eigen::Map<const Eigen::MatrixXd>& lines, Eigen::MatrixXd& out) {
-                       Eigen::MatrixXd coeffs(s.controlCount, lines.cols());
-                       fit(lines, coeffs);
-                       evaluate(Eigen::Map<const Eigen::MatrixXd>(coeffs.data(), coeffs.rows(),
-                                                                  coeffs.cols()),
-                                out);
-                     });
+    passAlongFastest(
+        values, dims, s.samples, tmp,
+        [&](const Eigen::Map<const Eigen::MatrixXd>& lines, Eigen::MatrixXd& out) {
+          Eigen::MatrixXd coeffs(s.controlCount, lines.cols());
+          fit(lines, coeffs);
+          evaluate(Eigen::Map<const Eigen::MatrixXd>(coeffs.data(), coeffs.rows(), coeffs.cols()),
+                   out);
+        });
     values.swap(tmp);
     dims = rotate(dims, s.samples);
   }

@@ -72,22 +72,23 @@ ControlCoder parseControlCoder(const std::string& name) {
   throw Error("unknown control-point coding '" + name + "' (float32, lossless or zfp)");
 }
 
-std::int64_t maxCodedControlBytes(const Index3& dims, const ControlCoding& coding) {
-  const std::int64_t count = countOf(dims);
+std::int64_t maxCodedControlBytes(const Index3& dims, const ControlCoding& coding,
+                                  std::int64_t steps) {
+  const std::int64_t count = countOf(dims) * steps;
   switch (coding.coder) {
     case ControlCoder::kFloat32:
       return 4 * count;
     case ControlCoder::kLossless:
       return static_cast<std::int64_t>(ZSTD_compressBound(static_cast<size_t>(4 * count)));
     case ControlCoder::kZfp:
-      return zfpMaxBytes(dims, {ZfpSettings::Mode::kAccuracy, coding.tolerance});
+      return zfpMaxBytes(dims, {ZfpSettings::Mode::kAccuracy, coding.tolerance}, steps);
   }
   return 0;
 }
 
 std::string encodeControlPoints(std::span<const float> ctrl, const Index3& dims,
-                                const ControlCoding& coding) {
-  if (static_cast<std::int64_t>(ctrl.size()) != countOf(dims))
+                                const ControlCoding& coding, std::int64_t steps) {
+  if (steps < 1 || static_cast<std::int64_t>(ctrl.size()) != countOf(dims) * steps)
     throw Error("control point count does not match the control grid");
   switch (coding.coder) {
     case ControlCoder::kFloat32:
@@ -95,15 +96,16 @@ std::string encodeControlPoints(std::span<const float> ctrl, const Index3& dims,
     case ControlCoder::kLossless:
       return shuffledZstd(ctrl);
     case ControlCoder::kZfp:
-      return zfpCompress(ctrl, dims, {ZfpSettings::Mode::kAccuracy, coding.tolerance});
+      return zfpCompress(ctrl, dims, {ZfpSettings::Mode::kAccuracy, coding.tolerance}, steps);
   }
   return {};
 }
 
 std::vector<float> decodeControlPoints(std::span<const std::uint8_t> bytes, const Index3& dims,
-                                       const ControlCoding& coding) {
-  const std::int64_t count = countOf(dims);
-  if (static_cast<std::int64_t>(bytes.size()) > maxCodedControlBytes(dims, coding))
+                                       const ControlCoding& coding, std::int64_t steps) {
+  const std::int64_t count = countOf(dims) * steps;
+  if (steps < 1 ||
+      static_cast<std::int64_t>(bytes.size()) > maxCodedControlBytes(dims, coding, steps))
     throw Error("the coded control points are longer than their coding can produce");
   switch (coding.coder) {
     case ControlCoder::kFloat32: {
@@ -117,7 +119,7 @@ std::vector<float> decodeControlPoints(std::span<const std::uint8_t> bytes, cons
     case ControlCoder::kLossless:
       return unshuffledZstd(bytes, count);
     case ControlCoder::kZfp:
-      return zfpDecompress(bytes, dims, {ZfpSettings::Mode::kAccuracy, coding.tolerance});
+      return zfpDecompress(bytes, dims, {ZfpSettings::Mode::kAccuracy, coding.tolerance}, steps);
   }
   return {};
 }

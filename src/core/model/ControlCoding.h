@@ -37,19 +37,21 @@ const char* controlCoderName(ControlCoder c);
 // Throws mfadvr::Error listing the names for anything else.
 ControlCoder parseControlCoder(const std::string& name);
 
-// Codes `ctrl` (dims[0] x dims[1] x dims[2], x fastest). Throws mfadvr::Error for a zfp
+// Codes `ctrl` (dims[0] x dims[1] x dims[2], x fastest; `steps` such grids one after the other
+// for a time-varying model, zfp coding them as one 4-D array). Throws mfadvr::Error for a zfp
 // tolerance that is not finite and positive.
 std::string encodeControlPoints(std::span<const float> ctrl, const Index3& dims,
-                                const ControlCoding& coding);
+                                const ControlCoding& coding, std::int64_t steps = 1);
 
 // The largest payload a coding can produce for `dims` control points: a reader refuses larger
 // sections before allocating anything.
-std::int64_t maxCodedControlBytes(const Index3& dims, const ControlCoding& coding);
+std::int64_t maxCodedControlBytes(const Index3& dims, const ControlCoding& coding,
+                                  std::int64_t steps = 1);
 
 // Decodes a payload written by encodeControlPoints. Damaged payloads throw mfadvr::Error (never
 // read outside `bytes`); the values may still be non-finite, which the model reader checks.
 std::vector<float> decodeControlPoints(std::span<const std::uint8_t> bytes, const Index3& dims,
-                                       const ControlCoding& coding);
+                                       const ControlCoding& coding, std::int64_t steps = 1);
 
 // `model` with its control points coded: the coded bytes are kept with the model (the file
 // writer stores them as they are) and the control points replaced by their decoded values, so

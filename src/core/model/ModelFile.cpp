@@ -109,6 +109,26 @@ json knotRule(const KnotVector& kv, std::int64_t samples) {
   return {{"rule", "stored"}};
 }
 
+// What a model file holds: the spatial shape (knots, box, range, provenance, mask) of a model,
+// an optional time axis, and every control point with its coding.
+struct FileContent {
+  const Model& shape;
+  const TimeAxis* time = nullptr;  // null: a 3-D model (format version 3)
+  std::span<const float> controls;
+  ControlCoding coding;
+  const std::string* coded = nullptr;  // the kept coded bytes, when there are some
+  std::int64_t slabs() const { return time ? time->controlCount() : 1; }
+};
+
+FileContent contentOf(const Model& m) {
+  return {m, nullptr, m.spline().controlPoints(), m.controlCoding(), m.codedControlPoints()};
+}
+
+FileContent contentOf(const TimeVaryingModel& m) {
+  if (!m.hasTime()) return contentOf(m.first());
+  return {m.first(), &m.timeAxis(), m.controlPoints(), m.controlCoding(), m.codedControlPoints()};
+}
+
 std::array<json, 3> knotRules(const Model& m) {
   std::array<json, 3> rules;
   for (int a = 0; a < 3; ++a)
@@ -123,20 +143,19 @@ bool stored(const json& rule) {
 // The control-point section as the model's coding stores it: the bytes the model was read from or
 // coded to when it holds them, the float array itself when uncoded (no copy), else coded now.
 // `owned` keeps bytes coded here alive as long as the view is used.
-std::string_view codedControls(const Model& m, std::shared_ptr<const std::string>& owned) {
-  if (const std::string* kept = m.codedControlPoints()) return *kept;
-  const TensorBSpline& s = m.spline();
-  if (m.controlCoding().coder == ControlCoder::kFloat32)
-    return {reinterpret_cast<const char*>(s.controlPoints().data()),
-            s.controlPoints().size() * sizeof(float)};
+std::string_view codedControls(const FileContent& c, std::shared_ptr<const std::string>& owned) {
+  if (c.coded) return *c.coded;
+  if (c.coding.coder == ControlCoder::kFloat32)
+    return {reinterpret_cast<const char*>(c.controls.data()), c.controls.size() * sizeof(float)};
   owned = std::make_shared<const std::string>(
-      encodeControlPoints(s.controlPoints(), s.counts(), m.controlCoding()));
+      encodeControlPoints(c.controls, c.shape.spline().counts(), c.coding, c.slabs()));
   return *owned;
 }
 
 // compressedMaskBytes: the size of the mask section (ignored without a mask).
-std::string headerText(const Model& m, const std::array<json, 3>& rules, std::int64_t controlBytes,
-                       std::int64_t compressedMaskBytes) {
+std::string headerText(const FileContent& content, const std::array<json, 3>& rules,
+                       std::int64_t controlBytes, std::int64_t compressedMaskBytes) {
+  const Model& m = content.shape;
   const TensorBSpline& s = m.spline();
   const DomainBox& d = m.domain();
   json h = {{"format", "mfadvr-model"},
@@ -146,8 +165,13 @@ std::string headerText(const Model& m, const std::array<json, 3>& rules, std::in
             {"domain_max", {d.max[0], d.max[1], d.max[2]}},
             {"value_range", {m.valueMin(), m.valueMax()}},
             {"provenance", provenanceToJson(m.provenance())}};
-  const ControlCoding& c = m.controlCoding();
+  const ControlCoding& c = content.coding;
   h["control_points"] = {{"coding", controlCoderName(c.coder)}, {"bytes", controlBytes}};
+  if (const TimeAxis* t = content.time)
+    h["time"] = {{"degree", t->degree()},
+                 {"control_count", t->controlCount()},
+                 {"range", {t->begin, t->end}},
+                 {"steps", t->steps}};
   h["knots"] = {rules[0], rules[1], rules[2]};
   if (c.coder == ControlCoder::kZfp) h["control_points"]["tolerance"] = c.tolerance;
   if (!m.mask().empty())
@@ -157,11 +181,13 @@ std::string headerText(const Model& m, const std::array<json, 3>& rules, std::in
   return h.dump();
 }
 
-// Bytes of the knots a model file stores (those without a rule).
-std::int64_t storedKnotBytes(const Model& m, const std::array<json, 3>& rules) {
+// Bytes of the knots a model file stores (the spatial ones without a rule, the time knots).
+std::int64_t storedKnotBytes(const FileContent& c, const std::array<json, 3>& rules) {
   std::int64_t knots = 0;
   for (int a = 0; a < 3; ++a)
-    if (stored(rules[a])) knots += static_cast<std::int64_t>(m.spline().knots(a).knots().size());
+    if (stored(rules[a]))
+      knots += static_cast<std::int64_t>(c.shape.spline().knots(a).knots().size());
+  if (c.time) knots += static_cast<std::int64_t>(c.time->knots.knots().size());
   return 8 * knots;
 }
 
@@ -197,11 +223,11 @@ ModelPrefix checkedPrefix(std::span<const std::uint8_t> b, std::uint64_t fileByt
   if (b.size() < kPrefixBytes || fileBytes < kPrefixBytes + 4)
     throw invalidModel(name, "file is truncated");
   const auto version = readBytesAt<std::uint32_t>(b, sizeof(kMagic));
-  if (version < kOldestModelFormatVersion || version > kModelFormatVersion)
+  if (version < kOldestModelFormatVersion || version > kTimeModelFormatVersion)
     throw Error(name + ": .mfa format version " + std::to_string(version) +
                 " is not supported; this build reads versions " +
                 std::to_string(kOldestModelFormatVersion) + " to " +
-                std::to_string(kModelFormatVersion));
+                std::to_string(kTimeModelFormatVersion));
   const auto headerBytes = readBytesAt<std::uint32_t>(b, sizeof(kMagic) + 4);
   if (headerBytes > kMaxHeaderBytes || kPrefixBytes + headerBytes + 4 > fileBytes)
     throw invalidModel(name,
@@ -249,23 +275,26 @@ struct ModelFilePieces {
   std::string mask;
 };
 
-ModelFilePieces modelFilePieces(const Model& model) {
+ModelFilePieces modelFilePieces(const FileContent& content) {
+  const Model& model = content.shape;
   ModelFilePieces p;
   p.mask = model.mask().empty() ? std::string() : compressedMask(model.mask());
-  p.controls = codedControls(model, p.ownedControls);
+  p.controls = codedControls(content, p.ownedControls);
   const auto rules = knotRules(model);
   const std::string header =
-      paddedHeader(headerText(model, rules, static_cast<std::int64_t>(p.controls.size()),
+      paddedHeader(headerText(content, rules, static_cast<std::int64_t>(p.controls.size()),
                               static_cast<std::int64_t>(p.mask.size())),
-                   storedKnotBytes(model, rules));
+                   storedKnotBytes(content, rules));
   std::string& out = p.head;
   out.append(kMagic, sizeof(kMagic));
-  appendBytes(out, kModelFormatVersion);
+  appendBytes(out, content.time ? kTimeModelFormatVersion : kModelFormatVersion);
   appendBytes(out, static_cast<std::uint32_t>(header.size()));
   out += header;
   for (int a = 0; a < 3; ++a)
     if (stored(rules[a]))
       for (double k : model.spline().knots(a).knots()) appendBytes(out, k);
+  if (content.time)
+    for (double k : content.time->knots.knots()) appendBytes(out, k);
   return p;
 }
 
@@ -275,8 +304,11 @@ std::uint32_t crcOf(std::uint32_t crc, std::string_view bytes) {
 
 }  // namespace
 
-void serializeModel(const Model& model, const std::function<std::uint8_t*(size_t)>& allocate) {
-  const ModelFilePieces p = modelFilePieces(model);
+namespace {
+
+void serializeContent(const FileContent& content,
+                      const std::function<std::uint8_t*(size_t)>& allocate) {
+  const ModelFilePieces p = modelFilePieces(content);
   const size_t body = p.head.size() + p.controls.size() + p.mask.size();
   std::uint8_t* out = allocate(body + 4);
   std::uint8_t* at = out;
@@ -289,13 +321,62 @@ void serializeModel(const Model& model, const std::function<std::uint8_t*(size_t
   std::memcpy(at, &sum, 4);  // little-endian (asserted above)
 }
 
-std::string serializeModel(const Model& model) {
+std::string serializedContent(const FileContent& content) {
   std::string out;
-  serializeModel(model, [&out](size_t bytes) {
+  serializeContent(content, [&out](size_t bytes) {
     out.resize(bytes);
     return reinterpret_cast<std::uint8_t*>(out.data());
   });
   return out;
+}
+
+std::int64_t fileSizeOf(const FileContent& content) {
+  const Model& model = content.shape;
+  const std::int64_t mask =
+      model.mask().empty() ? 0 : static_cast<std::int64_t>(compressedMask(model.mask()).size());
+  const auto rules = knotRules(model);
+  const std::int64_t knotBytes = storedKnotBytes(content, rules);
+  std::shared_ptr<const std::string> owned;
+  const auto ctrl = static_cast<std::int64_t>(codedControls(content, owned).size());
+  return static_cast<std::int64_t>(
+             kPrefixBytes +
+             paddedHeader(headerText(content, rules, ctrl, mask), knotBytes).size()) +
+         knotBytes + ctrl + mask + 4;
+}
+
+void saveContent(const FileContent& content, const std::filesystem::path& path) {
+  // Piece by piece, so that the control points go to the file from where they are held: a large
+  // model is not copied into one buffer first.
+  const ModelFilePieces p = modelFilePieces(content);
+  AtomicFileWriter out(path);
+  std::uint32_t sum = 0;
+  for (const std::string_view piece :
+       {std::string_view(p.head), p.controls, std::string_view(p.mask)}) {
+    out.write(piece);
+    sum = crcOf(sum, piece);
+  }
+  std::string tail;
+  appendBytes(tail, sum);
+  out.write(tail);
+  out.commit();
+}
+
+}  // namespace
+
+void serializeModel(const Model& model, const std::function<std::uint8_t*(size_t)>& allocate) {
+  serializeContent(contentOf(model), allocate);
+}
+
+std::string serializeModel(const Model& model) {
+  return serializedContent(contentOf(model));
+}
+
+std::string serializeModel(const TimeVaryingModel& model) {
+  return serializedContent(contentOf(model));
+}
+
+std::int64_t modelFileSize(const TimeVaryingModel& model) {
+  return fileSizeOf(contentOf(model));
 }
 
 std::int64_t codedControlBytes(const Model& m) {
@@ -304,22 +385,16 @@ std::int64_t codedControlBytes(const Model& m) {
   if (m.controlCoding().coder == ControlCoder::kFloat32)
     return 4 * static_cast<std::int64_t>(m.spline().controlPoints().size());
   std::shared_ptr<const std::string> owned;
-  return static_cast<std::int64_t>(codedControls(m, owned).size());
+  return static_cast<std::int64_t>(codedControls(contentOf(m), owned).size());
 }
 
 std::int64_t modelFileSize(const Model& model) {
-  const std::int64_t mask =
-      model.mask().empty() ? 0 : static_cast<std::int64_t>(compressedMask(model.mask()).size());
-  const auto rules = knotRules(model);
-  const std::int64_t knotBytes = storedKnotBytes(model, rules);
-  const std::int64_t ctrl = codedControlBytes(model);
-  return static_cast<std::int64_t>(
-             kPrefixBytes + paddedHeader(headerText(model, rules, ctrl, mask), knotBytes).size()) +
-         knotBytes + ctrl + mask + 4;
+  return fileSizeOf(contentOf(model));
 }
 
-Model parseModel(std::span<const std::uint8_t> b, const std::string& name,
-                 std::uint32_t* formatVersion, std::shared_ptr<const void> owner) {
+TimeVaryingModel parseTimeVaryingModel(std::span<const std::uint8_t> b, const std::string& name,
+                                       std::uint32_t* formatVersion,
+                                       std::shared_ptr<const void> owner) {
   auto bad = [&](const std::string& why) { return invalidModel(name, why); };
   const auto [version, headerBytes] = checkedPrefix(b, b.size(), name);
 
@@ -335,6 +410,10 @@ Model parseModel(std::span<const std::uint8_t> b, const std::string& name,
   ControlCoding coding;              // version 3 on; before: float32
   std::int64_t storedControlBytes = -1;
   std::array<std::int64_t, 3> knotSamples{-1, -1, -1};  // version 3: -1 stored, 0 uniform, N
+  // Version 4: the time axis (its knots are read from the knot section).
+  std::optional<TimeAxis> time;
+  int timeDegree = 0;
+  std::int64_t timeCount = 0;
   try {
     h = json::parse(b.begin() + kPrefixBytes, b.begin() + kPrefixBytes + headerBytes);
     if (h.value("format", "") != "mfadvr-model") throw bad("header is not an mfadvr-model header");
@@ -393,6 +472,30 @@ Model parseModel(std::span<const std::uint8_t> b, const std::string& name,
       maskDims = integers3(m, "dims");
       storedMaskBytes = integerOr(m, "bytes", -1);
     }
+    if (version >= 4 && h.contains("time")) {
+      const json& t = h.at("time");
+      if (!t.is_object()) throw bad("time must be an object");
+      const std::int64_t degree = integerOr(t, "degree", 0);
+      timeCount = integerOr(t, "control_count", 0);
+      if (degree < 1 || degree > kMaxDegree)
+        throw bad("time degree outside 1.." + std::to_string(kMaxDegree));
+      timeDegree = static_cast<int>(degree);
+      if (timeCount < degree + 1 || timeCount > kMaxControlPerAxis)
+        throw bad("time control count out of range");
+      const json& steps = t.at("steps");
+      if (!steps.is_array() || steps.size() < 2 ||
+          steps.size() > static_cast<size_t>(kMaxControlPerAxis))
+        throw bad("time steps must be an array of 2 to " + std::to_string(kMaxControlPerAxis) +
+                  " times");
+      time.emplace();
+      for (const json& v : steps) {
+        if (!v.is_number()) throw bad("a time step is not a number");
+        time->steps.push_back(v.get<double>());
+      }
+      const auto r = t.at("range").get<std::array<double, 2>>();
+      time->begin = r[0];
+      time->end = r[1];
+    }
   } catch (const json::exception& e) {
     throw bad(std::string("header is corrupt (") + e.what() + ")");
   }
@@ -424,11 +527,14 @@ Model parseModel(std::span<const std::uint8_t> b, const std::string& name,
                 ": fewer samples than control points");
     if (knotSamples[a] < 0) knotCount += n[a] + p[a] + 1;
   }
-  const std::int64_t ctrlCount = n[0] * n[1] * n[2];
-  if (ctrlCount > std::numeric_limits<std::int64_t>::max() / 8)
+  if (time) knotCount += timeCount + timeDegree + 1;
+  const std::int64_t slabs = time ? timeCount : 1;
+  const std::int64_t spatialCount = n[0] * n[1] * n[2];
+  if (spatialCount > std::numeric_limits<std::int64_t>::max() / 8 / slabs)
     throw bad("too many control points");
+  const std::int64_t ctrlCount = spatialCount * slabs;
   if (version < 3) storedControlBytes = 4 * ctrlCount;
-  if (storedControlBytes < 1 || storedControlBytes > maxCodedControlBytes(n, coding))
+  if (storedControlBytes < 1 || storedControlBytes > maxCodedControlBytes(n, coding, slabs))
     throw bad("control-point byte count is missing or out of range for " +
               std::to_string(ctrlCount) + " control points coded " +
               controlCoderName(coding.coder));
@@ -463,12 +569,24 @@ Model parseModel(std::span<const std::uint8_t> b, const std::string& name,
       throw bad(std::string("knots of axis ") + "xyz"[a] + ": " + e.what());
     }
   }
+  if (time) {
+    std::vector<double> k(static_cast<size_t>(timeCount + timeDegree + 1));
+    std::memcpy(k.data(), b.data() + offset, k.size() * sizeof(double));
+    offset += k.size() * sizeof(double);
+    try {
+      time->knots = KnotVector::fromKnots(timeDegree, std::move(k));
+      validateTimeAxis(*time);
+    } catch (const Error& e) {
+      throw bad(std::string("time axis: ") + e.what());
+    }
+  }
   const auto controlSection = b.subspan(offset, static_cast<size_t>(storedControlBytes));
   offset += controlSection.size();
   // float32 control points where the bytes lie, when their owner keeps them and they are
   // aligned (files written since the header was padded); else decoded into a new array.
   const bool inPlace =
-      owner && coding.coder == ControlCoder::kFloat32 && storedControlBytes == 4 * ctrlCount &&
+      !time && owner && coding.coder == ControlCoder::kFloat32 &&
+      storedControlBytes == 4 * ctrlCount &&
       reinterpret_cast<std::uintptr_t>(controlSection.data()) % alignof(float) == 0;
   std::vector<float> decoded;
   std::span<const float> ctrl;
@@ -476,7 +594,7 @@ Model parseModel(std::span<const std::uint8_t> b, const std::string& name,
     ctrl = {reinterpret_cast<const float*>(controlSection.data()), static_cast<size_t>(ctrlCount)};
   } else {
     try {
-      decoded = decodeControlPoints(controlSection, n, coding);
+      decoded = decodeControlPoints(controlSection, n, coding, slabs);
     } catch (const Error& e) {
       throw bad(e.what());
     }
@@ -484,17 +602,15 @@ Model parseModel(std::span<const std::uint8_t> b, const std::string& name,
   }
   for (float c : ctrl)
     if (!std::isfinite(c)) throw bad("a control point is NaN or infinite");
+  // A time-varying model's spatial shape holds its first slab until the model is assembled.
+  std::vector<float> slabs4d;
+  if (time) {
+    slabs4d = std::move(decoded);
+    decoded.assign(slabs4d.begin(), slabs4d.begin() + spatialCount);
+  }
   Model model(inPlace ? TensorBSpline(std::move(knots), std::move(owner), ctrl)
                       : TensorBSpline(std::move(knots), std::move(decoded)),
               DomainBox{lo, hi}, range[0], range[1], std::move(prov));
-  // Keep the coded bytes of lossy codings, so that writing the model again stores the same
-  // bytes (coding decoded values again would move them once more).
-  if (coding.coder == ControlCoder::kZfp)
-    model.setControlCoding(
-        coding, std::make_shared<const std::string>(
-                    reinterpret_cast<const char*>(controlSection.data()), controlSection.size()));
-  else
-    model.setControlCoding(coding);
   if (maskKind) {
     std::vector<std::uint8_t> packed(static_cast<size_t>(packedMaskBytes));
     uLongf size = static_cast<uLongf>(packed.size());
@@ -512,27 +628,34 @@ Model parseModel(std::span<const std::uint8_t> b, const std::string& name,
     model.setMask(DomainMask(*maskKind, maskDims, std::move(nodes)));
   }
   if (formatVersion) *formatVersion = version;
-  return model;
+  TimeVaryingModel out = time ? TimeVaryingModel(model, std::move(*time), std::move(slabs4d))
+                              : TimeVaryingModel(std::move(model));
+  // Keep the coded bytes of lossy codings, so that writing the model again stores the same
+  // bytes (coding decoded values again would move them once more).
+  if (coding.coder == ControlCoder::kZfp)
+    out.setControlCoding(
+        coding, std::make_shared<const std::string>(
+                    reinterpret_cast<const char*>(controlSection.data()), controlSection.size()));
+  else
+    out.setControlCoding(coding);
+  return out;
+}
+
+Model parseModel(std::span<const std::uint8_t> b, const std::string& name,
+                 std::uint32_t* formatVersion, std::shared_ptr<const void> owner) {
+  return parseTimeVaryingModel(b, name, formatVersion, std::move(owner)).first();
 }
 
 void saveModel(const Model& model, const std::filesystem::path& path) {
-  // Piece by piece, so that the control points go to the file from where they are held: a large
-  // model is not copied into one buffer first.
-  const ModelFilePieces p = modelFilePieces(model);
-  AtomicFileWriter out(path);
-  std::uint32_t sum = 0;
-  for (const std::string_view piece :
-       {std::string_view(p.head), p.controls, std::string_view(p.mask)}) {
-    out.write(piece);
-    sum = crcOf(sum, piece);
-  }
-  std::string tail;
-  appendBytes(tail, sum);
-  out.write(tail);
-  out.commit();
+  saveContent(contentOf(model), path);
 }
 
-Model loadModel(const std::filesystem::path& path, std::uint32_t* formatVersion) {
+void saveModel(const TimeVaryingModel& model, const std::filesystem::path& path) {
+  saveContent(contentOf(model), path);
+}
+
+TimeVaryingModel loadTimeVaryingModel(const std::filesystem::path& path,
+                                      std::uint32_t* formatVersion) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec))
     throw Error("cannot read " + path.string() + ": is a directory");
@@ -548,11 +671,16 @@ Model loadModel(const std::filesystem::path& path, std::uint32_t* formatVersion)
   if (in.gcount() != static_cast<std::streamsize>(bytes->size()) || in.peek() != EOF)
     throw Error("cannot read " + path.string() + ": its size changed while it was read");
   const std::span<const std::uint8_t> view(*bytes);
-  return parseModel(view, path.string(), formatVersion, std::move(bytes));
+  return parseTimeVaryingModel(view, path.string(), formatVersion, std::move(bytes));
+}
+
+Model loadModel(const std::filesystem::path& path, std::uint32_t* formatVersion) {
+  return loadTimeVaryingModel(path, formatVersion).first();
 }
 
 std::int64_t loadedModelBytes(const ModelFileSummary& m) {
-  const std::int64_t points = m.controlCounts[0] * m.controlCounts[1] * m.controlCounts[2];
+  const std::int64_t points =
+      m.controlCounts[0] * m.controlCounts[1] * m.controlCounts[2] * m.slabs;
   return 4 * points + (m.coder == ControlCoder::kZfp ? static_cast<std::int64_t>(m.fileBytes) : 0);
 }
 
@@ -578,6 +706,11 @@ ModelFileSummary summarizeModelHead(std::span<const std::uint8_t> head, std::uin
     // "stored".
     for (int a = 0; a < 3; ++a)
       storedKnots[a] = prefix.version < 3 || h.at("knots").at(a).at("rule") == "stored";
+    if (prefix.version >= 4 && h.contains("time")) {
+      out.slabs = integerOr(h.at("time"), "control_count", 0);
+      if (out.slabs < 2 || out.slabs > kMaxControlPerAxis)
+        throw invalidModel(name, "time control count out of range");
+    }
   } catch (const json::exception& e) {
     throw invalidModel(name, std::string("header is corrupt (") + e.what() + ")");
   }
@@ -586,7 +719,8 @@ ModelFileSummary summarizeModelHead(std::span<const std::uint8_t> head, std::uin
   std::int64_t start = static_cast<std::int64_t>(kPrefixBytes + prefix.headerBytes);
   for (int a = 0; a < 3; ++a)
     if (storedKnots[a]) start += 8 * (out.controlCounts[a] + out.degree[a] + 1);
-  out.readInPlace = out.coder == ControlCoder::kFloat32 && start % alignof(float) == 0;
+  out.readInPlace =
+      out.slabs == 1 && out.coder == ControlCoder::kFloat32 && start % alignof(float) == 0;
   return out;
 }
 

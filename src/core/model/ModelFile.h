@@ -1,5 +1,6 @@
 #pragma once
-// The .mfa model file (format version 3; docs/model-format.md describes every byte).
+// The .mfa model file (format version 3; version 4 for time-varying models;
+// docs/model-format.md describes every byte).
 //
 //   magic "MFADVR\r\n\x1a\n" (10 bytes) | u32 version | u32 header length H | H bytes JSON header
 //   | knots: float64 per axis, x then y then z | control points, x fastest, coded as the header's
@@ -9,8 +10,9 @@
 //
 // All integers and floats little-endian; the CRC-32 (zlib) covers every byte before it. Loading
 // checks everything before trusting it, so that any damaged file gives an Error, never a crash.
-// Writing always produces version 3; reading accepts version 1 (no mask section), 2 (float32
-// control points only) and 3.
+// Writing produces version 3 for 3-D models and version 4 (a "time" header key, the time knots
+// after the spatial ones, nt slabs of control points) for time-varying ones; reading accepts
+// version 1 (no mask section), 2 (float32 control points only), 3 and 4.
 #include <cstdint>
 #include <filesystem>
 #include <functional>
@@ -20,10 +22,12 @@
 
 #include "core/model/ControlCoding.h"
 #include "core/model/Model.h"
+#include "core/model/TimeVaryingModel.h"
 
 namespace mfadvr {
 
-inline constexpr std::uint32_t kModelFormatVersion = 3;        // written
+inline constexpr std::uint32_t kModelFormatVersion = 3;        // written for 3-D models
+inline constexpr std::uint32_t kTimeModelFormatVersion = 4;    // written with a time axis
 inline constexpr std::uint32_t kOldestModelFormatVersion = 1;  // oldest read
 
 std::string serializeModel(const Model& model);
@@ -40,13 +44,27 @@ Model parseModel(std::span<const std::uint8_t> bytes, const std::string& name = 
 
 // Writes atomically: a temporary file beside the target, flushed, then renamed over it.
 void saveModel(const Model& model, const std::filesystem::path& path);
+// Of a time-varying file, the model at its first step (3-D consumers: compare, the VTK mapper's
+// carried model); loadTimeVaryingModel gives every instant.
 Model loadModel(const std::filesystem::path& path, std::uint32_t* formatVersion = nullptr);
+
+// Models that may have a time axis: 3-D ones are written and read exactly as above.
+std::string serializeModel(const TimeVaryingModel& model);
+void saveModel(const TimeVaryingModel& model, const std::filesystem::path& path);
+TimeVaryingModel parseTimeVaryingModel(std::span<const std::uint8_t> bytes,
+                                       const std::string& name = "model",
+                                       std::uint32_t* formatVersion = nullptr,
+                                       std::shared_ptr<const void> owner = nullptr);
+TimeVaryingModel loadTimeVaryingModel(const std::filesystem::path& path,
+                                      std::uint32_t* formatVersion = nullptr);
+std::int64_t modelFileSize(const TimeVaryingModel& model);
 
 // What a model file's header says about the model's size, read without its control points: for
 // memory estimates before a model (or each block of a multi-block file) is loaded.
 struct ModelFileSummary {
   Degree3 degree{};
-  Index3 controlCounts{};
+  Index3 controlCounts{};  // spatial
+  std::int64_t slabs = 1;  // time control points (1: no time axis)
   ControlCoder coder = ControlCoder::kFloat32;
   std::uint64_t fileBytes = 0;
   // Loading keeps the file's bytes as the model's float32 control points (aligned in the file):

@@ -10,13 +10,18 @@
 namespace mfadvr {
 namespace {
 
-// RAII for ZFP's C objects: a stream in the given mode over a 3-D float field.
+// RAII for ZFP's C objects: a stream in the given mode over a 3-D float field, or a 4-D one of
+// `steps` such fields when steps > 1.
 class ZfpCodec {
  public:
-  ZfpCodec(float* data, const Index3& dims, const ZfpSettings& settings)
+  ZfpCodec(float* data, const Index3& dims, const ZfpSettings& settings, std::int64_t steps = 1)
       : zfp_(zfpLibrary()),
-        field_(zfp_.field_3d(data, zfp_type_float, static_cast<size_t>(dims[0]),
-                             static_cast<size_t>(dims[1]), static_cast<size_t>(dims[2]))),
+        field_(steps > 1
+                   ? zfp_.field_4d(data, zfp_type_float, static_cast<size_t>(dims[0]),
+                                   static_cast<size_t>(dims[1]), static_cast<size_t>(dims[2]),
+                                   static_cast<size_t>(steps))
+                   : zfp_.field_3d(data, zfp_type_float, static_cast<size_t>(dims[0]),
+                                   static_cast<size_t>(dims[1]), static_cast<size_t>(dims[2]))),
         stream_(zfp_.stream_open(nullptr)) {
     if (!field_ || !stream_) {
       release();
@@ -29,7 +34,7 @@ class ZfpCodec {
                   " must be a positive number");
     }
     if (settings.mode == ZfpSettings::Mode::kRate)
-      zfp_.set_rate(stream_, settings.parameter, zfp_type_float, 3, zfp_false);
+      zfp_.set_rate(stream_, settings.parameter, zfp_type_float, steps > 1 ? 4 : 3, zfp_false);
     else
       zfp_.set_accuracy(stream_, settings.parameter);
   }
@@ -77,15 +82,15 @@ size_t wordsFor(size_t bytes) {
   return (bytes + sizeof(std::uint64_t) - 1) / sizeof(std::uint64_t);
 }
 
-void checkCount(size_t count, const Index3& dims) {
-  if (static_cast<std::int64_t>(count) != dims[0] * dims[1] * dims[2])
-    throw Error("the zfp array does not hold dims[0] x dims[1] x dims[2] values");
+void checkCount(size_t count, const Index3& dims, std::int64_t steps) {
+  if (steps < 1 || static_cast<std::int64_t>(count) != dims[0] * dims[1] * dims[2] * steps)
+    throw Error("the zfp array does not hold dims[0] x dims[1] x dims[2] x steps values");
 }
 
 }  // namespace
 
-std::int64_t zfpMaxBytes(const Index3& dims, const ZfpSettings& settings) {
-  ZfpCodec codec(nullptr, dims, settings);
+std::int64_t zfpMaxBytes(const Index3& dims, const ZfpSettings& settings, std::int64_t steps) {
+  ZfpCodec codec(nullptr, dims, settings, steps);
   return static_cast<std::int64_t>(codec.maximumBytes());
 }
 
@@ -113,10 +118,10 @@ struct StreamBuffer {
 }  // namespace
 
 std::string zfpCompress(std::span<const float> values, const Index3& dims,
-                        const ZfpSettings& settings) {
-  checkCount(values.size(), dims);
+                        const ZfpSettings& settings, std::int64_t steps) {
+  checkCount(values.size(), dims, steps);
   // ZFP takes a non-const pointer for both directions; compression only reads it.
-  ZfpCodec codec(const_cast<float*>(values.data()), dims, settings);
+  ZfpCodec codec(const_cast<float*>(values.data()), dims, settings, steps);
   StreamBuffer buffer(codec.maximumBytes());
   const size_t size = codec.compress(buffer.words.get(), buffer.count * sizeof(std::uint64_t));
   if (size == 0) throw Error("zfp could not compress the array");
@@ -124,9 +129,9 @@ std::string zfpCompress(std::span<const float> values, const Index3& dims,
 }
 
 ZfpRoundTrip zfpRoundTrip(std::span<const float> values, const Index3& dims,
-                          const ZfpSettings& settings) {
-  checkCount(values.size(), dims);
-  ZfpCodec encoder(const_cast<float*>(values.data()), dims, settings);
+                          const ZfpSettings& settings, std::int64_t steps) {
+  checkCount(values.size(), dims, steps);
+  ZfpCodec encoder(const_cast<float*>(values.data()), dims, settings, steps);
   StreamBuffer buffer(encoder.maximumBytes());
   const size_t size = encoder.compress(buffer.words.get(), buffer.count * sizeof(std::uint64_t));
   if (size == 0) throw Error("zfp could not compress the array");
@@ -135,16 +140,17 @@ ZfpRoundTrip zfpRoundTrip(std::span<const float> values, const Index3& dims,
   out.stream.assign(reinterpret_cast<const char*>(buffer.words.get()), size);
   // Our own stream, decoded where it was written: no padded copy of the longest stream.
   out.decoded.resize(values.size());
-  ZfpCodec decoder(out.decoded.data(), dims, settings);
+  ZfpCodec decoder(out.decoded.data(), dims, settings, steps);
   if (decoder.decompress(buffer.words.get(), buffer.count * sizeof(std::uint64_t)) == 0)
     throw Error("zfp could not decode the stream it wrote");
   return out;
 }
 
 std::vector<float> zfpDecompress(std::span<const std::uint8_t> bytes, const Index3& dims,
-                                 const ZfpSettings& settings) {
-  std::vector<float> values(static_cast<size_t>(dims[0] * dims[1] * dims[2]));
-  ZfpCodec codec(values.data(), dims, settings);
+                                 const ZfpSettings& settings, std::int64_t steps) {
+  if (steps < 1) throw Error("the zfp array needs at least one step");
+  std::vector<float> values(static_cast<size_t>(dims[0] * dims[1] * dims[2] * steps));
+  ZfpCodec codec(values.data(), dims, settings, steps);
   const size_t maximum = codec.maximumBytes();
   if (bytes.size() > maximum) throw Error("the zfp stream is longer than its mode can produce");
   // ZFP's decoder does not know where the stream ends: decode from a zero-padded copy of the

@@ -87,6 +87,7 @@ std::string loadFrom(const char* file, ZfpLibrary& z) {
   }
   std::string missing;
   resolve(handle, "zfp_field_3d", z.field_3d, missing);
+  resolve(handle, "zfp_field_4d", z.field_4d, missing);
   resolve(handle, "zfp_field_free", z.field_free, missing);
   resolve(handle, "zfp_stream_open", z.stream_open, missing);
   resolve(handle, "zfp_stream_close", z.stream_close, missing);

@@ -22,6 +22,7 @@ namespace mfadvr {
 // ZFP's C functions that mfadvr calls, resolved in ZFP's own namespace.
 struct ZfpLibrary {
   decltype(&::zfp_field_3d) field_3d;
+  decltype(&::zfp_field_4d) field_4d;
   decltype(&::zfp_field_free) field_free;
   decltype(&::zfp_stream_open) stream_open;
   decltype(&::zfp_stream_close) stream_close;

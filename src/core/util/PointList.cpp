@@ -104,11 +104,25 @@ std::vector<Vec3d> parsePointList(std::string_view text, std::string_view name) 
   return points;
 }
 
+PointTimes parsePointTimeList(std::string_view text, std::string_view name) {
+  const Table t = parseTable(
+      text, name,
+      {4, "four numbers 'x y z t'", "coordinates and times must be finite", "no points"});
+  PointTimes out;
+  out.points.reserve(t.numbers.size() / 4);
+  out.times.reserve(t.numbers.size() / 4);
+  for (size_t i = 0; i < t.numbers.size(); i += 4) {
+    out.points.emplace_back(t.numbers[i], t.numbers[i + 1], t.numbers[i + 2]);
+    out.times.push_back(t.numbers[i + 3]);
+  }
+  return out;
+}
+
 ScatteredData parsePointValueList(std::string_view text, std::string_view name) {
-  const Table t = parseTable(text, name,
-                             {4, "four numbers 'x y z value'",
-                              "coordinates and values must be finite", "no points with values",
-                              true});
+  const Table t =
+      parseTable(text, name,
+                 {4, "four numbers 'x y z value'", "coordinates and values must be finite",
+                  "no points with values", true});
   ScatteredData data;
   const size_t n = t.numbers.size() / 4;
   data.points.reserve(n);

@@ -14,6 +14,13 @@ namespace mfadvr {
 // `name` appears in error messages.
 std::vector<Vec3d> parsePointList(std::string_view text, std::string_view name = "points");
 
+// Points with times, for queries of time-varying models: four columns "x y z t" per line.
+struct PointTimes {
+  std::vector<Vec3d> points;
+  std::vector<double> times;
+};
+PointTimes parsePointTimeList(std::string_view text, std::string_view name = "points");
+
 // Scattered values: four columns "x y z v" per line (CSV or whitespace). A header with four
 // names gives the field its name (the fourth); otherwise the field is called "value". Returns
 // a point cloud (no cells) with source = `name`, fieldAssociation "point data", sampleType

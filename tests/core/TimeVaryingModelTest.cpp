@@ -1,0 +1,228 @@
+#include "core/model/TimeVaryingModel.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <random>
+
+#include "core/analytic/BuiltinSeries.h"
+#include "core/encode/TimeSeriesEncoder.h"
+#include "core/model/ModelFile.h"
+#include "core/util/Error.h"
+
+namespace mfadvr {
+namespace {
+
+// A polynomial of degree 2 in x, y, z and 3 in t: a cubic-in-time model with spatial degree >= 2
+// reproduces it from any samples that determine it.
+class Polynomial final : public BuiltinSeriesFunction {
+ public:
+  std::string name() const override { return "polynomial"; }
+  Index3 defaultDims() const override { return {10, 9, 8}; }
+  int defaultSteps() const override { return 7; }
+  double value(const Vec3d& p, double t, Vec3d* g, double* rate) const override {
+    const double x = p[0], y = p[1], z = p[2];
+    const double s = 0.5 + x * y - 0.3 * z * z + 0.2 * y;
+    const double q = 1.0 + 0.5 * t - 0.8 * t * t + 0.6 * t * t * t;
+    if (g) *g = Vec3d(y * q + 0.4 * t * x, (x + 0.2) * q, -0.6 * z * q);
+    if (rate) *rate = s * (0.5 - 1.6 * t + 1.8 * t * t) + 0.2 * x * x;
+    return s * q + 0.2 * t * x * x;
+  }
+};
+
+// Steps at uneven times, on a 10 x 9 x 8 grid.
+BuiltinVolumeSeries polynomialSeries(std::vector<double> times = {0.0, 0.1, 0.35, 0.4, 0.7, 0.85,
+                                                                  1.0}) {
+  return BuiltinVolumeSeries(std::make_shared<Polynomial>(), {10, 9, 8}, std::move(times));
+}
+
+EncodeOptions spatialOptions() {
+  EncodeOptions o;
+  o.degree = {3, 3, 3};
+  o.controlCounts = {6, 5, 5};
+  return o;
+}
+
+TEST(TimeVarying, APolynomialInSpaceAndTimeIsReproducedAtAnyTime) {
+  const BuiltinVolumeSeries series = polynomialSeries();
+  TimeSeriesOptions time;
+  time.controlCount = 5;  // fewer than the 7 steps: a least-squares fit in time
+  FitReport report;
+  const TimeVaryingModel m = encodeTimeSeries(series, spatialOptions(), time, &report);
+  ASSERT_TRUE(m.hasTime());
+  EXPECT_EQ(m.timeAxis().controlCount(), 5);
+  EXPECT_EQ(m.timeAxis().degree(), 3);
+  EXPECT_EQ(report.timeSteps, 7);
+  EXPECT_LT(report.maxError, 1e-4);
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-1.0, 1.0), ut(0.0, 1.0);
+  std::vector<Vec3d> points;
+  std::vector<double> times;
+  for (int i = 0; i < 400; ++i) {
+    points.emplace_back(u(rng), u(rng), u(rng));
+    times.push_back(ut(rng));
+  }
+  std::vector<float> values(points.size()), rates(points.size());
+  std::vector<Vec3f> gradients(points.size());
+  m.evaluate(points, times, values, gradients, rates);
+  for (size_t i = 0; i < points.size(); ++i) {
+    Vec3d g;
+    double rate = 0.0;
+    const double truth = series.function().value(points[i], times[i], &g, &rate);
+    ASSERT_NEAR(values[i], truth, 2e-4) << "at t = " << times[i];
+    ASSERT_NEAR(rates[i], rate, 5e-3);
+    for (int a = 0; a < 3; ++a) ASSERT_NEAR(gradients[i][a], g[a], 2e-3);
+  }
+}
+
+TEST(TimeVarying, TheContractionAgreesWithTheFourDimensionalEvaluation) {
+  const TimeVaryingModel m =
+      encodeTimeSeries(BuiltinVolumeSeries("builtin:orbiting-blobs:12x12x12x6"), EncodeOptions(),
+                       TimeSeriesOptions());
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (double t : {0.0, 0.13, 0.5, 0.77, 1.0}) {
+    const Model instant = m.at(t);
+    std::vector<Vec3d> points;
+    for (int i = 0; i < 100; ++i) points.emplace_back(u(rng), u(rng), u(rng));
+    std::vector<double> times(points.size(), t);
+    std::vector<float> direct(points.size());
+    m.evaluate(points, times, direct);
+    for (size_t i = 0; i < points.size(); ++i)
+      ASSERT_NEAR(instant.value(points[i]), direct[i], 1e-5) << "t = " << t;
+  }
+  // The model interpolates the steps: at a step's time it gives that step's samples.
+  const BuiltinVolumeSeries series("builtin:orbiting-blobs:12x12x12x6");
+  const StructuredGrid step = series.load(2);
+  const Model at = m.at(series.time(2));
+  for (std::int64_t k = 0; k < 12; k += 5)
+    for (std::int64_t j = 0; j < 12; j += 3)
+      for (std::int64_t i = 0; i < 12; ++i)
+        ASSERT_NEAR(at.value(step.position(i, j, k)), step.at(i, j, k), 1e-4);
+}
+
+TEST(TimeVarying, FilesKeepTheTimeAxisAndThreeDimensionalFilesAreUnchanged) {
+  const TimeVaryingModel m =
+      encodeTimeSeries(polynomialSeries(), spatialOptions(), TimeSeriesOptions());
+  std::uint32_t version = 0;
+  for (const ControlCoder coder :
+       {ControlCoder::kFloat32, ControlCoder::kLossless, ControlCoder::kZfp}) {
+    TimeVaryingModel coded = m;
+    std::vector<float> expected(m.controlPoints().begin(), m.controlPoints().end());
+    if (coder != ControlCoder::kFloat32) {
+      ControlCoding c{coder, 1e-3};
+      const std::string bytes =
+          encodeControlPoints(m.controlPoints(), m.first().spline().counts(), c, m.slabCount());
+      expected =
+          decodeControlPoints({reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size()},
+                              m.first().spline().counts(), c, m.slabCount());
+      // A zfp round trip keeps the control points within the tolerance.
+      for (size_t i = 0; i < expected.size(); ++i)
+        ASSERT_NEAR(expected[i], m.controlPoints()[i], 1e-3);
+      coded = TimeVaryingModel(m.first(), m.timeAxis(), expected);
+      coded.setControlCoding(c, std::make_shared<const std::string>(bytes));
+    }
+    const std::string file = serializeModel(coded);
+    const std::vector<std::uint8_t> bytes(file.begin(), file.end());
+    const TimeVaryingModel back = parseTimeVaryingModel(bytes, "m.mfa", &version);
+    EXPECT_EQ(version, kTimeModelFormatVersion);
+    ASSERT_TRUE(back.hasTime());
+    EXPECT_EQ(back.timeAxis().steps, m.timeAxis().steps);
+    EXPECT_EQ(back.timeAxis().knots, m.timeAxis().knots);
+    EXPECT_EQ(back.controlCoding().coder, coder);
+    EXPECT_EQ(std::vector<float>(back.controlPoints().begin(), back.controlPoints().end()),
+              expected);
+    // Written again, the same bytes.
+    EXPECT_EQ(serializeModel(back), file);
+    EXPECT_EQ(modelFileSize(back), static_cast<std::int64_t>(file.size()));
+    // A 3-D reader sees the first step.
+    const Model first = parseModel(bytes, "m.mfa");
+    EXPECT_NEAR(first.value(Vec3d(0.1, 0.2, 0.3)), back.at(0.0).value(Vec3d(0.1, 0.2, 0.3)), 1e-6);
+  }
+  // A 3-D model through the time-varying writer: the version-3 bytes of the 3-D writer.
+  const Model plain = m.at(0.5);
+  const std::string three = serializeModel(TimeVaryingModel(plain));
+  EXPECT_EQ(three, serializeModel(plain));
+  const std::vector<std::uint8_t> b3(three.begin(), three.end());
+  const TimeVaryingModel back3 = parseTimeVaryingModel(b3, "p.mfa", &version);
+  EXPECT_EQ(version, kModelFormatVersion);
+  EXPECT_FALSE(back3.hasTime());
+}
+
+TEST(TimeVarying, DamagedFourDimensionalFilesAreClearErrors) {
+  const TimeVaryingModel m =
+      encodeTimeSeries(polynomialSeries(), spatialOptions(), TimeSeriesOptions());
+  const std::string file = serializeModel(m);
+  std::mt19937 rng(1);
+  for (int trial = 0; trial < 200; ++trial) {
+    std::vector<std::uint8_t> b(file.begin(), file.end());
+    if (trial % 2 == 0)
+      b.resize(rng() % b.size());
+    else
+      b[rng() % b.size()] ^= static_cast<std::uint8_t>(1 + rng() % 255);
+    EXPECT_THROW(parseTimeVaryingModel(b, "bad.mfa"), Error);
+  }
+}
+
+TEST(TimeVarying, BadSeriesAreClearErrors) {
+  auto message = [](const BuiltinVolumeSeries& s, const TimeSeriesOptions& t = {}) {
+    try {
+      encodeTimeSeries(s, spatialOptions(), t);
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_NE(message(polynomialSeries({0.0, 0.5, 0.4, 1.0})).find("must increase"),
+            std::string::npos);
+  EXPECT_NE(message(polynomialSeries({0.0, 0.5, 0.4, 1.0})).find("step 2"), std::string::npos);
+  EXPECT_NE(message(polynomialSeries({0.0})).find("at least two steps"), std::string::npos);
+  TimeSeriesOptions tooMany;
+  tooMany.controlCount = 9;
+  EXPECT_NE(message(polynomialSeries(), tooMany).find("--time-ctrl"), std::string::npos);
+  TimeSeriesOptions badDegree;
+  badDegree.degree = 0;
+  EXPECT_NE(message(polynomialSeries(), badDegree).find("--time-degree"), std::string::npos);
+  // Few steps lower the degree, with a note.
+  std::vector<std::string> notes;
+  const TimeVaryingModel two = encodeTimeSeries(polynomialSeries({0.0, 1.0}), spatialOptions(),
+                                                TimeSeriesOptions(), nullptr, &notes);
+  EXPECT_EQ(two.timeAxis().degree(), 1);
+  ASSERT_EQ(notes.size(), 1u);
+  EXPECT_NE(notes[0].find("lowered"), std::string::npos);
+  EncodeOptions adaptive = spatialOptions();
+  adaptive.adaptive = AdaptiveOptions();
+  EXPECT_THROW(encodeTimeSeries(polynomialSeries(), adaptive, TimeSeriesOptions()), Error);
+}
+
+// A series whose steps do not share one grid.
+class ShiftingGrid final : public VolumeSeries {
+ public:
+  int size() const override { return 3; }
+  double time(int s) const override { return s; }
+  std::string stepName(int s) const override { return "frame" + std::to_string(s) + ".nrrd"; }
+  StructuredGrid load(int s) const override {
+    StructuredGrid g;
+    g.dims = {6, 6, s == 2 ? 7 : 6};
+    g.values.assign(static_cast<size_t>(g.sampleCount()), 1.0f);
+    g.sampleType = "float32";
+    return g;
+  }
+  std::string source() const override { return "frame%d.nrrd"; }
+};
+
+TEST(TimeVarying, AStepOnAnotherGridIsNamed) {
+  EncodeOptions o;
+  o.controlCounts = {4, 4, 4};
+  try {
+    encodeTimeSeries(ShiftingGrid(), o, TimeSeriesOptions());
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("frame2.nrrd has another grid"), std::string::npos)
+        << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace mfadvr
