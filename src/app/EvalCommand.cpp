@@ -48,15 +48,19 @@ struct EvalCliOptions {
   bool noPlots = false, noVtk = false, quiet = false;
 };
 
-// --out, --quick, --volume, --data, --threads and -q, which every `eval` subcommand takes.
+// --out, --quick, --threads and -q, which every `eval` subcommand takes, and --volume and --data
+// for those that read data (a volumeHelp).
 void addSharedOptions(CLI::App* sub, EvalCliOptions& o, const std::string& quickHelp,
                       const std::string& volumeHelp, const std::string& dataSets) {
   sub->add_option("--out", o.out, "Output folder (created; files in it are replaced)")->required();
   sub->add_flag("--quick", o.eval.quick, quickHelp);
-  sub->add_option("--volume", o.eval.volumes, volumeHelp);
-  sub->add_option("--data", o.dataDir,
-                  "Folder with the standard data sets (" + dataSets + "); missing ones are skipped")
-      ->capture_default_str();
+  if (!volumeHelp.empty()) {
+    sub->add_option("--volume", o.eval.volumes, volumeHelp);
+    sub->add_option(
+           "--data", o.dataDir,
+           "Folder with the standard data sets (" + dataSets + "); missing ones are skipped")
+        ->capture_default_str();
+  }
   sub->add_option("--threads", o.eval.threads, "Ray-casting threads (0: all cores)")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
@@ -149,9 +153,18 @@ Command addEvalCommand(CLI::App& app) {
       "reads)",
       "neghip, bonsai");
 
-  auto run = [o, c = c, d = d, paper, compression = compression, denoise = denoise]() -> int {
+  const auto [t, time] = addSingleExperiment(
+      sub, "time",
+      "One 4-D model of a time series (the built-in orbiting-blobs at 8, 16 and 32 steps) against "
+      "the linear interpolation of neighbouring steps and the nearest step, halfway between "
+      "steps: value PSNR, rendered images, and the coded model's size against per-step models "
+      "and ZFP 4-D (docs/time-varying.md); the same as `eval paper --only time`",
+      "24^3 grids, 8 and 16 steps, 128x128 images (seconds)", "", "");
+  auto run = [o, c = c, d = d, t = t, paper, compression = compression, denoise = denoise,
+              time = time]() -> int {
     if (compression->parsed()) return runEvaluation(*c, "compression");
     if (denoise->parsed()) return runEvaluation(*d, "denoise");
+    if (time->parsed()) return runEvaluation(*t, "time");
     if (!paper->parsed()) return 2;
     return runEvaluation(*o, "paper");
   };

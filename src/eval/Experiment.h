@@ -44,6 +44,7 @@ ExperimentReport runQueryTiming(const EvalContext&);          // Fig. 12
 ExperimentReport runRenderPerformance(const EvalContext&);    // Fig. 11
 ExperimentReport runCompressionStudy(const EvalContext&);     // beyond the paper: compression
 ExperimentReport runDenoiseStudy(const EvalContext&);         // beyond the paper: noise reduction
+ExperimentReport runTimeStudy(const EvalContext&);            // beyond the paper: time series
 
 }  // namespace mfadvr::eval
 

@@ -30,6 +30,8 @@ const std::vector<Experiment>& paperExperiments() {
        "future work: compression", runCompressionStudy},
       {"denoise", "Noise reduction: smoothing fits of noisy and quantized samples",
        "future work: noise reduction", runDenoiseStudy},
+      {"time", "Time series: one 4-D model against interpolating the steps in time",
+       "beyond the paper: time-varying data", runTimeStudy},
   };
   return experiments;
 }

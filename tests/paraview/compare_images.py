@@ -36,6 +36,19 @@ def is_blank(values):
     return pixels_in_all - max(colours.values()) < 0.01 * pixels_in_all
 
 
+def psnr(reference_path, other_path):
+    """PSNR in dB of other against reference (8-bit RGB); exits when the reference is blank or
+    the sizes differ."""
+    dims, ref = pixels(reference_path)
+    if is_blank(ref):
+        sys.exit("the reference image %s is blank" % reference_path)
+    other_dims, other = pixels(other_path)
+    if other_dims != dims:
+        sys.exit("%s has another size than %s" % (other_path, reference_path))
+    mse = sum((a - b) ** 2 for a, b in zip(ref, other)) / len(ref)
+    return math.inf if mse == 0 else 10 * math.log10(255.0 ** 2 / mse)
+
+
 def compare_views(minimum, reference_prefix, others):
     """Each OTHER-<view>.png against REFERENCE-<view>.png, for every view of the reference."""
     import glob

@@ -8,7 +8,10 @@
 //                            and the samples as VTK XML image data (scan.vti) and as a gzip
 //                            uint8 NRRD file (scan.nrrd) for MFA Encode;
 //   head.mfa                 the model docs/paraview.md's examples open (default encoding of
-//                            builtin:ct-head:64).
+//                            builtin:ct-head:64);
+//   blobs.mfa, blobs-0.3.mfa a time-varying model (builtin:orbiting-blobs:24x24x24x6, steps at
+//                            t = 0, 0.2, ..., 1) and, as a 3-D model, its instant at t = 0.3
+//                            (between two steps) as `mfadvr render --time 0.3` renders it.
 // Interpolating quadratic fits throughout. The scan's samples are 8-bit integers, so its models
 // are coded as `mfadvr encode` codes an integer scan by default: zfp control points that round
 // back to every sample (ParaView's process also holds CFITSIO, whose stream_* functions once
@@ -24,6 +27,8 @@
 
 #include "GzipBytes.h"
 #include "core/analytic/BuiltinFunction.h"
+#include "core/analytic/BuiltinSeries.h"
+#include "core/encode/TimeSeriesEncoder.h"
 #include "core/encode/Encoder.h"
 #include "core/encode/PieceEncoder.h"
 #include "core/model/BlockModelFile.h"
@@ -110,6 +115,11 @@ int main(int argc, char** argv) {
     mfadvr::saveModel(mfadvr::encodeStructured(mfadvr::sampleBuiltinSpec("builtin:ct-head:64"),
                                                mfadvr::EncodeOptions{}),
                       dir / "head.mfa");
+    const mfadvr::TimeVaryingModel blobs =
+        mfadvr::encodeTimeSeries(mfadvr::BuiltinVolumeSeries("builtin:orbiting-blobs:24x24x24x6"),
+                                 mfadvr::EncodeOptions{}, mfadvr::TimeSeriesOptions{});
+    mfadvr::saveModel(blobs, dir / "blobs.mfa");
+    mfadvr::saveModel(blobs.at(0.3), dir / "blobs-0.3.mfa");
   } catch (const std::exception& e) {
     std::fprintf(stderr, "%s\n", e.what());
     return 1;

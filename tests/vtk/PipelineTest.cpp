@@ -10,6 +10,8 @@
 #include <vtkExtentTranslator.h>
 #include <vtkFieldData.h>
 #include <vtkImageData.h>
+#include <vtkInformation.h>
+#include <vtkStreamingDemandDrivenPipeline.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
@@ -31,7 +33,9 @@
 #include "TestSupport.h"
 #include "VtkErrorLog.h"
 #include "VtkSceneFixture.h"
+#include "core/analytic/BuiltinSeries.h"
 #include "core/encode/PieceEncoder.h"
+#include "core/encode/TimeSeriesEncoder.h"
 #include "core/encode/StructuredEncoder.h"
 #include "core/model/BlockModelFile.h"
 #include "core/model/ControlCoding.h"
@@ -68,6 +72,60 @@ TEST(MFAReader, ReadsAModelFile) {
   EXPECT_TRUE(out->IsInside(0, 0, 0));
   EXPECT_FALSE(out->IsInside(2, 0, 0));
   EXPECT_FALSE(out->HasDomainMask());
+}
+
+// A time-varying model: its steps and range in the pipeline's time keys, and the instant asked
+// for (between steps too) in the output, as the model and as the image that carries it.
+TEST(MFAReader, GivesEveryInstantOfATimeVaryingModel) {
+  const auto path = scratchDir() / "blobs.mfa";
+  const TimeVaryingModel series = encodeTimeSeries(
+      BuiltinVolumeSeries("builtin:orbiting-blobs:12x12x12x5"), EncodeOptions(), TimeSeriesOptions());
+  saveModel(series, path);
+  for (const bool image : {false, true}) {
+    vtkNew<vtkMFAReader> reader;
+    reader->SetFileName(path.c_str());
+    reader->SetOutputImageData(image);
+    reader->UpdateInformation();
+    vtkInformation* info = reader->GetOutputInformation(0);
+    ASSERT_TRUE(info->Has(vtkStreamingDemandDrivenPipeline::TIME_STEPS()));
+    ASSERT_EQ(info->Length(vtkStreamingDemandDrivenPipeline::TIME_STEPS()), 5);
+    EXPECT_DOUBLE_EQ(info->Get(vtkStreamingDemandDrivenPipeline::TIME_STEPS())[1], 0.25);
+    const double* range = info->Get(vtkStreamingDemandDrivenPipeline::TIME_RANGE());
+    EXPECT_DOUBLE_EQ(range[0], 0.0);
+    EXPECT_DOUBLE_EQ(range[1], 1.0);
+    for (const double t : {0.0, 0.4, 0.75}) {
+      reader->UpdateTimeStep(t);
+      vtkDataObject* out = reader->GetOutputDataObject(0);
+      EXPECT_DOUBLE_EQ(out->GetInformation()->Get(vtkDataObject::DATA_TIME_STEP()), t);
+      const Vec3d p(0.3, -0.2, 0.1);
+      const double expected = series.at(t).value(p);
+      if (image) {
+        // The carrier's point scalars: the instant on the data's grid.
+        auto* carrier = vtkImageData::SafeDownCast(out);
+        ASSERT_NE(carrier, nullptr);
+        const Model instant = series.at(t);
+        vtkDataArray* values = carrier->GetPointData()->GetScalars();
+        ASSERT_NE(values, nullptr);
+        for (vtkIdType i = 0; i < values->GetNumberOfTuples(); i += 97) {
+          double x[3];
+          carrier->GetPoint(i, x);
+          EXPECT_NEAR(values->GetTuple1(i), instant.value(Vec3d(x[0], x[1], x[2])), 1e-5)
+              << "t = " << t;
+        }
+      } else {
+        EXPECT_FLOAT_EQ(vtkMFAModelData::SafeDownCast(out)->EvaluateValue(p[0], p[1], p[2]),
+                        expected)
+            << "t = " << t;
+      }
+    }
+  }
+  // A 3-D model advertises no time.
+  const auto plain = scratchDir() / "ml.mfa";
+  saveModel(*marschnerLobbModel(), plain);
+  vtkNew<vtkMFAReader> reader;
+  reader->SetFileName(plain.c_str());
+  reader->UpdateInformation();
+  EXPECT_FALSE(reader->GetOutputInformation(0)->Has(vtkStreamingDemandDrivenPipeline::TIME_STEPS()));
 }
 
 TEST(MFAReader, ReportsBadFilesWithoutOutput) {

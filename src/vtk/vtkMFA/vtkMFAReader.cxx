@@ -22,6 +22,7 @@
 #include "core/model/BlockModelFile.h"
 #include "core/model/Model.h"
 #include "core/model/ModelFile.h"
+#include "core/model/TimeVaryingModel.h"
 #include "core/render/RenderMemory.h"
 
 vtkStandardNewMacro(vtkMFAReader);
@@ -54,7 +55,9 @@ struct vtkMFAReader::Layout {
   std::filesystem::file_time_type time;
   bool multiBlock = false;
   mfadvr::BlockIndex index;                     // multi-block files
-  std::shared_ptr<const mfadvr::Model> single;  // single-model files
+  std::shared_ptr<const mfadvr::Model> single;  // single-model files (at the first step)
+  // A time-varying single model: every instant.
+  std::shared_ptr<const mfadvr::TimeVaryingModel> series;
   std::vector<mfadvr::DomainBox> regions;
   mfadvr::vtkglue::CarrierGrid whole;
 };
@@ -144,7 +147,10 @@ const vtkMFAReader::Layout& vtkMFAReader::ReadLayout() {
     layout->whole = mfadvr::vtkglue::wholeCarrierGrid(layout->index.box, step);
   } else {
     requireModelMemory({mfadvr::summarizeModelFile(this->FileName)}, this->FileName);
-    layout->single = std::make_shared<const mfadvr::Model>(mfadvr::loadModel(this->FileName));
+    auto series = std::make_shared<const mfadvr::TimeVaryingModel>(
+        mfadvr::loadTimeVaryingModel(this->FileName));
+    layout->single = std::make_shared<const mfadvr::Model>(series->first());
+    if (series->hasTime()) layout->series = std::move(series);
     layout->regions.push_back(layout->single->domain());
     layout->whole =
         mfadvr::vtkglue::wholeCarrierGrid(layout->single->domain(), layout->single->dataSpacing());
@@ -155,12 +161,26 @@ const vtkMFAReader::Layout& vtkMFAReader::ReadLayout() {
 
 int vtkMFAReader::RequestInformation(vtkInformation*, vtkInformationVector**,
                                      vtkInformationVector* outInfo) {
-  if (!this->OutputImageData || !this->FileName || !*this->FileName) {
-    return 1;  // a model output has no extent; RequestData reports a missing name
+  if (!this->FileName || !*this->FileName) {
+    return 1;  // RequestData reports a missing name
   }
   try {
     const Layout& layout = this->ReadLayout();
     vtkInformation* info = outInfo->GetInformationObject(0);
+    // A time-varying model gives any instant of its range: the steps it was encoded from, and
+    // the range, so that an animation may ask for times between them too.
+    info->Remove(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
+    info->Remove(vtkStreamingDemandDrivenPipeline::TIME_RANGE());
+    if (layout.series) {
+      const mfadvr::TimeAxis& axis = layout.series->timeAxis();
+      info->Set(vtkStreamingDemandDrivenPipeline::TIME_STEPS(), axis.steps.data(),
+                static_cast<int>(axis.steps.size()));
+      const double range[2] = {axis.begin, axis.end};
+      info->Set(vtkStreamingDemandDrivenPipeline::TIME_RANGE(), range, 2);
+    }
+    if (!this->OutputImageData) {
+      return 1;  // a model output has no extent
+    }
     info->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), layout.whole.extent, 6);
     info->Set(vtkDataObject::ORIGIN(), layout.whole.origin.data(), 3);
     info->Set(vtkDataObject::SPACING(), layout.whole.spacing.data(), 3);
@@ -188,19 +208,38 @@ int vtkMFAReader::RequestData(vtkInformation*, vtkInformationVector**,
                          ? info->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES())
                          : 1;
   try {
-    if (!this->OutputImageData) {
-      if (mfadvr::isBlockModelFile(this->FileName)) {
-        vtkErrorMacro(<< this->FileName
-                      << " is a multi-block model; read it with OutputImageData on (as "
-                         "ParaView does) or render it with `mfadvr render`");
-        return 0;
-      }
-      requireModelMemory({mfadvr::summarizeModelFile(this->FileName)}, this->FileName);
-      this->SetOutputModel(
-          outInfo, std::make_shared<const mfadvr::Model>(mfadvr::loadModel(this->FileName)));
-      return 1;
+    if (!this->OutputImageData && mfadvr::isBlockModelFile(this->FileName)) {
+      vtkErrorMacro(<< this->FileName
+                    << " is a multi-block model; read it with OutputImageData on (as "
+                       "ParaView does) or render it with `mfadvr render`");
+      return 0;
     }
     const Layout& layout = this->ReadLayout();
+    // The instant asked for (any time in the range; the first step without a request).
+    std::shared_ptr<const mfadvr::Model> single = layout.single;
+    if (layout.series) {
+      const mfadvr::TimeAxis& axis = layout.series->timeAxis();
+      double t = layout.series->defaultTime();
+      if (info->Has(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP())) {
+        t = info->Get(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP());
+      }
+      t = std::clamp(t, axis.begin, axis.end);
+      if (!this->Instant || this->InstantTime != t || this->InstantOf != layout.series) {
+        this->Instant = std::make_shared<const mfadvr::Model>(layout.series->at(t));
+        this->InstantTime = t;
+        this->InstantOf = layout.series;
+      }
+      single = this->Instant;
+      output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), t);
+    }
+    if (!this->OutputImageData) {
+      this->SetOutputModel(outInfo, single);
+      if (layout.series) {
+        output = outInfo->GetInformationObject(0)->Get(vtkDataObject::DATA_OBJECT());
+        output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), this->InstantTime);
+      }
+      return 1;
+    }
     const std::vector<Share> share =
         shareOf(std::max(piece, 0), std::max(pieces, 1), layout.regions, layout.whole);
     if (share.empty()) {
@@ -224,7 +263,7 @@ int vtkMFAReader::RequestData(vtkInformation*, vtkInformationVector**,
       mfadvr::vtkglue::CarriedModel m;
       m.model = layout.multiBlock ? std::make_shared<const mfadvr::Model>(
                                         mfadvr::loadBlock(this->FileName, layout.index, s.block))
-                                  : layout.single;
+                                  : single;
       m.region = s.region;
       all.min = all.min.cwiseMin(s.region.min);
       all.max = all.max.cwiseMax(s.region.max);
@@ -240,6 +279,9 @@ int vtkMFAReader::RequestData(vtkInformation*, vtkInformationVector**,
     }
     output->ShallowCopy(mfadvr::vtkglue::imageOfModels(
         std::move(models), mfadvr::vtkglue::carrierSubGrid(layout.whole, all)));
+    if (layout.series) {
+      output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), this->InstantTime);
+    }
   } catch (const std::exception& e) {
     vtkErrorMacro(<< e.what());
     return 0;

@@ -13,6 +13,12 @@
  * of an image (its view bounds and compositing order come from them). A missing, truncated or
  * damaged file is reported with vtkErrorMacro (the message says what is wrong) and leaves the
  * output empty.
+ *
+ * A time-varying model (`mfadvr encode` of a series; docs/time-varying.md) advertises its steps
+ * as TIME_STEPS and its range as TIME_RANGE, and gives the model at UPDATE_TIME_STEP, any time
+ * in the range (clamped onto it), with DATA_TIME_STEP set: ParaView's animation plays it
+ * (Snap To TimeSteps, or Sequence for instants between the steps). Without a requested time it
+ * gives the first step.
  */
 #ifndef vtkMFAReader_h
 #define vtkMFAReader_h
@@ -21,6 +27,11 @@
 #include "vtkMFAModule.h"  // for export macro
 
 #include <memory>  // for the cached layout
+
+namespace mfadvr {
+class Model;
+class TimeVaryingModel;
+}  // namespace mfadvr
 
 class VTKMFA_EXPORT vtkMFAReader : public vtkMFAModelAlgorithm {
  public:
@@ -56,6 +67,11 @@ class VTKMFA_EXPORT vtkMFAReader : public vtkMFAModelAlgorithm {
   // (and again when the file changes).
   const Layout& ReadLayout();
   std::shared_ptr<Layout> Cached;
+  // The instant last given of a time-varying model (rendering one time again does not
+  // contract the time axis again).
+  std::shared_ptr<const mfadvr::Model> Instant;
+  std::shared_ptr<const mfadvr::TimeVaryingModel> InstantOf;
+  double InstantTime = 0.0;
 
  private:
   vtkMFAReader(const vtkMFAReader&) = delete;
