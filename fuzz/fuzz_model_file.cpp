@@ -1,8 +1,8 @@
-// libFuzzer target: the .mfa loaders (one model, multi-block; copying or using the bytes in
-// place; the header summary) must turn any byte string into models or an Error. The files'
-// checksums keep mutations away from the coded control points, so the input is also read as a coded
-// section of its own: a selector byte (bit 7: zfp, else lossless; bits 0-6: the control grid 5 x 4
-// x (1 + bits % 8)) and the payload.
+// libFuzzer target: the .mfa loaders (one model, multi-block, time-varying; copying or using
+// the bytes in place; the header summary) must turn any byte string into models or an Error. The
+// files' checksums keep mutations away from the coded control points, so the input is also read as
+// a coded section of its own: a selector byte (bit 7: zfp, else lossless; bits 0-6: the control
+// grid 5 x 4 x (1 + bits % 8)) and the payload.
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -26,6 +26,18 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, size_t size) {
     const std::span<const std::uint8_t> view(*owned);
     const mfadvr::Model m = mfadvr::parseModel(view, "fuzz", nullptr, std::move(owned));
     (void)m.valueGradient(mfadvr::Vec3d::Ones());
+  } catch (const mfadvr::Error&) {
+  }
+  try {
+    // Time-varying files (format version 4): every instant, and the 4-D spline directly.
+    const mfadvr::TimeVaryingModel m =
+        mfadvr::parseTimeVaryingModel(std::span<const std::uint8_t>(data, size));
+    (void)m.at(0.5).value(mfadvr::Vec3d::Zero());
+    const mfadvr::Vec3d p = mfadvr::Vec3d::Zero();
+    const double t = 0.25;
+    float v = 0.0f, rate = 0.0f;
+    mfadvr::Vec3f g;
+    m.evaluate({&p, 1}, {&t, 1}, {&v, 1}, {&g, 1}, {&rate, 1});
   } catch (const mfadvr::Error&) {
   }
   try {

@@ -1,20 +1,32 @@
 // Writes seed inputs for the fuzzers: small valid models (uniform and non-uniform knots, several
-// degrees, one with a domain mask, a multi-block file), point lists ("x y z" and "x y z v") and
+// degrees, one with a domain mask, a multi-block file, a time-varying model), time-series
+// collections (.pvd and .series), point lists ("x y z" and "x y z v") and
 // 2-D transfer functions (JSON boxes), so
 // that mutations start from the interesting structure.
 #include <filesystem>
 #include <fstream>
 
 #include "core/analytic/BuiltinFunction.h"
+#include "core/analytic/BuiltinSeries.h"
 #include "core/encode/PieceEncoder.h"
 #include "core/encode/StructuredEncoder.h"
+#include "core/encode/TimeSeriesEncoder.h"
 #include "core/model/BlockModelFile.h"
 #include "core/model/ControlCoding.h"
 #include "core/model/ModelFile.h"
 
 int main(int argc, char** argv) {
-  if (argc != 4) return 2;
-  const std::filesystem::path models = argv[1], points = argv[2], tf2d = argv[3];
+  if (argc != 5) return 2;
+  const std::filesystem::path models = argv[1], points = argv[2], tf2d = argv[3],
+                              collections = argv[4];
+  std::filesystem::create_directories(collections);
+  std::ofstream(collections / "run.pvd")
+      << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n<Collection>\n"
+         "<DataSet timestep=\"0\" group=\"\" part=\"0\" file=\"a_000.vti\"/>\n"
+         "<DataSet file=\"b/a_001.vti\" timestep=\"0.5e1\"/>\n</Collection>\n</VTKFile>\n";
+  std::ofstream(collections / "run.series")
+      << R"({"file-series-version": "1.0", "files": [{"name": "a_000.nrrd", "time": 0},)"
+      << R"( {"name": "/data/a_001.nrrd", "time": 2.5}]})";
   std::filesystem::create_directories(models);
   std::filesystem::create_directories(points);
   std::filesystem::create_directories(tf2d);
@@ -67,6 +79,17 @@ int main(int argc, char** argv) {
     const auto blocks = mfadvr::encodeStructuredBlocks(
         mfadvr::sampleBuiltinSpec("builtin:marschner-lobb:5x3x3"), {2, 1, 1}, 1, o);
     mfadvr::saveBlockModels(blocks, {2, 1, 1}, models / "seed-blocks.mfa");
+  }
+  {
+    // A time-varying model (format version 4): 4 x 3 x 3 samples at 4 steps, linear in time.
+    mfadvr::EncodeOptions o;
+    o.degree = {1, 1, 1};
+    mfadvr::TimeSeriesOptions t;
+    t.degree = 2;
+    t.controlCount = 3;
+    mfadvr::saveModel(mfadvr::encodeTimeSeries(
+                          mfadvr::BuiltinVolumeSeries("builtin:orbiting-blobs:4x3x3x4"), o, t),
+                      models / "seed-time.mfa");
   }
   std::ofstream(points / "seed.txt") << "x,y,z\n0 0 0\n1.5, -2e-3, 4\n# c\n";
   std::ofstream(points / "seed-values.csv") << "x,y,z,rho\n0,0,0,1\n1.5 -2e-3 4 -7e2\n# c\n";

@@ -66,13 +66,9 @@ std::string beside(const fs::path& collection, const std::string& file) {
   return (f.is_absolute() ? f : collection.parent_path() / f).string();
 }
 
-struct Steps {
-  std::vector<std::string> files;
-  std::vector<double> times;
-};
+using Steps = CollectionSteps;
 
-Steps readPvd(const std::string& input) {
-  const std::string text = readText(input);
+Steps parsePvd(const std::string& text, const std::string& input) {
   if (text.find("<VTKFile") == std::string::npos || text.find("Collection") == std::string::npos)
     throw Error(input + ": not a ParaView collection (no <VTKFile type=\"Collection\">)");
   static const std::regex dataSet(R"(<DataSet\b([^>]*)>)");
@@ -98,10 +94,10 @@ Steps readPvd(const std::string& input) {
   return s;
 }
 
-Steps readSeriesJson(const std::string& input) {
+Steps parseSeriesJson(const std::string& text, const std::string& input) {
   Steps s;
   try {
-    const nlohmann::json j = nlohmann::json::parse(readText(input));
+    const nlohmann::json j = nlohmann::json::parse(text);
     const nlohmann::json& files = j.at("files");
     if (!files.is_array()) throw Error(input + ": \"files\" must be an array");
     for (const auto& f : files) {
@@ -245,6 +241,10 @@ std::optional<Steps> readDirectory(const std::string& input, bool strict) {
 
 }  // namespace
 
+CollectionSteps parseCollection(const std::string& text, const std::string& path, bool json) {
+  return json ? parseSeriesJson(text, path) : parsePvd(text, path);
+}
+
 FileVolumeSeries::FileVolumeSeries(std::string source, std::vector<std::string> files,
                                    std::vector<double> times, VolumeLoadOptions options)
     : source_(std::move(source)),
@@ -280,9 +280,9 @@ std::unique_ptr<VolumeSeries> openVolumeSeries(const std::string& input,
   std::error_code ec;
   Steps s;
   if (endsWith(l, ".pvd"))
-    s = readPvd(input);
+    s = parsePvd(readText(input), input);
   else if (endsWith(l, ".series"))
-    s = readSeriesJson(input);
+    s = parseSeriesJson(readText(input), input);
   else if (fs::is_directory(input, ec))
     s = *readDirectory(input, true);
   else if (isPattern(input))

@@ -28,6 +28,14 @@ std::unique_ptr<VolumeSeries> openVolumeSeries(const std::string& input,
                                                const VolumeLoadOptions& options = {},
                                                std::optional<std::vector<double>> times = {});
 
+// The steps a collection's text lists, files relative to `path`'s folder: `json` for the .series
+// format, else a .pvd. Throws mfadvr::Error naming `path` for malformed text (the fuzzed parser).
+struct CollectionSteps {
+  std::vector<std::string> files;
+  std::vector<double> times;
+};
+CollectionSteps parseCollection(const std::string& text, const std::string& path, bool json);
+
 // A list of files with their times (for collections made elsewhere).
 class FileVolumeSeries final : public VolumeSeries {
  public:

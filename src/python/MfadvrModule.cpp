@@ -30,6 +30,7 @@
 #include "core/model/BlockLocator.h"
 #include "core/model/BlockModelFile.h"
 #include "core/model/ModelFile.h"
+#include "core/model/TimeVaryingModel.h"
 #include "core/render/ReconstructionMethod.h"
 #include "core/util/Error.h"
 #include "core/util/MemoryBudget.h"
@@ -45,8 +46,10 @@ namespace {
 struct PyModel {
   std::shared_ptr<const Model> model;  // the model, or a multi-block model's first block's
   std::shared_ptr<const std::vector<ModelBlock>> blocks;  // null for a single model
-  Index3 blockGrid{1, 1, 1};                               // blocks per axis
-  nlohmann::json report;                                   // null for a loaded model
+  Index3 blockGrid{1, 1, 1};                              // blocks per axis
+  nlohmann::json report;                                  // null for a loaded model
+  // A time-varying model (docs/time-varying.md): every instant; `model` is its first step's.
+  std::shared_ptr<const TimeVaryingModel> series;
 
   PyModel(std::shared_ptr<const Model> m, nlohmann::json r)
       : model(std::move(m)), report(std::move(r)) {}
@@ -98,7 +101,8 @@ std::vector<std::string> commandLine(const py::kwargs& kwargs) {
     const bool sequence = py::isinstance<py::sequence>(value);
     bool strings = sequence && py::len(value) > 0;
     if (sequence)
-      for (const py::handle v : value.cast<py::sequence>()) strings = strings && py::isinstance<py::str>(v);
+      for (const py::handle v : value.cast<py::sequence>())
+        strings = strings && py::isinstance<py::str>(v);
     if (strings) {
       // A repeatable option (clip_plane=["0,0,0,1,0,0", ...], iso=[...]): once per item.
       for (const py::handle v : value.cast<py::sequence>()) {
@@ -311,7 +315,8 @@ PyModel encodePoints(const py::array& xyz, const py::array& values, const py::kw
   for (std::int64_t i = 0; i < n; ++i) {
     data.points[i] = Vec3d(p.at(i, 0), p.at(i, 1), p.at(i, 2));
     if (!data.points[i].allFinite() || !std::isfinite(data.values[i]))
-      throw py::value_error("point " + std::to_string(i) + " has a NaN or infinite coordinate or value");
+      throw py::value_error("point " + std::to_string(i) +
+                            " has a NaN or infinite coordinate or value");
   }
   data.inputBytes = static_cast<std::int64_t>(values.nbytes());
   return translated([&] {
@@ -354,10 +359,71 @@ void evaluateBlocks(const PyModel& m, std::span<const Vec3d> at, std::span<float
 
 // (N,) values, (N, 4) value and gradient, (N, 10) with the Hessian (dxx, dxy, dxz, dyy, dyz,
 // dzz): the columns of `mfadvr query`.
-py::array_t<float> query(const PyModel& m, const py::object& points, int derivatives,
-                         int threads) {
+// A time-varying model at points with their times: (N,) values, or with derivatives=1 (N, 5)
+// value, dx, dy, dz, dt (the columns of `mfadvr query` for x y z t). points: (N, 4) x, y, z, t,
+// or (N, 3) with `times` one number or (N,).
+py::array_t<float> queryInTime(const PyModel& m, const py::object& points, const py::object& times,
+                               int derivatives, int threads) {
+  if (derivatives == 2)
+    throw py::value_error("second derivatives of a time-varying model: query model.at(t)");
+  const auto p = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(points);
+  const bool withTimes = !times.is_none();
+  const py::ssize_t columns = withTimes ? 3 : 4;
+  if (!p || !((p.ndim() == 2 && p.shape(1) == columns) || (p.ndim() == 1 && p.shape(0) == columns)))
+    throw py::value_error(withTimes ? "points must be an (N, 3) array of x, y, z with times="
+                                    : "points of a time-varying model must be an (N, 4) array of "
+                                      "x, y, z, t (or (N, 3) with times=)");
+  const size_t n = p.ndim() == 2 ? static_cast<size_t>(p.shape(0)) : 1;
+  std::vector<Vec3d> at(n);
+  std::vector<double> t(n);
+  const double* v = p.data();
+  for (size_t i = 0; i < n; ++i) {
+    at[i] = Vec3d(v[columns * i], v[columns * i + 1], v[columns * i + 2]);
+    if (!withTimes) t[i] = v[columns * i + 3];
+  }
+  if (withTimes) {
+    const auto ts = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(times);
+    if (!ts || !(ts.size() == 1 || ts.size() == static_cast<py::ssize_t>(n)))
+      throw py::value_error("times must be one number or one per point");
+    for (size_t i = 0; i < n; ++i) t[i] = ts.data()[ts.size() == 1 ? 0 : i];
+  }
+  for (size_t i = 0; i < n; ++i)
+    if (!at[i].allFinite() || !std::isfinite(t[i]))
+      throw py::value_error("points and times must be finite");
+  std::vector<float> values(n), rates(derivatives >= 1 ? n : 0);
+  std::vector<Vec3f> gradients(derivatives >= 1 ? n : 0);
+  {
+    py::gil_scoped_release release;
+    const auto run = [&] { m.series->evaluate(at, t, values, gradients, rates); };
+    if (threads == 0) {
+      run();
+    } else {
+      tbb::task_arena arena(threads);
+      arena.execute(run);
+    }
+  }
+  if (derivatives == 0) {
+    py::array_t<float> out(static_cast<py::ssize_t>(n));
+    std::copy(values.begin(), values.end(), out.mutable_data());
+    return out;
+  }
+  py::array_t<float> out({static_cast<py::ssize_t>(n), py::ssize_t(5)});
+  float* o = out.mutable_data();
+  for (size_t i = 0; i < n; ++i, o += 5) {
+    o[0] = values[i];
+    for (int a = 0; a < 3; ++a) o[1 + a] = gradients[i][a];
+    o[4] = rates[i];
+  }
+  return out;
+}
+
+py::array_t<float> query(const PyModel& m, const py::object& points, int derivatives, int threads,
+                         const py::object& times) {
   if (derivatives < 0 || derivatives > 2) throw py::value_error("derivatives must be 0, 1 or 2");
   if (threads < 0) throw py::value_error("threads must be 0 (all cores) or more");
+  if (m.series) return queryInTime(m, points, times, derivatives, threads);
+  if (!times.is_none())
+    throw py::value_error("times= applies to time-varying models; this one has no time axis");
   const auto p = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(points);
   if (!p || !((p.ndim() == 2 && p.shape(1) == 3) || (p.ndim() == 1 && p.shape(0) == 3)))
     throw py::value_error("points must be an (N, 3) array of x, y, z (physical coordinates)");
@@ -448,8 +514,9 @@ void decodeBlocks(const PyModel& m, const DecodeGrid& grid, double* out) {
           count[a] = first[a][b[a] + 1] - k0[a];
         }
         if (count[0] <= 0 || count[1] <= 0 || count[2] <= 0) continue;
-        const Model& model = (*m.blocks)[static_cast<size_t>(
-            bx + m.blockGrid[0] * (by + m.blockGrid[1] * bz))].model;
+        const Model& model =
+            (*m.blocks)[static_cast<size_t>(bx + m.blockGrid[0] * (by + m.blockGrid[1] * bz))]
+                .model;
         // The block's samples a z plane at a time, by point evaluation (a block's samples lie
         // in its region, not on a grid spanning its model's box, which decodeBySlabs takes).
         std::vector<Vec3d> points(static_cast<size_t>(count[0] * count[1]));
@@ -458,8 +525,8 @@ void decodeBlocks(const PyModel& m, const DecodeGrid& grid, double* out) {
           for (std::int64_t y = 0; y < count[1]; ++y)
             for (std::int64_t x = 0; x < count[0]; ++x)
               points[static_cast<size_t>(y * count[0] + x)] =
-                  grid.origin + Vec3d(double(k0[0] + x), double(k0[1] + y), double(z))
-                                    .cwiseProduct(grid.spacing);
+                  grid.origin +
+                  Vec3d(double(k0[0] + x), double(k0[1] + y), double(z)).cwiseProduct(grid.spacing);
           model.evaluate(points, values, {}, {});
           for (std::int64_t y = 0; y < count[1]; ++y)
             std::copy_n(values.begin() + y * count[0], count[0],
@@ -532,7 +599,8 @@ py::array render(const py::object& input, const py::object& size, const py::obje
     if (spec.method != ReconstructionMethod::Mfa)
       throw py::value_error("a model renders with method 'mfa'; grid methods need the array");
     const PyModel& m = input.cast<const PyModel&>();
-    scene = m.blocks ? app::sceneOfBlocks(*m.blocks, "model") : app::sceneOfModel(*m.model, "model");
+    scene =
+        m.blocks ? app::sceneOfBlocks(*m.blocks, "model") : app::sceneOfModel(*m.model, "model");
   } else {
     StructuredGrid grid = gridOf(input.cast<py::array>(), spacing, origin);
     app::SceneNeeds needs;
@@ -571,7 +639,8 @@ vtkMFAModelData* vtkModelData(const py::object& object) {
   const size_t end = text.find("_p_");
   if (text.size() < 2 || text[0] != '_' || end == std::string::npos)
     throw py::type_error("not a VTK object: " + text);
-  const auto address = static_cast<std::uintptr_t>(std::stoull(text.substr(1, end - 1), nullptr, 16));
+  const auto address =
+      static_cast<std::uintptr_t>(std::stoull(text.substr(1, end - 1), nullptr, 16));
   vtkMFAModelData* data = vtkMFAModelData::SafeDownCast(reinterpret_cast<vtkObjectBase*>(address));
   if (!data) throw py::type_error("expected a vtkMFAModelData, got a " + text.substr(end + 3));
   return data;
@@ -591,13 +660,18 @@ PYBIND11_MODULE(_mfadvr, m) {
       .def_property_readonly(
           "info",
           [](const PyModel& self) {
+            if (self.series) {
+              nlohmann::json j = app::modelInfoJson(*self.model, "", 0);
+              j["time"] = app::timeAxisJson(*self.series);
+              return toPython(j);
+            }
             if (!self.blocks) return toPython(app::modelInfoJson(*self.model, "", 0));
             nlohmann::json entries = nlohmann::json::array();
             for (const ModelBlock& b : *self.blocks)
               entries.push_back(app::blockEntryJson(b.model, b.region));
             return toPython(app::blockModelsInfoJson(self.blockGrid, regionsBox(*self.blocks),
-                                                     self.model->valueMin(),
-                                                     self.model->valueMax(), entries));
+                                                     self.model->valueMin(), self.model->valueMax(),
+                                                     entries));
           },
           "The model's description (the CLI's `info --json`; for a multi-block model its "
           "blocks, with format 'mfadvr-blocks')")
@@ -609,29 +683,63 @@ PYBIND11_MODULE(_mfadvr, m) {
           },
           "Blocks per axis (x, y, z) of a multi-block model (encode's blocks=), None for one model")
       .def_property_readonly(
-          "sample_type",
-          [](const PyModel& self) { return self.model->provenance().sampleType; },
+          "sample_type", [](const PyModel& self) { return self.model->provenance().sampleType; },
           "The input's sample type (uint8, int16, float32, ...), the default dtype of decode")
-      .def("save",
-           [](const PyModel& self, const std::string& path) {
-             translated([&] {
-               if (self.blocks)
-                 saveBlockModels(*self.blocks, self.blockGrid, path);
-               else
-                 saveModel(*self.model, path);
-               return 0;
-             });
-           },
-           py::arg("path"),
-           "Writes the model to a .mfa file (atomically; a multi-block model as a multi-block "
-           "file)")
+      .def(
+          "save",
+          [](const PyModel& self, const std::string& path) {
+            translated([&] {
+              if (self.blocks)
+                saveBlockModels(*self.blocks, self.blockGrid, path);
+              else if (self.series)
+                saveModel(*self.series, path);
+              else
+                saveModel(*self.model, path);
+              return 0;
+            });
+          },
+          py::arg("path"),
+          "Writes the model to a .mfa file (atomically; a multi-block model as a multi-block "
+          "file)")
       .def("query", &query, py::arg("points"), py::arg("derivatives") = 0, py::arg("threads") = 0,
+           py::arg("times") = py::none(),
            "Values (N,), with derivatives=1 (N, 4) value, dx, dy, dz; with 2 (N, 10) adding "
            "dxx, dxy, dxz, dyy, dyz, dzz; points an (N, 3) array of physical x, y, z; threads: "
-           "0 for all cores")
-      .def("__call__",
-           [](const PyModel& self, const py::object& points) { return query(self, points, 0, 0); },
-           py::arg("points"), "The values at (N, 3) points")
+           "0 for all cores. A time-varying model takes (N, 4) points x, y, z, t (or (N, 3) "
+           "with times= one number or (N,)), and derivatives=1 gives (N, 5) with dt")
+      .def(
+          "__call__",
+          [](const PyModel& self, const py::object& points) {
+            return query(self, points, 0, 0, py::none());
+          },
+          py::arg("points"), "The values at (N, 3) points ((N, 4) with t for a time-varying model)")
+      .def_property_readonly(
+          "times",
+          [](const PyModel& self) -> py::object {
+            if (!self.series) return py::none();
+            return py::cast(self.series->timeAxis().steps);
+          },
+          "A time-varying model's steps (the input's times), None for a 3-D model")
+      .def(
+          "at",
+          [](const PyModel& self, double t) {
+            if (!self.series)
+              throw py::value_error(
+                  "at() applies to time-varying models; this one has no time axis");
+            const TimeAxis& axis = self.series->timeAxis();
+            if (!axis.contains(t))
+              throw py::value_error("t = " + std::to_string(t) + " lies outside the time range " +
+                                    std::to_string(axis.begin) + " .. " + std::to_string(axis.end));
+            std::shared_ptr<const Model> instant;
+            {
+              py::gil_scoped_release release;
+              instant = std::make_shared<const Model>(self.series->at(t));
+            }
+            return PyModel(instant, nullptr);
+          },
+          py::arg("t"),
+          "The 3-D model at time t (any time in the range): query, decode, render or save it as "
+          "any model")
       .def("_decode_values", &decodeValues, py::arg("shape") = py::none())
       .def(
           "_into_vtk",
@@ -661,11 +769,14 @@ PYBIND11_MODULE(_mfadvr, m) {
         return translated([&] {
           if (isBlockModelFile(path))
             return PyModel(loadBlockModels(path), readBlockIndex(path).blocks, nullptr);
-          return PyModel(std::make_shared<Model>(loadModel(path)), nullptr);
+          auto series = std::make_shared<const TimeVaryingModel>(loadTimeVaryingModel(path));
+          PyModel out(std::make_shared<Model>(series->first()), nullptr);
+          if (series->hasTime()) out.series = std::move(series);
+          return out;
         });
       },
       py::arg("path"), "Reads a .mfa model file (one model or multi-block)");
   m.def("_render", &render, py::arg("input"), py::arg("size") = py::none(),
-        py::arg("spacing") = py::none(), py::arg("origin") = py::none(),
-        py::arg("method") = "mfa", py::arg("alpha") = false, py::arg("float") = false);
+        py::arg("spacing") = py::none(), py::arg("origin") = py::none(), py::arg("method") = "mfa",
+        py::arg("alpha") = false, py::arg("float") = false);
 }

@@ -16,7 +16,7 @@ import subprocess
 import sys
 
 EXPERIMENTS = ["value", "tables", "structured", "unstructured", "params", "query", "performance",
-               "compression", "denoise"]
+               "compression", "denoise", "time"]
 
 
 def read(out, name):
@@ -147,6 +147,17 @@ def main():
     expect(float(noisy["mfa-auto"]["lambda"]) > 0 and
            float(noisy["mfa-auto"]["samples_psnr"]) > float(noisy["mfa"]["samples_psnr"]) + 2,
            "denoise: --smooth auto does not reduce 3%% noise: %s" % noisy["mfa-auto"])
+
+    # Time series: 8 and 16 steps; at 16 (a blob moves its half width per step) the 4-D model is
+    # above linear interpolation halfway between steps, at 8 neither recovers the motion.
+    halfway = {int(r["steps"]): r for r in read(out, "time/halfway_values.csv")}
+    expect(sorted(halfway) == [8, 16], "time: steps %s" % sorted(halfway))
+    expect(float(halfway[16]["psnr_4d"]) > float(halfway[16]["psnr_linear"]) + 3,
+           "time: the 4-D model is not above linear interpolation: %s" % halfway[16])
+    images = {r["method"]: r for r in read(out, "time/halfway_images.csv")}
+    expect(float(images["4d"]["image_psnr"]) > float(images["linear"]["image_psnr"]),
+           "time: images %s" % images)
+    expect(len(read(out, "time/sizes.csv")) == 5 * 4, "time: sizes.csv rows")
 
     with open(os.path.join(out, "report.md")) as f:
         report = f.read()

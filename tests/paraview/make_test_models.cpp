@@ -28,9 +28,9 @@
 #include "GzipBytes.h"
 #include "core/analytic/BuiltinFunction.h"
 #include "core/analytic/BuiltinSeries.h"
-#include "core/encode/TimeSeriesEncoder.h"
 #include "core/encode/Encoder.h"
 #include "core/encode/PieceEncoder.h"
+#include "core/encode/TimeSeriesEncoder.h"
 #include "core/model/BlockModelFile.h"
 #include "core/model/ModelFile.h"
 

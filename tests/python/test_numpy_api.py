@@ -235,3 +235,37 @@ def test_blocks_encode_query_decode_save_and_render_as_the_command_line(tmp_path
     assert image.max() > 40 and np.array_equal(image, png[::-1, :, :3])
     with pytest.raises(ValueError, match="vtkMFAReader"):
         m.to_vtk()
+
+
+def test_time_varying_models_load_query_in_time_and_give_any_instant(tmp_path):
+    path = tmp_path / "blobs.mfa"
+    cli("encode", "builtin:orbiting-blobs:12x12x12x5", "-q", "-o", path)
+    series = mfadvr.load(str(path))
+    assert series.times == [0.0, 0.25, 0.5, 0.75, 1.0]
+    assert series.info["time"]["control_count"] == 5
+    # x, y, z, t rows: the values and derivatives of `mfadvr query` with four columns.
+    points = np.array([[0.5, 0.0, 0.0, 0.1], [0.0, 0.5, 0.2, 0.6], [-0.3, 0.1, 0.0, 1.0]])
+    rows = series.query(points, derivatives=1)
+    assert rows.shape == (3, 5)
+    for p, row in zip(points, rows):
+        text = cli("query", path, *p, "-d", "1").splitlines()
+        assert text[0] == "x,y,z,t,value,dx,dy,dz,dt"
+        expected = [float(v) for v in text[1].split(",")[4:]]
+        np.testing.assert_allclose(row, expected, rtol=1e-6, atol=1e-6)
+    # One time for every point, and the instant as a 3-D model, agree.
+    at = series.query(points[:, :3], times=0.6)
+    instant = series.at(0.6)
+    assert instant.times is None
+    np.testing.assert_allclose(at, instant.query(points[:, :3]), atol=1e-5)
+    with pytest.raises(ValueError, match="outside the time range"):
+        series.at(2.0)
+    with pytest.raises(ValueError, match=r"\(N, 4\)"):
+        series.query(points[:, :3])
+    with pytest.raises(ValueError, match="model.at"):
+        series.query(points, derivatives=2)
+    with pytest.raises(ValueError, match="no time axis"):
+        instant.query(points[:, :3], times=0.5)
+    # Saved again, the same time axis.
+    again = tmp_path / "again.mfa"
+    series.save(str(again))
+    assert mfadvr.load(str(again)).times == series.times

@@ -11,12 +11,12 @@
 #include <vtkFieldData.h>
 #include <vtkImageData.h>
 #include <vtkInformation.h>
-#include <vtkStreamingDemandDrivenPipeline.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkRTAnalyticSource.h>
+#include <vtkStreamingDemandDrivenPipeline.h>
 #include <vtkTrivialProducer.h>
 #include <vtkUnsignedCharArray.h>
 #include <vtkUnstructuredGrid.h>
@@ -35,8 +35,8 @@
 #include "VtkSceneFixture.h"
 #include "core/analytic/BuiltinSeries.h"
 #include "core/encode/PieceEncoder.h"
-#include "core/encode/TimeSeriesEncoder.h"
 #include "core/encode/StructuredEncoder.h"
+#include "core/encode/TimeSeriesEncoder.h"
 #include "core/model/BlockModelFile.h"
 #include "core/model/ControlCoding.h"
 #include "core/model/ModelFile.h"
@@ -78,8 +78,9 @@ TEST(MFAReader, ReadsAModelFile) {
 // for (between steps too) in the output, as the model and as the image that carries it.
 TEST(MFAReader, GivesEveryInstantOfATimeVaryingModel) {
   const auto path = scratchDir() / "blobs.mfa";
-  const TimeVaryingModel series = encodeTimeSeries(
-      BuiltinVolumeSeries("builtin:orbiting-blobs:12x12x12x5"), EncodeOptions(), TimeSeriesOptions());
+  const TimeVaryingModel series =
+      encodeTimeSeries(BuiltinVolumeSeries("builtin:orbiting-blobs:12x12x12x5"), EncodeOptions(),
+                       TimeSeriesOptions());
   saveModel(series, path);
   for (const bool image : {false, true}) {
     vtkNew<vtkMFAReader> reader;
@@ -125,7 +126,8 @@ TEST(MFAReader, GivesEveryInstantOfATimeVaryingModel) {
   vtkNew<vtkMFAReader> reader;
   reader->SetFileName(plain.c_str());
   reader->UpdateInformation();
-  EXPECT_FALSE(reader->GetOutputInformation(0)->Has(vtkStreamingDemandDrivenPipeline::TIME_STEPS()));
+  EXPECT_FALSE(
+      reader->GetOutputInformation(0)->Has(vtkStreamingDemandDrivenPipeline::TIME_STEPS()));
 }
 
 TEST(MFAReader, ReportsBadFilesWithoutOutput) {
