@@ -54,7 +54,7 @@ const std::vector<std::string> kOpacityCycle = {"ramp", "step:0.3", "step:0.5", 
 
 // What the keys change, and the VTK objects they change.
 struct Viewer {
-  const LoadedScene* scene = nullptr;
+  LoadedScene* scene = nullptr;
   RenderOptions options;
   std::vector<ReconstructionMethod> methods;
   size_t method = 0;
@@ -68,6 +68,12 @@ struct Viewer {
   vtkNew<vtkRenderWindow> window;
 
   bool clipFacingCamera = false;  // key c: a plane through the focal point, facing the camera
+  // A time-varying model: space plays (one pass through the range in kPlaySeconds, looping),
+  // '.' and ',' go to the next and previous step.
+  bool playing = false;
+  static constexpr double kPlaySeconds = 8.0;
+  static constexpr int kPlayTickMs = 40;
+  double lastContractSeconds = 0.0;
   std::string savedAverageRange;  // --average-range while key b shows another blend
 
   // The blend mode, isovalues, clipping planes and cropping of `s` on the mapper and property.
@@ -141,16 +147,55 @@ struct Viewer {
     updateStatus();
   }
 
+  // Shows the instant t (clamped onto the range): the model contracted at t, handed to the
+  // mapper; grid methods (a time-varying built-in's truth and samples) follow.
+  void setTime(double t) {
+    const auto start = std::chrono::steady_clock::now();
+    scene->setTime(t);
+    lastContractSeconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    data->SetModel(std::make_shared<const Model>(*scene->model));
+    applyOptions();
+  }
+
+  // The next (dir 1) or previous (-1) stored step from the time shown.
+  void stepTime(int dir) {
+    const std::vector<double>& steps = scene->timeVarying->timeAxis().steps;
+    double t = scene->time;
+    if (dir > 0) {
+      const auto it = std::upper_bound(steps.begin(), steps.end(), scene->time + 1e-12);
+      t = it == steps.end() ? steps.front() : *it;
+    } else {
+      auto it = std::lower_bound(steps.begin(), steps.end(), scene->time - 1e-12);
+      t = it == steps.begin() ? steps.back() : *std::prev(it);
+    }
+    setTime(t);
+  }
+
+  // One tick of playback.
+  void tick() {
+    if (!playing || !scene->timeVarying) return;
+    const TimeAxis& axis = scene->timeVarying->timeAxis();
+    const double advance = (axis.end - axis.begin) * kPlayTickMs / (1000.0 * kPlaySeconds);
+    const double t = scene->time + advance > axis.end + 1e-12 ? axis.begin : scene->time + advance;
+    setTime(std::min(t, axis.end));
+    window->Render();
+  }
+
   void updateStatus() {
     char text[512];
-    std::snprintf(text, sizeof(text), "mfadvr view: %s | colours %s | opacity %s | %s | %.0f ms",
+    char instant[64] = "";
+    if (scene->timeVarying)
+      std::snprintf(instant, sizeof(instant), " | t = %.4g%s", scene->time,
+                    playing ? " (playing)" : "");
+    std::snprintf(text, sizeof(text), "mfadvr view: %s | colours %s | opacity %s | %s | %.0f ms%s",
                   methodName(methods[method]).c_str(),
                   options.colormap.empty() ? "cool-to-warm" : options.colormap.c_str(),
                   options.tf.empty() ? "ramp" : options.tf.c_str(),
                   (std::string(options.shade ? "shaded " : "unshaded ") + options.blend +
                    (clipFacingCamera ? ", clipped" : ""))
                       .c_str(),
-                  1000.0 * mapper->GetTimeToDraw());
+                  1000.0 * mapper->GetTimeToDraw(), instant);
     // The window title: a text actor would need VTK's FreeType module, whose CMake package
     // drags in MPI on Debian.
     window->SetWindowName(text);
@@ -187,6 +232,13 @@ struct Viewer {
       if (options.blend == "average") options.averageRange.swap(savedAverageRange);
     } else if (key == "c") {
       clipFacingCamera = !clipFacingCamera;
+    } else if ((key == "period" || key == "comma") && scene->timeVarying) {
+      playing = false;
+      stepTime(key == "period" ? 1 : -1);
+    } else if (key == "space" && scene->timeVarying) {
+      playing = !playing;
+      updateStatus();
+      return;
     } else {
       return;
     }
@@ -206,7 +258,8 @@ class ViewerStyle : public vtkInteractorStyleTrackballCamera {
 
   void OnChar() override {
     const std::string key = this->Interactor->GetKeySym() ? this->Interactor->GetKeySym() : "";
-    if (key == "m" || key == "t" || key == "o" || key == "s" || key == "b" || key == "c") {
+    if (key == "m" || key == "t" || key == "o" || key == "s" || key == "b" || key == "c" ||
+        key == "period" || key == "comma" || key == "space") {
       viewer->onKey(key);
       return;
     }
@@ -220,7 +273,8 @@ class ViewerStyle : public vtkInteractorStyleTrackballCamera {
   static constexpr const char* kKeyHelp =
       "keys: m method, t colour map, o opacity preset, s shading on/off, b blend mode, "
       "c clipping plane through the focal point (on/off), r reset camera, "
-      "h help, q quit; drag to rotate, shift-drag to pan, wheel to zoom\n";
+      "h help, q quit; time-varying models: space play/pause, . next step, , previous step; "
+      "drag to rotate, shift-drag to pan, wheel to zoom\n";
 };
 vtkStandardNewMacro(ViewerStyle);
 
@@ -258,6 +312,25 @@ int runViewBenchmark(Viewer& viewer, int frames, double fps) {
     std::printf("still frame (full quality): %.1f ms, image sample distance %.2f\n", 1000.0 * still,
                 viewer.mapper->GetLastImageSampleDistance());
     std::printf("device: %s\n", viewer.mapper->GetLastDeviceDescription());
+    if (viewer.scene->timeVarying) {
+      // Changing the time: the contraction of the time axis, then the still frame it brings.
+      const TimeAxis& axis = viewer.scene->timeVarying->timeAxis();
+      std::vector<double> contract, frame;
+      for (int i = 1; i <= 8; ++i) {
+        viewer.setTime(axis.begin + (axis.end - axis.begin) * i / 9.0);
+        contract.push_back(viewer.lastContractSeconds);
+        const auto at = Clock::now();
+        viewer.window->Render();
+        frame.push_back(std::chrono::duration<double>(Clock::now() - at).count());
+      }
+      std::sort(contract.begin(), contract.end());
+      std::sort(frame.begin(), frame.end());
+      std::printf(
+          "changing the time: %.1f ms to contract the time axis (median of %zu), then a "
+          "%.1f ms still frame\n",
+          1000.0 * contract[contract.size() / 2], contract.size(),
+          1000.0 * frame[frame.size() / 2]);
+    }
     viewer.window->Finalize();
   }
   return 0;
@@ -267,7 +340,7 @@ int runViewBenchmark(Viewer& viewer, int frames, double fps) {
 
 Command addViewCommand(CLI::App& app) {
   struct Options {
-    std::string input, method = "mfa", screenshot, spacing, origin, device = "auto";
+    std::string input, method = "mfa", screenshot, spacing, origin, device = "auto", time;
     FieldOptionTexts field;
     EncodeCliOptions encode;
     RenderOptions render;
@@ -296,6 +369,9 @@ Command addViewCommand(CLI::App& app) {
                   "Off screen, no window: render N frames while turning the camera (as a drag "
                   "does), then the full-quality frame; print frames per second and times")
       ->check(CLI::Range(1, 100000));
+  sub->add_option("--time", o->time,
+                  "Time-varying models: the instant shown first (default: the first step); "
+                  "space plays the series, '.' and ',' step through it");
   o->render.addTo(sub);
   addDeviceOption(sub, o->device);
   o->encode.addTo(sub, "Encoding (non-model inputs)");
@@ -321,7 +397,8 @@ Command addViewCommand(CLI::App& app) {
     load.encode = o->encode.parse();
     load.volume = parseVolumeLoadOptions(o->spacing, o->origin, o->field);
     load.progress = wantProgress(o->quiet);
-    const LoadedScene scene = loadScene(o->input, needs, load);
+    if (!o->time.empty()) load.time = parseNumberList("--time", o->time, 1, 1)[0];
+    LoadedScene scene = loadScene(o->input, needs, load);
 
     auto viewer = std::make_unique<Viewer>();
     viewer->scene = &scene;
@@ -409,6 +486,17 @@ Command addViewCommand(CLI::App& app) {
     // Still frames at full resolution; while dragging the mapper lowers the image sample
     // distance to keep about this many frames per second.
     interactor->SetDesiredUpdateRate(o->interactiveFps);
+    // Playback of a time-varying model: a repeating timer, a tick per kPlayTickMs.
+    vtkNew<vtkCallbackCommand> playback;
+    if (scene.timeVarying) {
+      playback->SetClientData(viewer.get());
+      playback->SetCallback([](vtkObject*, unsigned long, void* client, void*) {
+        static_cast<Viewer*>(client)->tick();
+      });
+      interactor->AddObserver(vtkCommand::TimerEvent, playback);
+      interactor->Initialize();
+      interactor->CreateRepeatingTimer(Viewer::kPlayTickMs);
+    }
     std::cout << ViewerStyle::kKeyHelp;
     viewer->window->Render();
     viewer->updateStatus();

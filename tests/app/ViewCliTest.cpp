@@ -35,6 +35,24 @@ TEST(CliView, ScreenshotMatchesRenderForEveryMethod) {
   }
 }
 
+// A time-varying model: --time picks the instant (the frame `render --time` gives), the
+// benchmark times changing the time, and --time outside the range is an error.
+TEST(CliView, ShowsAnyInstantOfATimeVaryingModel) {
+  const auto dir = test::scratchDir();
+  const std::string model = (dir / "blobs.mfa").string();
+  ASSERT_EQ(runMfadvr("encode builtin:orbiting-blobs:16x16x16x5 -q -o " + model).status, 0);
+  const std::string scene = " --size 64x64 --azimuth 30 --tf step:0.4 -q";
+  const std::string view = (dir / "view.png").string(), render = (dir / "render.png").string();
+  const auto v = runMfadvr("view " + model + " --time 0.6 --screenshot " + view + scene);
+  ASSERT_EQ(v.status, 0) << v.err;
+  ASSERT_EQ(runMfadvr("render " + model + " --time 0.6 -o " + render + scene).status, 0);
+  EXPECT_GT(compareImages(readPng(view), readPng(render)).psnr, 48.0);
+  const auto b = runMfadvr("view " + model + " --benchmark 3" + scene);
+  ASSERT_EQ(b.status, 0) << b.err;
+  EXPECT_NE(b.out.find("changing the time:"), std::string::npos) << b.out;
+  EXPECT_EQ(runMfadvr("view " + model + " --time 5 --screenshot " + view + scene).status, 1);
+}
+
 // The blend, isovalue, clipping, cropping, gradient- and curvature-classification options reach
 // the viewer's mapper: its frame is render's.
 TEST(CliView, ScreenshotMatchesRenderForBlendModesAndClipping) {
