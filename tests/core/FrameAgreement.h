@@ -55,7 +55,11 @@ inline void varyFrame(RenderSettings& s, int variant, int oddWidth) {
 // The frame one ray at a time (integrateRay per pixel), with the sampler renderModelView would
 // use: what the renderer's faster paths (ray packets, the interleaved march) must reproduce.
 // FrameAgreement.cpp: its instantiation of every loop is compiled once, not in every test
-// source that uses it.
+// source that uses it. The tests hold models of degree 1..3 (and mixed degrees) to it, so only
+// those degrees get loops of their own (kReferenceMaxDegree); a model of one higher degree is
+// refused (std::invalid_argument), not rendered through another path than the renderer's.
+inline constexpr int kReferenceMaxDegree = kMaxUnrolledDegree < 3 ? kMaxUnrolledDegree : 3;
+void requireReferenceDegree(const ModelView& view);
 Image renderRayByRay(const RenderSettings& s, const ModelRenderSetup& setup, RenderStats& stats);
 
 // renderModelView's frame of `setup` against renderRayByRay's, image and counters; returns the

@@ -53,7 +53,8 @@ class OneLane {
 Image renderOneLane(const RenderSettings& s, const ModelRenderSetup& setup, RenderStats* stats) {
   Image image(s.width, s.height);
   const ModelView& view = setup.view();
-  modelKernelSwitch(view, s.shade, [&]<int P, bool Masked, bool Shade, bool Skip>() {
+  requireReferenceDegree(view);
+  modelKernelSwitch<kReferenceMaxDegree>(view, s.shade, [&]<int P, bool Masked, bool Shade, bool Skip>() {
     using Batched = SplineRaySampler<P, Skip, Shade>;
     castRays<Masked, Shade>(
         s, setup.params(), [&] { return OneLane<Batched>(Batched(view)); }, image, stats);

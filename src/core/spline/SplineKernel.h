@@ -529,27 +529,47 @@ MFADVR_HD MFADVR_INLINE void splineValueGradientHessian(const SplineView& v, con
   contractHessian<P>(block, b, out);
 }
 
-// Calls f(std::integral_constant-like tag) with the compile-time degree for `v`: P = 1..7 when
-// all three degrees are equal, P = 0 (run-time degrees) otherwise. The one switch per render.
-template <class F>
+// The highest degree with a loop of its own (compile-time P); higher degrees take the run-time
+// degree path (P = 0), which computes the same function. Each unrolled degree is a set of ray
+// loops to compile (degree 7's are the largest), so builds that only test the code (the
+// sanitizer and fuzzing presets) set MFADVR_MAX_UNROLLED_DEGREE=3 and compile in a fraction of
+// the time (CMakeLists.txt).
+#ifndef MFADVR_MAX_UNROLLED_DEGREE
+#define MFADVR_MAX_UNROLLED_DEGREE 7
+#endif
+inline constexpr int kMaxUnrolledDegree = MFADVR_MAX_UNROLLED_DEGREE;
+static_assert(kMaxUnrolledDegree >= 0 && kMaxUnrolledDegree <= 7,
+              "MFADVR_MAX_UNROLLED_DEGREE is 0..7");
+
+// Calls f.template operator()<P>() with the compile-time degree for `v`: P = 1..MaxP when all
+// three degrees are equal, P = 0 (run-time degrees) otherwise. The one switch per render.
+template <int MaxP = kMaxUnrolledDegree, class F>
 decltype(auto) splineDegreeSwitch(const SplineView& v, F&& f) {
+  static_assert(MaxP >= 0 && MaxP <= kMaxUnrolledDegree);
   const int p = v.axis[0].degree;
   if (p == v.axis[1].degree && p == v.axis[2].degree) {
     switch (p) {
       case 1:
-        return f.template operator()<1>();
+        if constexpr (MaxP >= 1) return f.template operator()<1>();
+        break;
       case 2:
-        return f.template operator()<2>();
+        if constexpr (MaxP >= 2) return f.template operator()<2>();
+        break;
       case 3:
-        return f.template operator()<3>();
+        if constexpr (MaxP >= 3) return f.template operator()<3>();
+        break;
       case 4:
-        return f.template operator()<4>();
+        if constexpr (MaxP >= 4) return f.template operator()<4>();
+        break;
       case 5:
-        return f.template operator()<5>();
+        if constexpr (MaxP >= 5) return f.template operator()<5>();
+        break;
       case 6:
-        return f.template operator()<6>();
+        if constexpr (MaxP >= 6) return f.template operator()<6>();
+        break;
       case 7:
-        return f.template operator()<7>();
+        if constexpr (MaxP >= 7) return f.template operator()<7>();
+        break;
       default:
         break;
     }
