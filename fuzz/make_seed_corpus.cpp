@@ -1,16 +1,18 @@
 // Writes seed inputs for the fuzzers: small valid models (uniform and non-uniform knots, several
-// degrees, one with a domain mask, a multi-block file, a time-varying model), time-series
-// collections (.pvd and .series), point lists ("x y z" and "x y z v") and
+// degrees, one with a domain mask, one with a mesh boundary, a multi-block file, a time-varying
+// model), time-series collections (.pvd and .series), point lists ("x y z" and "x y z v") and
 // 2-D transfer functions (JSON boxes), so
 // that mutations start from the interesting structure.
 #include <filesystem>
 #include <fstream>
+#include <memory>
 
 #include "core/analytic/BuiltinFunction.h"
 #include "core/analytic/BuiltinSeries.h"
 #include "core/encode/PieceEncoder.h"
 #include "core/encode/StructuredEncoder.h"
 #include "core/encode/TimeSeriesEncoder.h"
+#include "core/mask/DomainBoundary.h"
 #include "core/model/BlockModelFile.h"
 #include "core/model/ControlCoding.h"
 #include "core/model/ModelFile.h"
@@ -70,6 +72,18 @@ int main(int argc, char** argv) {
     std::vector<std::uint8_t> nodes(60);
     for (size_t n = 0; n < nodes.size(); ++n) nodes[n] = (n * 7 % 5) < 3;
     m.setMask(mfadvr::DomainMask(mfadvr::MaskKind::PointCoverage, {3, 4, 5}, nodes));
+    mfadvr::saveModel(m, models / ("seed" + std::to_string(i++) + ".mfa"));
+  }
+  {
+    // A model of a mesh with its exact boundary: one tetrahedron (4 boundary triangles).
+    mfadvr::StructuredFitOptions o;
+    o.degree = {1, 1, 1};
+    o.controlCounts = {2, 2, 2};
+    auto m = mfadvr::fitStructured(mfadvr::sampleBuiltinSpec("builtin:marschner-lobb:3x3x3"), o);
+    const std::vector<mfadvr::Vec3d> points{{-1, -1, -1}, {1, -1, -1}, {-1, 1, -1}, {-1, -1, 1}};
+    const std::vector<mfadvr::Tetrahedron> tets{{0, 1, 2, 3}};
+    m.setBoundary(std::make_shared<const mfadvr::DomainBoundary>(
+        mfadvr::boundaryOfTetrahedra(points, tets)));
     mfadvr::saveModel(m, models / ("seed" + std::to_string(i++) + ".mfa"));
   }
   {

@@ -73,7 +73,13 @@ void EncodeCliOptions::addTo(CLI::App* sub, const std::string& group) {
                   "along the longest axis for meshes, from the point count for point clouds)")
       ->group(group);
   sub->add_flag("--no-mask", noMask,
-                "Scattered data: store no domain mask (the model then covers its whole box)")
+                "Scattered data: store no domain mask nor boundary (the model then covers its "
+                "whole box)")
+      ->group(group);
+  sub->add_flag("--no-boundary", noBoundary,
+                "Meshes: store only the voxel mask, not the mesh's exact boundary triangles "
+                "(which rays and queries otherwise use to find where the mesh begins and "
+                "ends; docs/encoding.md)")
       ->group(group);
 }
 
@@ -131,6 +137,7 @@ EncodeOptions EncodeCliOptions::parse() const {
   if (noMask && !maskRes.empty())
     throw CLI::ValidationError("--no-mask", "contradicts --mask-res; give one of them");
   o.mask.enabled = !noMask;
+  o.mask.boundary = !noBoundary;
   return o;
 }
 

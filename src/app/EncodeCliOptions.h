@@ -14,6 +14,7 @@ class EncodeCliOptions {
   std::string degree = "3", ctrl, smooth, maxError, maxCtrl, maskRes, dequantize;
   int maxRounds = 30;
   bool noMask = false;
+  bool noBoundary = false;
 
   // Registers the options on `sub` under `group`.
   void addTo(CLI::App* sub, const std::string& group);

@@ -239,8 +239,9 @@ Command addEncodeCommand(CLI::App& app) {
       if (!o->blocks.empty() || !o->memoryLimit.empty() || o->ghost >= 0)
         throw CLI::ValidationError("--blocks", "does not apply to time series yet");
       if (o->strict) throw CLI::ValidationError("--strict", "applies to adaptive encoding");
-      if (!o->encode.maskRes.empty() || o->encode.noMask)
-        throw CLI::ValidationError("--mask-res/--no-mask", "apply to meshes and point clouds");
+      if (!o->encode.maskRes.empty() || o->encode.noMask || o->encode.noBoundary)
+        throw CLI::ValidationError("--mask-res/--no-mask/--no-boundary",
+                                   "apply to meshes and point clouds");
       const bool progress = wantProgress(o->quiet || o->json);
       if (progress) {
         std::cerr << "reading the series " << o->input << "\n";
@@ -263,9 +264,10 @@ Command addEncodeCommand(CLI::App& app) {
       throw CLI::ValidationError("--smooth",
                                  "'auto' is for regular grids; give meshes and point clouds a "
                                  "weight (default 1e-2)");
-    if (!scattered && (!o->encode.maskRes.empty() || o->encode.noMask))
-      throw CLI::ValidationError("--mask-res/--no-mask", "apply to meshes and point clouds; " +
-                                                             o->input + " is a regular grid");
+    if (!scattered && (!o->encode.maskRes.empty() || o->encode.noMask || o->encode.noBoundary))
+      throw CLI::ValidationError(
+          "--mask-res/--no-mask/--no-boundary",
+          "apply to meshes and point clouds; " + o->input + " is a regular grid");
     const BlockRequest blockRequest{o->blocks, o->ghost, o->memoryLimit};
     if (!o->blocks.empty() && scattered)
       throw CLI::ValidationError(

@@ -71,6 +71,9 @@ std::string formatFitReport(const FitReport& r, const std::string& modelPath) {
     o << "domain mask     " << r.maskKind << ", " << r.maskDims[0] << " x " << r.maskDims[1]
       << " x " << r.maskDims[2] << " nodes, " << fmt("%.1f", 100.0 * r.maskInsideFraction)
       << "% inside\n";
+  if (r.boundaryTriangles > 0)
+    o << "boundary        " << r.boundaryTriangles << " triangles, " << r.boundaryVertices
+      << " vertices (exact; extracted in " << fmt("%.2f", r.boundarySeconds) << " s)\n";
   o << "psnr            "
     << (std::isfinite(r.psnr()) ? fmt("%.2f", r.psnr()) + " dB" : std::string("exact"))
     << "  (value range over the rms error)\n";
@@ -166,6 +169,10 @@ nlohmann::json fitReportJson(const FitReport& r, const std::string& modelPath) {
                                  : nlohmann::json{{"kind", r.maskKind},
                                                   {"dims", r.maskDims},
                                                   {"inside_fraction", r.maskInsideFraction}};
+  j["boundary"] = r.boundaryTriangles > 0 ? nlohmann::json{{"triangles", r.boundaryTriangles},
+                                                           {"vertices", r.boundaryVertices},
+                                                           {"seconds", r.boundarySeconds}}
+                                          : nlohmann::json(nullptr);
   j["time"] = r.timeSteps > 0 ? nlohmann::json{{"steps", r.timeSteps},
                                                {"degree", r.timeDegree},
                                                {"control_count", r.timeControlCount}}

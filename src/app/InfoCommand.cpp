@@ -30,19 +30,23 @@ nlohmann::json modelInfoJson(const Model& m, const std::string& path, std::uint3
     knots.push_back(s.knots(a).isUniform()            ? "uniform"
                     : s.knots(a).hasRegularInterior() ? "regular-interior"
                                                       : "non-uniform");
-  nlohmann::json j = {{"degree", s.degrees()},
-                      {"control_counts", s.counts()},
-                      {"knots", knots},
-                      {"domain_min", {m.domain().min[0], m.domain().min[1], m.domain().min[2]}},
-                      {"domain_max", {m.domain().max[0], m.domain().max[1], m.domain().max[2]}},
-                      {"value_range", {m.valueMin(), m.valueMax()}},
-                      {"mask", maskJson(m.mask())},
-                      {"control_coding",
-                       {{"method", controlCoderName(m.controlCoding().coder)},
-                        {"tolerance", m.controlCoding().coder == ControlCoder::kZfp
-                                          ? nlohmann::json(m.controlCoding().tolerance)
-                                          : nlohmann::json(nullptr)}}},
-                      {"provenance", provenanceToJson(m.provenance())}};
+  nlohmann::json j = {
+      {"degree", s.degrees()},
+      {"control_counts", s.counts()},
+      {"knots", knots},
+      {"domain_min", {m.domain().min[0], m.domain().min[1], m.domain().min[2]}},
+      {"domain_max", {m.domain().max[0], m.domain().max[1], m.domain().max[2]}},
+      {"value_range", {m.valueMin(), m.valueMax()}},
+      {"mask", maskJson(m.mask())},
+      {"boundary", m.boundary() ? nlohmann::json{{"triangles", m.boundary()->triangles().size()},
+                                                 {"vertices", m.boundary()->vertices().size()}}
+                                : nlohmann::json(nullptr)},
+      {"control_coding",
+       {{"method", controlCoderName(m.controlCoding().coder)},
+        {"tolerance", m.controlCoding().coder == ControlCoder::kZfp
+                          ? nlohmann::json(m.controlCoding().tolerance)
+                          : nlohmann::json(nullptr)}}},
+      {"provenance", provenanceToJson(m.provenance())}};
   if (!path.empty()) {
     j["file"] = path;
     j["file_bytes"] = std::filesystem::file_size(path);
@@ -197,6 +201,9 @@ Command addInfoCommand(CLI::App& app) {
               out << "mask            " << maskKindName(m.mask().kind()) << ", " << d[0] << " x "
                   << d[1] << " x " << d[2] << " nodes, " << percent.str() << "% inside\n";
             }
+            if (const DomainBoundary* b = m.boundary())
+              out << "boundary        " << b->triangles().size() << " triangles, "
+                  << b->vertices().size() << " vertices (exact; rays and queries use it)\n";
             out << "source          " << p.source << (p.field.empty() ? "" : "  field " + p.field)
                 << "\n";
             if (p.inputPoints > 0)

@@ -149,7 +149,7 @@ Command addQueryCommand(CLI::App& app) {
 
             // A model with a domain mask gets a last column, inside: 1 within the mask, 0 outside
             // (where the value is the spline's extrapolation).
-            const bool masked = !model.mask().empty();
+            const bool masked = !model.mask().empty() || model.boundary() != nullptr;
             std::size_t outside = 0, outsideMask = 0;
             std::string csv = inTime ? "x,y,z,t,value" : "x,y,z,value";
             if (o->derivatives >= 1) csv += inTime ? ",dx,dy,dz,dt" : ",dx,dy,dz";

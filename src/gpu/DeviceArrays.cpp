@@ -51,6 +51,8 @@ ModelView relocateModel(const ModelView& view, const std::vector<const void*>& c
     a.inverseLength = static_cast<const double*>(copies[i++]);
   }
   if (v.mask.nodes) v.mask.nodes = static_cast<const std::uint8_t*>(copies[i++]);
+  // The device's rays use the mask: the exact boundary is not uploaded (SplineRaySampler.h).
+  v.boundary = BoundaryView{};
   return v;
 }
 

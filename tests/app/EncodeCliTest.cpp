@@ -81,7 +81,7 @@ TEST(EncodeCli, RejectsContradictoryOptions) {
         "builtin:gaussian-beam:16 --max-error -1", "builtin:gaussian-beam:16 --strict",
         "builtin:gaussian-beam:16 --smooth -0.1", "builtin:gaussian-beam:16 --smooth nan",
         "builtin:gaussian-beam:16 --smooth inf", "builtin:gaussian-beam:16 --smooth automatic",
-        "builtin:gaussian-beam:16 --no-mask",
+        "builtin:gaussian-beam:16 --no-mask", "builtin:gaussian-beam:16 --no-boundary",
         "builtin:gaussian-beam:16 --max-error 1e-2 --max-rounds 0"}) {
     const auto r = runMfadvr("encode " + args);
     EXPECT_EQ(r.status, 2) << args << "\n" << r.err;

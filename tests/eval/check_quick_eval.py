@@ -115,9 +115,12 @@ def main():
     unstructured = [f for f in ["bluntfin_tets.vtu", "spx.vtk"]
                     if os.path.isfile(os.path.join(args.data, f))]
     if unstructured:
+        # Two views (whole, zoom) of Bunyk, ZSweep, PT, the model with its exact boundary and
+        # with its mask alone.
         expect_columns(out, "fig09_unstructured.csv",
-                       ["dataset", "points", "cells", "method", "render_seconds", "image"],
-                       4 * len(unstructured))
+                       ["dataset", "points", "cells", "view", "method", "render_seconds",
+                        "psnr_vs_bunyk", "ssim_vs_bunyk", "encode_seconds", "image"],
+                       10 * len(unstructured))
 
     # Compression: Marschner-Lobb and the small scans present, 3 rates, 5 methods (ZFP's
     # fixed-accuracy mode may be missing at a rate where it cannot make a stream that small).

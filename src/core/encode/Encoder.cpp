@@ -1,9 +1,12 @@
 #include "core/encode/Encoder.h"
 
+#include <chrono>
 #include <cmath>
+#include <memory>
 
 #include "core/encode/CodingChoice.h"
 #include "core/encode/Dequantizer.h"
+#include "core/mask/DomainBoundary.h"
 #include "core/mask/MaskVoxelizer.h"
 #include "core/model/ModelFile.h"
 #include "core/util/Error.h"
@@ -110,7 +113,9 @@ Model encodeDequantized(const StructuredGrid& grid, const EncodeOptions& options
   FitReport local;
   FitReport& r = report ? *report : local;
   if (options.progress)
-    fit.progress = [&](double f, const std::string& stage) { options.progress(0.6 + 0.3 * f, stage); };
+    fit.progress = [&](double f, const std::string& stage) {
+      options.progress(0.6 + 0.3 * f, stage);
+    };
   Model fitted = fitStructuredWithKnots(targets, knots, fit, &r);
   targets = {};
   // Its errors are those against the samples, not the targets.
@@ -175,9 +180,9 @@ Model encodeStructured(const StructuredGrid& grid, const EncodeOptions& options,
 
 Model encodeStructured(const StructuredGrid& layout, const GridSamples& samples,
                        const EncodeOptions& options, FitReport* report) {
-  const bool planeByPlane = !options.autoSmoothing && !options.adaptive && !options.dequantizeStep &&
-                            options.coding.budget.kind == BudgetKind::kNone &&
-                            !options.coding.coder;
+  const bool planeByPlane =
+      !options.autoSmoothing && !options.adaptive && !options.dequantizeStep &&
+      options.coding.budget.kind == BudgetKind::kNone && !options.coding.coder;
   if (!planeByPlane) {
     StructuredGrid grid = layout;
     grid.values = samples.toFloats();
@@ -235,6 +240,16 @@ Model encodeScattered(const ScatteredData& data, const EncodeOptions& options, F
     r.maskKind = maskKindName(model.mask().kind());
     r.maskDims = model.mask().dims();
     r.maskInsideFraction = model.mask().insideFraction();
+    if (data.hasCells() && options.mask.boundary) {
+      const auto start = std::chrono::steady_clock::now();
+      auto boundary =
+          std::make_shared<const DomainBoundary>(boundaryOfTetrahedra(data.points, data.tets));
+      r.boundaryTriangles = static_cast<std::int64_t>(boundary->triangles().size());
+      r.boundaryVertices = static_cast<std::int64_t>(boundary->vertices().size());
+      model.setBoundary(std::move(boundary));
+      r.boundarySeconds =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    }
     r.modelBytes = modelFileSize(model);
   }
   if (options.coding.coder) {

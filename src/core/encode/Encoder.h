@@ -25,6 +25,9 @@ struct MaskOptions {
   Index3 dims{0, 0, 0};      // nodes per axis; 0: from longestAxisNodes
   int longestAxisNodes = 0;  // nodes along the longest box axis, the others in proportion;
                              // 0: the default for the kind of input
+  // Meshes: also store the mesh's exact boundary (DomainBoundary.h), which the renderer and
+  // queries then use in place of the mask. Only with the mask (enabled).
+  bool boundary = true;
 };
 
 struct EncodeOptions {

@@ -63,6 +63,9 @@ struct FitReport {
   std::string maskKind;
   Index3 maskDims{0, 0, 0};
   double maskInsideFraction = 1.0;
+  // Exact boundary of a mesh (0 triangles: none) and the time to extract it.
+  std::int64_t boundaryTriangles = 0, boundaryVertices = 0;
+  double boundarySeconds = 0.0;
 
   // Control-point coding (core/model/ControlCoding.h; errors above are of the decoded model).
   std::string coding = "float32";

@@ -24,11 +24,12 @@ class ModelField {
 
   class Sampler {
    public:
-    explicit Sampler(const Model& m) : model_(&m), masked_(!m.mask().empty()) {}
+    explicit Sampler(const Model& m)
+        : model_(&m), masked_(!m.mask().empty() || m.boundary() != nullptr) {}
     float value(const Vec3d& x) const { return model_->value(x); }
     ValueGradient valueGradient(const Vec3d& x) const { return model_->valueGradient(x); }
-    // False outside the model's domain mask. masked() is false for a model without one (every
-    // model of a grid): the ray caster then skips the inside() calls.
+    // False outside the model's domain (its exact boundary, else its mask). masked() is false for
+    // a model without either (every model of a grid): the ray caster then skips the inside() calls.
     bool masked() const { return masked_; }
     bool inside(const Vec3d& x) const { return !masked_ || model_->inside(x); }
 

@@ -11,6 +11,7 @@
 #include <span>
 #include <string>
 
+#include "core/mask/DomainBoundary.h"
 #include "core/mask/DomainMask.h"
 #include "core/model/ControlCoding.h"
 #include "core/model/DomainBox.h"
@@ -59,7 +60,15 @@ class Model {
   // one; the renderer treats samples outside it as empty.
   const DomainMask& mask() const { return mask_; }
   void setMask(DomainMask mask) { mask_ = std::move(mask); }
+  // Models of meshes also carry the mesh's exact boundary (DomainBoundary.h), which then decides
+  // what is inside; the mask stays for readers and renderers that do not use the boundary (the
+  // GPU's) and for rays that cross the boundary more often than the renderer follows.
+  const DomainBoundary* boundary() const { return boundary_ ? boundary_.get() : nullptr; }
+  void setBoundary(std::shared_ptr<const DomainBoundary> boundary) {
+    boundary_ = boundary && !boundary->empty() ? std::move(boundary) : nullptr;
+  }
   bool inside(const Vec3d& x) const {
+    if (boundary_) return boundary_->contains(x);
     return mask_.insideParameter(domain_.toParameter(x));  // clamps onto the box
   }
 
@@ -96,6 +105,7 @@ class Model {
   double valueMin_ = 0.0, valueMax_ = 0.0;
   Provenance provenance_;
   DomainMask mask_;
+  std::shared_ptr<const DomainBoundary> boundary_;  // shared: models are copied freely
   ControlCoding coding_;
   std::shared_ptr<const std::string> codedControls_;  // shared: models are copied freely
 };

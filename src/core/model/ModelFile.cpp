@@ -98,6 +98,32 @@ std::string compressedMask(const DomainMask& mask) {
   return out;
 }
 
+// A boundary's vertices (float32 x, y, z each) then its triangles (uint32 indices),
+// zlib-compressed.
+std::int64_t boundaryRawBytes(std::int64_t vertices, std::int64_t triangles) {
+  return 12 * vertices + 12 * triangles;
+}
+
+std::string compressedBoundary(const DomainBoundary* boundary) {
+  if (!boundary) return {};
+  std::string raw;
+  raw.reserve(static_cast<size_t>(
+      boundaryRawBytes(static_cast<std::int64_t>(boundary->vertices().size()),
+                       static_cast<std::int64_t>(boundary->triangles().size()))));
+  for (const Vec3f& v : boundary->vertices())
+    for (int a = 0; a < 3; ++a) appendBytes(raw, v[a]);
+  for (const BoundaryTriangle& t : boundary->triangles())
+    for (std::uint32_t i : t) appendBytes(raw, i);
+  uLongf size = compressBound(static_cast<uLong>(raw.size()));
+  std::string out(size, '\0');
+  if (compress2(reinterpret_cast<Bytef*>(out.data()), &size,
+                reinterpret_cast<const Bytef*>(raw.data()), static_cast<uLong>(raw.size()),
+                Z_BEST_COMPRESSION) != Z_OK)
+    throw Error("cannot compress the domain boundary");
+  out.resize(size);
+  return out;
+}
+
 // How a knot vector is stored (version 3): as a rule when the rule gives exactly these knots
 // (the placement for N equally spaced samples, or clamped uniform), else as float64 values.
 // A 64^3 model's knots are 1.6 KB of float64: at 0.25 bits per sample, a fifth of the file.
@@ -152,9 +178,11 @@ std::string_view codedControls(const FileContent& c, std::shared_ptr<const std::
   return *owned;
 }
 
-// compressedMaskBytes: the size of the mask section (ignored without a mask).
+// compressedMaskBytes, compressedBoundaryBytes: the sizes of the mask and boundary sections
+// (ignored without them).
 std::string headerText(const FileContent& content, const std::array<json, 3>& rules,
-                       std::int64_t controlBytes, std::int64_t compressedMaskBytes) {
+                       std::int64_t controlBytes, std::int64_t compressedMaskBytes,
+                       std::int64_t compressedBoundaryBytes) {
   const Model& m = content.shape;
   const TensorBSpline& s = m.spline();
   const DomainBox& d = m.domain();
@@ -178,6 +206,10 @@ std::string headerText(const FileContent& content, const std::array<json, 3>& ru
     h["mask"] = {{"kind", maskKindName(m.mask().kind())},
                  {"dims", m.mask().dims()},
                  {"bytes", compressedMaskBytes}};
+  if (const DomainBoundary* b = m.boundary())
+    h["boundary"] = {{"vertices", b->vertices().size()},
+                     {"triangles", b->triangles().size()},
+                     {"bytes", compressedBoundaryBytes}};
   return h.dump();
 }
 
@@ -273,17 +305,20 @@ struct ModelFilePieces {
   std::shared_ptr<const std::string> ownedControls;
   std::string_view controls;
   std::string mask;
+  std::string boundary;
 };
 
 ModelFilePieces modelFilePieces(const FileContent& content) {
   const Model& model = content.shape;
   ModelFilePieces p;
   p.mask = model.mask().empty() ? std::string() : compressedMask(model.mask());
+  p.boundary = compressedBoundary(model.boundary());
   p.controls = codedControls(content, p.ownedControls);
   const auto rules = knotRules(model);
   const std::string header =
       paddedHeader(headerText(content, rules, static_cast<std::int64_t>(p.controls.size()),
-                              static_cast<std::int64_t>(p.mask.size())),
+                              static_cast<std::int64_t>(p.mask.size()),
+                              static_cast<std::int64_t>(p.boundary.size())),
                    storedKnotBytes(content, rules));
   std::string& out = p.head;
   out.append(kMagic, sizeof(kMagic));
@@ -309,11 +344,11 @@ namespace {
 void serializeContent(const FileContent& content,
                       const std::function<std::uint8_t*(size_t)>& allocate) {
   const ModelFilePieces p = modelFilePieces(content);
-  const size_t body = p.head.size() + p.controls.size() + p.mask.size();
+  const size_t body = p.head.size() + p.controls.size() + p.mask.size() + p.boundary.size();
   std::uint8_t* out = allocate(body + 4);
   std::uint8_t* at = out;
-  for (const std::string_view piece :
-       {std::string_view(p.head), p.controls, std::string_view(p.mask)}) {
+  for (const std::string_view piece : {std::string_view(p.head), p.controls,
+                                       std::string_view(p.mask), std::string_view(p.boundary)}) {
     std::memcpy(at, piece.data(), piece.size());
     at += piece.size();
   }
@@ -334,14 +369,15 @@ std::int64_t fileSizeOf(const FileContent& content) {
   const Model& model = content.shape;
   const std::int64_t mask =
       model.mask().empty() ? 0 : static_cast<std::int64_t>(compressedMask(model.mask()).size());
+  const auto boundary = static_cast<std::int64_t>(compressedBoundary(model.boundary()).size());
   const auto rules = knotRules(model);
   const std::int64_t knotBytes = storedKnotBytes(content, rules);
   std::shared_ptr<const std::string> owned;
   const auto ctrl = static_cast<std::int64_t>(codedControls(content, owned).size());
   return static_cast<std::int64_t>(
              kPrefixBytes +
-             paddedHeader(headerText(content, rules, ctrl, mask), knotBytes).size()) +
-         knotBytes + ctrl + mask + 4;
+             paddedHeader(headerText(content, rules, ctrl, mask, boundary), knotBytes).size()) +
+         knotBytes + ctrl + mask + boundary + 4;
 }
 
 void saveContent(const FileContent& content, const std::filesystem::path& path) {
@@ -350,8 +386,8 @@ void saveContent(const FileContent& content, const std::filesystem::path& path) 
   const ModelFilePieces p = modelFilePieces(content);
   AtomicFileWriter out(path);
   std::uint32_t sum = 0;
-  for (const std::string_view piece :
-       {std::string_view(p.head), p.controls, std::string_view(p.mask)}) {
+  for (const std::string_view piece : {std::string_view(p.head), p.controls,
+                                       std::string_view(p.mask), std::string_view(p.boundary)}) {
     out.write(piece);
     sum = crcOf(sum, piece);
   }
@@ -407,7 +443,9 @@ TimeVaryingModel parseTimeVaryingModel(std::span<const std::uint8_t> b, const st
   std::optional<MaskKind> maskKind;  // version 2 on; a version-1 file has no mask
   Index3 maskDims{0, 0, 0};
   std::int64_t storedMaskBytes = 0;  // compressed size
-  ControlCoding coding;              // version 3 on; before: float32
+  // The exact boundary of a mesh (optional): counts and compressed size.
+  std::int64_t boundaryVertices = 0, boundaryTriangles = 0, storedBoundaryBytes = 0;
+  ControlCoding coding;  // version 3 on; before: float32
   std::int64_t storedControlBytes = -1;
   std::array<std::int64_t, 3> knotSamples{-1, -1, -1};  // version 3: -1 stored, 0 uniform, N
   // Version 4: the time axis (its knots are read from the knot section).
@@ -471,6 +509,24 @@ TimeVaryingModel parseTimeVaryingModel(std::span<const std::uint8_t> b, const st
       }
       maskDims = integers3(m, "dims");
       storedMaskBytes = integerOr(m, "bytes", -1);
+    }
+    if (version >= 3 && h.contains("boundary")) {
+      const json& m = h.at("boundary");
+      if (!m.is_object()) throw bad("boundary must be an object");
+      boundaryVertices = integerOr(m, "vertices", -1);
+      boundaryTriangles = integerOr(m, "triangles", -1);
+      storedBoundaryBytes = integerOr(m, "bytes", -1);
+      if (boundaryVertices < 3 || boundaryVertices > kMaxBoundaryElements ||
+          boundaryTriangles < 1 || boundaryTriangles > kMaxBoundaryElements)
+        throw bad("boundary vertex or triangle count is missing or out of range");
+      if (storedBoundaryBytes < 1 ||
+          storedBoundaryBytes > static_cast<std::int64_t>(compressBound(static_cast<uLong>(
+                                    boundaryRawBytes(boundaryVertices, boundaryTriangles)))))
+        throw bad("boundary byte count is missing or out of range");
+      // zlib's deflate shrinks data at most about 1032 times: a small section cannot claim a
+      // boundary of gigabytes.
+      if (boundaryRawBytes(boundaryVertices, boundaryTriangles) > 1032 * storedBoundaryBytes)
+        throw bad("boundary byte count is too small for its vertex and triangle counts");
     }
     if (version >= 4 && h.contains("time")) {
       const json& t = h.at("time");
@@ -539,7 +595,8 @@ TimeVaryingModel parseTimeVaryingModel(std::span<const std::uint8_t> b, const st
               std::to_string(ctrlCount) + " control points coded " +
               controlCoderName(coding.coder));
   const std::int64_t expected = static_cast<std::int64_t>(kPrefixBytes + headerBytes) +
-                                8 * knotCount + storedControlBytes + storedMaskBytes + 4;
+                                8 * knotCount + storedControlBytes + storedMaskBytes +
+                                storedBoundaryBytes + 4;
   if (static_cast<std::int64_t>(b.size()) != expected)
     throw bad("size is " + std::to_string(b.size()) + " bytes but the header describes " +
               std::to_string(expected) +
@@ -626,6 +683,32 @@ TimeVaryingModel parseTimeVaryingModel(std::span<const std::uint8_t> b, const st
     std::vector<std::uint8_t> nodes(static_cast<size_t>(count));
     for (std::int64_t i = 0; i < count; ++i) nodes[i] = (bits[i / 8] >> (i % 8)) & 1u;
     model.setMask(DomainMask(*maskKind, maskDims, std::move(nodes)));
+    offset += static_cast<size_t>(storedMaskBytes);
+  }
+  if (boundaryTriangles > 0) {
+    std::vector<std::uint8_t> raw(
+        static_cast<size_t>(boundaryRawBytes(boundaryVertices, boundaryTriangles)));
+    uLongf size = static_cast<uLongf>(raw.size());
+    if (uncompress(raw.data(), &size, b.data() + offset, static_cast<uLong>(storedBoundaryBytes)) !=
+            Z_OK ||
+        size != raw.size())
+      throw bad("boundary data is corrupt or does not hold its " +
+                std::to_string(boundaryVertices) + " vertices and " +
+                std::to_string(boundaryTriangles) + " triangles");
+    std::vector<Vec3f> vertices(static_cast<size_t>(boundaryVertices));
+    for (size_t i = 0; i < vertices.size(); ++i) {
+      float xyz[3];
+      std::memcpy(xyz, raw.data() + 12 * i, 12);
+      vertices[i] = Vec3f(xyz[0], xyz[1], xyz[2]);
+    }
+    std::vector<BoundaryTriangle> triangles(static_cast<size_t>(boundaryTriangles));
+    std::memcpy(triangles.data(), raw.data() + 12 * vertices.size(), 12 * triangles.size());
+    try {
+      model.setBoundary(
+          std::make_shared<const DomainBoundary>(std::move(vertices), std::move(triangles)));
+    } catch (const Error& e) {
+      throw bad(e.what());
+    }
   }
   if (formatVersion) *formatVersion = version;
   TimeVaryingModel out = time ? TimeVaryingModel(model, std::move(*time), std::move(slabs4d))

@@ -10,7 +10,7 @@ namespace mfadvr {
 
 template <int MaxP = kMaxUnrolledDegree, class F>
 void modelKernelSwitch(const ModelView& view, bool shade, F&& f) {
-  const bool masked = view.mask.nodes != nullptr;
+  const bool masked = view.mask.nodes != nullptr || view.boundary.nodes != nullptr;
   const bool skip = view.empty != nullptr || view.extremeUpper != nullptr;
   splineDegreeSwitch<MaxP>(view.spline, [&]<int P>() {
     auto withSkip = [&]<bool Masked, bool Shade>() {

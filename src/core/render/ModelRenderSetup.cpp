@@ -28,6 +28,7 @@ ModelRenderSetup::ModelRenderSetup(const ModelField& field, const RenderSettings
     view_.inverseExtent[a] = 1.0 / extent[a];
   }
   view_.mask = model.mask().view();
+  if (const DomainBoundary* boundary = model.boundary()) view_.boundary = boundary->view();
   // The flags' (re)build is part of the frame: its time is added to the ray casting's.
   const auto start = std::chrono::steady_clock::now();
   // Composite and additive renders skip what the transfer function hides, iso renders the cells

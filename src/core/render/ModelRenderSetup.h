@@ -27,7 +27,8 @@ class ModelRenderSetup {
 
   const RayParams& params() const { return params_; }
   const ModelView& view() const { return view_; }
-  bool masked() const { return view_.mask.nodes != nullptr; }
+  // Whether samples can fall outside the model's domain (a mask or an exact boundary).
+  bool masked() const { return view_.mask.nodes != nullptr || view_.boundary.nodes != nullptr; }
   // Whether the view carries empty-space flags (skipping on and something to skip).
   bool skips() const { return view_.empty != nullptr; }
   // Whether it carries extreme bounds (maximum and minimum intensity skipping, host only).

@@ -24,7 +24,8 @@ Image renderModelView(const RenderSettings& settings, const RayParams& params,
   // apart.
   const auto start = std::chrono::steady_clock::now();
   std::optional<DepthBounds> depth;
-  if (view.empty && !view.mask.nodes && params.blend == BlendMode::Composite) {
+  if (view.empty && !view.mask.nodes && !view.boundary.nodes &&
+      params.blend == BlendMode::Composite) {
     auto build = [&] { depth.emplace(params.camera, view); };
     if (settings.threads > 0)
       tbb::task_arena(settings.threads).execute(build);

@@ -332,11 +332,13 @@ def fig08(outdir, rows):
 
 
 def fig09(outdir, rows):
+    for r in rows:  # one row of pictures per data set and view (whole, zoom)
+        r["dataset_view"] = "%s %s" % (r["dataset"], r.get("view", "whole"))
     method_grid(outdir, "fig09_unstructured",
                 "Unstructured (tetrahedral) datasets rendered per method "
-                "(caption: render time)", rows, "dataset",
-                lambda r: "%s\n(%s pts, %s tets)" % (r["dataset"], count(r["points"]),
-                                                     count(r["cells"])),
+                "(caption: render time)", rows, "dataset_view",
+                lambda r: "%s, %s\n(%s pts, %s tets)" % (r["dataset"], r.get("view", "whole"),
+                                                         count(r["points"]), count(r["cells"])),
                 "image", time_caption)
 
 

@@ -20,6 +20,7 @@
 // per stretch of empty blocks and a few flag reads per block, not work per cell.
 #include <cstdint>
 
+#include "core/mask/BoundaryView.h"
 #include "core/mask/MaskView.h"
 #include "core/render/kernel/ExtremeLevels.h"
 #include "core/render/kernel/SampleBatch.h"
@@ -44,6 +45,10 @@ struct ModelView {
   double boxMin[3];
   double inverseExtent[3];  // physical -> parameter: u = (x - boxMin) * inverseExtent
   MaskView mask;
+  // The mesh's exact boundary (null nodes: none). Where it is given, the host's rays sample only
+  // their stretches inside it (SplineRaySampler::beginRay), and the mask serves rays that cross
+  // it more often than kMaxBoundaryCrossings; the device's use the mask.
+  BoundaryView boundary;
   // Per knot-span cell, x fastest over (count - degree) cells per axis: 0 when the cell is
   // visible under the current transfer function, else 1 + the level of the largest block of the
   // pyramid around it that is all empty (1: the cell alone), so that a ray crosses a large
@@ -137,11 +142,28 @@ class SplineRaySampler {
 
   MFADVR_HD MFADVR_INLINE void beginRay(const double o[3], const double d[3]) {
     if constexpr (Skip) beginMarch(o, d, march_);
+#if !defined(__CUDA_ARCH__)
+    // The ray's stretches inside the mesh's boundary: inside() then tests a sample's distance
+    // against them (the host only: the device keeps its stack for the spline).
+    boundaryStretches_ = -1;
+    if (m_.boundary.nodes) {
+      boundaryStretches_ = boundaryIntervals(m_.boundary, o, d, boundaryIntervals_);
+      double dd = 0.0;
+      for (int a = 0; a < 3; ++a) {
+        rayOrigin_[a] = o[a];
+        rayDirection_[a] = d[a];
+        dd += d[a] * d[a];
+      }
+      rayInverseLength2_ = dd > 0.0 ? 1.0 / dd : 0.0;
+    }
+#endif
   }
 
   // The isosurface walk's pieces (kernel/IsoSurfaceWalk.h): inside a knot-span cell the spline
   // along a ray is a polynomial of the degrees' sum.
-  MFADVR_HD MFADVR_INLINE int rayDegree() const { return p_[0] + p_[1] + p_[2]; }
+  MFADVR_HD MFADVR_INLINE int rayDegree() const {
+    return p_[0] + p_[1] + p_[2];
+  }
 
   // Where the ray o + t d leaves the knot-span cell it is in just after t: the nearest knot
   // plane beyond t on any axis (+inf for a ray parallel to every axis's knots).
@@ -169,6 +191,13 @@ class SplineRaySampler {
   }
 
   MFADVR_HD MFADVR_INLINE bool inside(const double p[3]) const {
+#if !defined(__CUDA_ARCH__)
+    if (boundaryStretches_ >= 0) {
+      double t = 0.0;
+      for (int a = 0; a < 3; ++a) t += (p[a] - rayOrigin_[a]) * rayDirection_[a];
+      return inIntervals(boundaryIntervals_, boundaryStretches_, t * rayInverseLength2_);
+    }
+#endif
     double u[3];
     toParameter(p, u);
     return insideMask(m_.mask, u);
@@ -296,8 +325,12 @@ class SplineRaySampler {
   }
 
   // The levels of the extreme bounds' bytes (boundedAt).
-  MFADVR_HD MFADVR_INLINE const float* upperLevels() const { return m_.extremeUpperLevels; }
-  MFADVR_HD MFADVR_INLINE const float* lowerLevels() const { return m_.extremeLowerLevels; }
+  MFADVR_HD MFADVR_INLINE const float* upperLevels() const {
+    return m_.extremeUpperLevels;
+  }
+  MFADVR_HD MFADVR_INLINE const float* lowerLevels() const {
+    return m_.extremeLowerLevels;
+  }
 
   MFADVR_HD MFADVR_INLINE void stage(int lane, const double p[3]) {
     if constexpr (kLocateLanes) {
@@ -451,6 +484,11 @@ class SplineRaySampler {
   bool located_ = false;
   AxisLocation loc_[3];
   RayMarch march_;
+  // The current ray's stretches inside the boundary (-1: none, or more than the limit: the
+  // mask decides), and the ray, to turn a sample's point into its distance.
+  int boundaryStretches_ = -1;
+  double boundaryIntervals_[2 * kMaxBoundaryIntervals];
+  double rayOrigin_[3], rayDirection_[3], rayInverseLength2_ = 0.0;
   static constexpr int kOrder = Shade ? 1 : 0;
   AxisLocation locs_[kBatch][3];  // each lane's location, unless kLaneLocations
   // kLocateLanes: each lane's point; kLaneLocations: its spans and local coordinates, axis by

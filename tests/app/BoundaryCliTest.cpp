@@ -1,0 +1,103 @@
+// A mesh's exact boundary through the command line: encode stores it (and --no-boundary does
+// not), info shows it, query's inside column follows it where the voxel mask cannot.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "TestSupport.h"
+#include "app/CliRunner.h"
+
+namespace mfadvr {
+namespace {
+
+// A legacy VTK mesh of the unit cubes of a 4^3 grid less a cavity (the central 2^3 cubes) and a
+// notch (the corner cube at 3,3,3), 6 tetrahedra a cube, with the point scalar x + y + z.
+void writeHoledMesh(const std::filesystem::path& path) {
+  const int n = 4, np = n + 1;
+  std::ofstream f(path);
+  f << "# vtk DataFile Version 3.0\nholed cubes\nASCII\nDATASET UNSTRUCTURED_GRID\n";
+  f << "POINTS " << np * np * np << " double\n";
+  for (int k = 0; k < np; ++k)
+    for (int j = 0; j < np; ++j)
+      for (int i = 0; i < np; ++i) f << i << " " << j << " " << k << "\n";
+  auto id = [&](int i, int j, int k) { return i + np * (j + np * k); };
+  const int perms[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+  std::vector<std::array<int, 4>> tets;
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        const bool cavity = i >= 1 && i <= 2 && j >= 1 && j <= 2 && k >= 1 && k <= 2;
+        if (cavity || (i == 3 && j == 3 && k == 3)) continue;
+        for (const auto& p : perms) {
+          int at[3] = {i, j, k};
+          std::array<int, 4> t{};
+          t[0] = id(at[0], at[1], at[2]);
+          for (int s = 0; s < 3; ++s) {
+            ++at[p[s]];
+            t[s + 1] = id(at[0], at[1], at[2]);
+          }
+          tets.push_back(t);
+        }
+      }
+  f << "CELLS " << tets.size() << " " << 5 * tets.size() << "\n";
+  for (const auto& t : tets) f << "4 " << t[0] << " " << t[1] << " " << t[2] << " " << t[3] << "\n";
+  f << "CELL_TYPES " << tets.size() << "\n";
+  for (size_t c = 0; c < tets.size(); ++c) f << "10\n";
+  f << "POINT_DATA " << np * np * np << "\nSCALARS v double 1\nLOOKUP_TABLE default\n";
+  for (int k = 0; k < np; ++k)
+    for (int j = 0; j < np; ++j)
+      for (int i = 0; i < np; ++i) f << i + j + k << "\n";
+}
+
+TEST(BoundaryCli, EncodeStoresTheBoundaryAndQueryFollowsIt) {
+  const auto dir = test::scratchDir();
+  const std::string mesh = (dir / "holed.vtk").string();
+  writeHoledMesh(mesh);
+  const std::string exact = (dir / "exact.mfa").string(), masked = (dir / "masked.mfa").string();
+  // A coarse mask (a node per grid point): it counts the notch and the cavity's middle in.
+  auto r = test::runMfadvr("encode " + mesh + " -o " + exact + " --mask-res 5 --ctrl 5 --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  auto j = nlohmann::json::parse(r.out);
+  // Outer hull 6 x 16 squares (the notch trades 3 outer squares for 3 inner ones), cavity
+  // 6 x 4 squares; 2 triangles a square.
+  EXPECT_EQ(j["boundary"]["triangles"], 240);
+  r = test::runMfadvr("encode " + mesh + " -o " + masked + " --mask-res 5 --ctrl 5 --no-boundary");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.out.find("boundary   "), std::string::npos) << r.out;
+
+  r = test::runMfadvr("info " + exact + " --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["boundary"]["triangles"], 240);
+  r = test::runMfadvr("info " + exact);
+  EXPECT_NE(r.out.find("boundary        240 triangles"), std::string::npos) << r.out;
+  r = test::runMfadvr("info " + masked + " --json");
+  EXPECT_TRUE(nlohmann::json::parse(r.out)["boundary"].is_null()) << r.out;
+
+  // In the mesh, in the notch, in the cavity.
+  std::ofstream(dir / "points.txt") << "0.5 0.5 0.5\n3.5 3.5 3.5\n1.5 1.5 1.5\n";
+  const std::string points = " --points " + (dir / "points.txt").string();
+  auto insideColumn = [](const std::string& csv) {
+    std::string column;
+    std::istringstream in(csv);
+    std::string line;
+    std::getline(in, line);  // header
+    while (std::getline(in, line)) column += line.back();
+    return column;
+  };
+  r = test::runMfadvr("query " + exact + points);
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(insideColumn(r.out), "100") << r.out;
+  r = test::runMfadvr("query " + masked + points);
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(insideColumn(r.out), "111") << r.out;  // the mask's half-node blur
+
+  // The render path reads the boundary from the file (its pixels: DomainBoundaryTest).
+  r = test::runMfadvr("render " + exact + " -o " + (dir / "exact.png").string() +
+                      " --size 64x64 --tf ramp --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+}
+
+}  // namespace
+}  // namespace mfadvr

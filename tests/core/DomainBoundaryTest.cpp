@@ -1,0 +1,273 @@
+// The exact boundary of a mesh: extraction from tetrahedra (welding, orientation), inside tests
+// of points, the stretches of lines through edges and vertices, the model file section, and
+// renders whose rays sample exactly the chords of the mesh.
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <functional>
+#include <random>
+
+#include "core/field/ModelField.h"
+#include "core/mask/DomainBoundary.h"
+#include "core/model/ModelFile.h"
+#include "core/render/Camera.h"
+#include "core/render/RayCaster.h"
+#include "core/util/Error.h"
+
+namespace mfadvr {
+namespace {
+
+struct Mesh {
+  std::vector<Vec3d> points;
+  std::vector<Tetrahedron> tets;
+};
+
+// Unit cubes [i, i+1] x [j, j+1] x [k, k+1] of an n^3 grid where keep(i, j, k), each split into
+// the 6 tetrahedra around its main diagonal (a conforming mesh). shared = false: every cube has
+// points of its own, as the blocks of a multi-block mesh repeat the points where they meet.
+Mesh cubes(int n, const std::function<bool(int, int, int)>& keep, bool shared = true) {
+  Mesh m;
+  const int np = n + 1;
+  if (shared)
+    for (int k = 0; k < np; ++k)
+      for (int j = 0; j < np; ++j)
+        for (int i = 0; i < np; ++i) m.points.emplace_back(i, j, k);
+  const int perms[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        if (!keep(i, j, k)) continue;
+        std::int64_t base = 0;
+        if (!shared) {
+          base = static_cast<std::int64_t>(m.points.size());
+          for (int c = 0; c < 8; ++c)
+            m.points.emplace_back(i + (c & 1), j + (c >> 1 & 1), k + (c >> 2));
+        }
+        auto id = [&](int x, int y, int z) -> std::int64_t {
+          if (shared) return x + np * (y + std::int64_t(np) * z);
+          return base + (x - i) + 2 * (y - j) + 4 * (z - k);
+        };
+        for (const auto& p : perms) {
+          int at[3] = {i, j, k};
+          Tetrahedron t;
+          t[0] = id(at[0], at[1], at[2]);
+          for (int s = 0; s < 3; ++s) {
+            ++at[p[s]];
+            t[s + 1] = id(at[0], at[1], at[2]);
+          }
+          m.tets.push_back(t);
+        }
+      }
+  return m;
+}
+
+bool all(int, int, int) {
+  return true;
+}
+
+// 4^3 cubes less a cavity (the central 2^3) and a notch (one corner cube).
+bool holed(int i, int j, int k) {
+  const bool cavity = i >= 1 && i <= 2 && j >= 1 && j <= 2 && k >= 1 && k <= 2;
+  const bool notch = i == 3 && j == 3 && k == 3;
+  return !cavity && !notch;
+}
+
+TEST(DomainBoundary, FacesOfOneTetrahedronOnlyOrientedOutward) {
+  const Mesh m = cubes(2, all);
+  const DomainBoundary b = boundaryOfTetrahedra(m.points, m.tets);
+  EXPECT_EQ(b.triangles().size(), 48u);  // 6 faces x 4 squares x 2 triangles
+  EXPECT_EQ(b.vertices().size(), 26u);   // the 27 grid points less the centre
+  for (const BoundaryTriangle& t : b.triangles()) {
+    const Vec3d a = b.vertices()[t[0]].cast<double>(), p = b.vertices()[t[1]].cast<double>(),
+                c = b.vertices()[t[2]].cast<double>();
+    const Vec3d normal = (p - a).cross(c - a);
+    EXPECT_GT(normal.dot((a + p + c) / 3.0 - Vec3d(1, 1, 1)), 0.0);
+  }
+}
+
+TEST(DomainBoundary, PointsRepeatedWhereBlocksMeetAreWelded) {
+  const Mesh m = cubes(2, all, false);
+  EXPECT_EQ(m.points.size(), 64u);
+  const DomainBoundary b = boundaryOfTetrahedra(m.points, m.tets);
+  EXPECT_EQ(b.triangles().size(), 48u);  // the faces between the cubes are not boundary
+}
+
+TEST(DomainBoundary, ContainsTheCubesAndNotTheCavityOrTheNotch) {
+  for (bool shared : {true, false}) {
+    const Mesh m = cubes(4, holed, shared);
+    const DomainBoundary b = boundaryOfTetrahedra(m.points, m.tets);
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<double> u(-0.5, 4.5);
+    int in = 0, out = 0;
+    for (int t = 0; t < 20000; ++t) {
+      const Vec3d x(u(rng), u(rng), u(rng));
+      bool nearPlane = false;
+      for (int a = 0; a < 3; ++a) nearPlane = nearPlane || std::abs(x[a] - std::round(x[a])) < 1e-6;
+      if (nearPlane) continue;
+      const bool inGrid = (x.array() > 0.0).all() && (x.array() < 4.0).all();
+      const bool expected = inGrid && holed(int(x[0]), int(x[1]), int(x[2]));
+      ASSERT_EQ(b.contains(x), expected) << x.transpose() << " shared " << shared;
+      (expected ? in : out) += 1;
+    }
+    EXPECT_GT(in, 5000);
+    EXPECT_GT(out, 5000);
+  }
+}
+
+TEST(DomainBoundary, LinesThroughEdgesAndVerticesCrossOnce) {
+  const Mesh m = cubes(3, all);
+  const DomainBoundary b = boundaryOfTetrahedra(m.points, m.tets);
+  const BoundaryView v = b.view();
+  double intervals[2 * kMaxBoundaryIntervals];
+  // Along x through every line of the grid (edges of boundary and inner faces) and between.
+  for (int jy = 1; jy < 6; ++jy)
+    for (int jz = 1; jz < 6; ++jz) {
+      const double o[3] = {-1.0, 0.5 * jy, 0.5 * jz}, d[3] = {1.0, 0.0, 0.0};
+      ASSERT_EQ(boundaryIntervals(v, o, d, intervals), 1) << jy << " " << jz;
+      EXPECT_NEAR(intervals[0], 1.0, 1e-12);
+      EXPECT_NEAR(intervals[1], 4.0, 1e-12);
+    }
+  // Along the main diagonal: through a vertex of the boundary at each end, and through the
+  // grid's inner vertices.
+  const double o[3] = {-1, -1, -1}, d[3] = {1, 1, 1};
+  ASSERT_EQ(boundaryIntervals(v, o, d, intervals), 1);
+  EXPECT_NEAR(intervals[0], 1.0, 1e-12);
+  EXPECT_NEAR(intervals[1], 4.0, 1e-12);
+  // Through an edge of the hull from outside: the line only touches the mesh.
+  const double to[3] = {2, 4, 1.5}, td[3] = {1, -1, 0};  // meets (3, 3, 1.5) at t = 1
+  const int n = boundaryIntervals(v, to, td, intervals);
+  ASSERT_GE(n, 0);
+  EXPECT_FALSE(inIntervals(intervals, n, 0.9));
+  EXPECT_FALSE(inIntervals(intervals, n, 1.1));
+  // Through a silhouette vertex.
+  const double vo[3] = {4, 4, 2}, vd[3] = {-1, -1, 1};  // meets (3, 3, 3) at t = 1
+  const int nv = boundaryIntervals(v, vo, vd, intervals);
+  ASSERT_GE(nv, 0);
+  EXPECT_FALSE(inIntervals(intervals, nv, 0.9));
+  EXPECT_FALSE(inIntervals(intervals, nv, 1.1));
+}
+
+TEST(DomainBoundary, BadTrianglesAreClearErrors) {
+  EXPECT_THROW(DomainBoundary({Vec3f(0, 0, 0), Vec3f(1, 0, 0), Vec3f(0, 1, 0)}, {{0, 1, 3}}),
+               Error);
+  EXPECT_THROW(DomainBoundary({Vec3f(0, 0, 0), Vec3f(NAN, 0, 0), Vec3f(0, 1, 0)}, {{0, 1, 2}}),
+               Error);
+  Mesh m = cubes(1, all);
+  m.tets[0][2] = 99;
+  EXPECT_THROW(boundaryOfTetrahedra(m.points, m.tets), Error);
+}
+
+// A constant model (value 1) over [-1, 1]^3 whose domain is the octahedron |x|+|y|+|z| <= 1,
+// given as 8 tetrahedra around the centre.
+Model octahedronModel() {
+  std::array<KnotVector, 3> knots;
+  for (auto& k : knots) k = KnotVector::clampedUniform(2, 4);
+  Model m(TensorBSpline(knots, std::vector<float>(64, 1.0f)),
+          DomainBox{Vec3d(-1, -1, -1), Vec3d(1, 1, 1)}, 1.0, 1.0);
+  std::vector<Vec3d> points{{0, 0, 0},  {1, 0, 0}, {-1, 0, 0}, {0, 1, 0},
+                            {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  std::vector<Tetrahedron> tets;
+  for (int sx : {1, 2})
+    for (int sy : {3, 4})
+      for (int sz : {5, 6}) tets.push_back({0, sx, sy, sz});
+  m.setBoundary(std::make_shared<const DomainBoundary>(boundaryOfTetrahedra(points, tets)));
+  return m;
+}
+
+// The chord of the ray o + t d through the octahedron (a convex body: 8 half-spaces).
+double octahedronChord(const Vec3d& o, const Vec3d& d) {
+  double t0 = -INFINITY, t1 = INFINITY;
+  for (int s = 0; s < 8; ++s) {
+    const Vec3d n(s & 1 ? -1 : 1, s & 2 ? -1 : 1, s & 4 ? -1 : 1);  // n . x <= 1
+    const double dn = n.dot(d), on = n.dot(o);
+    if (dn == 0.0) {
+      if (on > 1.0) return 0.0;
+      continue;
+    }
+    const double t = (1.0 - on) / dn;
+    if (dn > 0)
+      t1 = std::min(t1, t);
+    else
+      t0 = std::max(t0, t);
+  }
+  return t1 > t0 ? (t1 - t0) * d.norm() : 0.0;
+}
+
+TEST(DomainBoundary, ModelInsideAndFileRoundTrip) {
+  const Model m = octahedronModel();
+  ASSERT_NE(m.boundary(), nullptr);
+  EXPECT_EQ(m.boundary()->triangles().size(), 8u);
+  EXPECT_TRUE(m.inside(Vec3d(0.3, 0.3, 0.3)));
+  EXPECT_FALSE(m.inside(Vec3d(0.4, 0.4, 0.3)));
+  EXPECT_FALSE(m.inside(Vec3d(0.9, 0.9, 0.9)));
+
+  const std::string bytes = serializeModel(m);
+  EXPECT_EQ(static_cast<std::int64_t>(bytes.size()), modelFileSize(m));
+  const Model back = parseModel({reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size()},
+                                "octahedron.mfa");
+  ASSERT_NE(back.boundary(), nullptr);
+  EXPECT_EQ(back.boundary()->triangles(), m.boundary()->triangles());
+  EXPECT_EQ(back.boundary()->vertices(), m.boundary()->vertices());
+  EXPECT_FALSE(back.inside(Vec3d(0.4, 0.4, 0.3)));
+
+  // Damaged files are clear errors, never crashes.
+  std::mt19937 rng(5);
+  int refused = 0;
+  for (int t = 0; t < 300; ++t) {
+    std::string damaged = bytes;
+    const size_t at = std::uniform_int_distribution<size_t>(0, damaged.size() - 1)(rng);
+    damaged[at] = static_cast<char>(damaged[at] ^ (1 + t % 255));
+    if (t % 3 == 0) damaged.resize(at);
+    try {
+      parseModel({reinterpret_cast<const std::uint8_t*>(damaged.data()), damaged.size()}, "x");
+    } catch (const Error&) {
+      ++refused;
+    }
+  }
+  EXPECT_EQ(refused, 300);  // every change breaks the checksum or the structure
+}
+
+TEST(DomainBoundary, RaysSampleExactlyTheChordsOfTheMesh) {
+  RenderSettings s;
+  s.width = 48;
+  s.height = 40;
+  s.camera.position = Vec3d(0.7, 0.4, 5);
+  s.camera.focalPoint = Vec3d(0, 0, 0);
+  s.camera.viewUp = Vec3d(0, 1, 0);
+  s.camera.viewAngle = 30;
+  s.sampleDistance = 0.01;
+  s.transferFunction.space = TfSpace::Data;
+  s.transferFunction.color = {{0.0, Vec3f(1, 1, 1)}, {2.0, Vec3f(1, 1, 1)}};
+  s.transferFunction.opacity = {{0.0, 0.5f}, {2.0, 0.5f}};
+  const Model m = octahedronModel();
+  const ModelField field(m);
+  RenderStats stats;
+  const Image image = renderVolume(field, s, &stats);
+  const RayGenerator rays(s.camera, s.width, s.height);
+  int hit = 0;
+  for (int y = 0; y < s.height; ++y)
+    for (int x = 0; x < s.width; ++x) {
+      Vec3d o, d;
+      rays.ray(x, y, o, d);
+      const double chord = octahedronChord(o, d);
+      // Opacity 0.5 per unit distance: the chord's transmittance, within one step.
+      const double alpha = image.pixel(x, y)[3];
+      if (chord == 0.0) {
+        EXPECT_EQ(alpha, 0.0) << x << " " << y;
+        continue;
+      }
+      ++hit;
+      const double low = 1.0 - std::pow(0.5, std::max(chord - s.sampleDistance, 0.0));
+      const double high = 1.0 - std::pow(0.5, chord + s.sampleDistance);
+      EXPECT_GE(alpha, low - 1e-5) << x << " " << y << " chord " << chord;
+      EXPECT_LE(alpha, high + 1e-5) << x << " " << y << " chord " << chord;
+    }
+  EXPECT_GT(hit, 400);
+  // The same through the generic field path (ModelField's sampler: Model::inside per sample).
+  EXPECT_TRUE(field.sampler().masked());
+  EXPECT_FALSE(field.sampler().inside(Vec3d(0.4, 0.4, 0.3)));
+}
+
+}  // namespace
+}  // namespace mfadvr
