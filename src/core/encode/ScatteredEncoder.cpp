@@ -3,6 +3,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
 
+#include <Eigen/Geometry>
 #include <Eigen/IterativeLinearSolvers>
 #include <Eigen/Sparse>
 #include <algorithm>
@@ -292,24 +293,53 @@ void validateOptions(const ScatteredFitOptions& o) {
 
 }  // namespace
 
-std::int64_t defaultScatteredControlCount(std::int64_t pointCount, int degree) {
-  const auto n = static_cast<std::int64_t>(std::lround(std::cbrt(static_cast<double>(pointCount))));
-  return std::clamp<std::int64_t>(n, degree + 1, std::max<std::int64_t>(64, degree + 1));
+Index3 defaultScatteredControlCounts(const ScatteredData& data, const Degree3& degree) {
+  const Vec3d extent = data.boxMax() - data.boxMin();
+  double volume = 0.0;
+  const auto points = static_cast<std::int64_t>(data.points.size());
+  for (const Tetrahedron& t : data.tets) {
+    if (std::any_of(t.begin(), t.end(), [&](std::int64_t i) { return i < 0 || i >= points; }))
+      continue;  // ScatteredData::validate names it
+    const Vec3d& a = data.points[static_cast<size_t>(t[0])];
+    const Vec3d e1 = data.points[static_cast<size_t>(t[1])] - a;
+    const Vec3d e2 = data.points[static_cast<size_t>(t[2])] - a;
+    const Vec3d e3 = data.points[static_cast<size_t>(t[3])] - a;
+    volume += std::abs(e1.dot(e2.cross(e3))) / 6.0;
+  }
+  const double box = extent.prod();
+  if (!(volume > 0.0) || !(volume <= box)) volume = box;  // clouds; cells beyond the box
+  const double spacing = std::cbrt(volume / static_cast<double>(data.pointCount()));
+  constexpr double kMaxTotal = 64.0 * 64.0 * 64.0;
+  constexpr std::int64_t kMaxPerAxis = 256;
+  double n[3];
+  for (int a = 0; a < 3; ++a) n[a] = extent[a] / spacing + 1.0;
+  const double total = n[0] * n[1] * n[2];
+  const double shrink = total > kMaxTotal ? std::cbrt(kMaxTotal / total) : 1.0;
+  Index3 out{};
+  for (int a = 0; a < 3; ++a) {
+    const auto c = static_cast<std::int64_t>(std::floor(n[a] * shrink + 0.5));
+    out[a] = std::clamp<std::int64_t>(c, degree[a] + 1,
+                                      std::max<std::int64_t>(kMaxPerAxis, degree[a] + 1));
+  }
+  return out;
 }
 
 Index3 resolveScatteredControlCounts(const ScatteredData& data,
                                      const ScatteredFitOptions& options) {
   validateOptions(options);
+  for (int a = 0; a < 3; ++a)
+    if (options.degree[a] < 1 || options.degree[a] > kMaxDegree) {
+      std::ostringstream m;
+      m << "degree " << options.degree[a] << " on axis " << axisName(a) << " is outside 1.."
+        << kMaxDegree;
+      throw Error(m.str());
+    }
+  const Index3 defaults = defaultScatteredControlCounts(data, options.degree);
   Index3 n{};
   for (int a = 0; a < 3; ++a) {
     const int p = options.degree[a];
     std::ostringstream m;
-    if (p < 1 || p > kMaxDegree) {
-      m << "degree " << p << " on axis " << axisName(a) << " is outside 1.." << kMaxDegree;
-      throw Error(m.str());
-    }
-    n[a] = options.controlCounts[a] == 0 ? defaultScatteredControlCount(data.pointCount(), p)
-                                         : options.controlCounts[a];
+    n[a] = options.controlCounts[a] == 0 ? defaults[a] : options.controlCounts[a];
     if (n[a] < p + 1) {
       m << n[a] << " control points on axis " << axisName(a) << " are too few for degree " << p
         << "; use at least " << p + 1;

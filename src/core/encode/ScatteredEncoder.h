@@ -6,11 +6,11 @@
 //   du_a^2)^2
 // over the P input points, where h_a = 1 / (n_a - p_a) is the mean knot span of axis a. The
 // integral is approximated through the second-derivative coefficients of the spline (mass
-// lumping, core/spline/DerivativePenalty.h). lambda is dimensionless: both terms scale with the square of the values, and h^4
-// makes the penalty measure curvature per knot span, so that one lambda damps the same part of
-// what the control grid can resolve at any control count (frequencies above about
-// 1 / (h lambda^(1/4)) radians per unit parameter). The penalty makes the system definite, so
-// spans without points get the smoothest continuation of their surroundings instead of
+// lumping, core/spline/DerivativePenalty.h). lambda is dimensionless: both terms scale with the
+// square of the values, and h^4 makes the penalty measure curvature per knot span, so that one
+// lambda damps the same part of what the control grid can resolve at any control count (frequencies
+// above about 1 / (h lambda^(1/4)) radians per unit parameter). The penalty makes the system
+// definite, so spans without points get the smoothest continuation of their surroundings instead of
 // arbitrary values, and multilinear functions carry no penalty at all.
 //
 // The normal equations are solved by conjugate gradients (Eigen) with a Jacobi preconditioner,
@@ -46,9 +46,13 @@ struct ScatteredFitOptions {
   std::function<void(double fraction, const std::string& stage)> progress;
 };
 
-// About the cube root of the point count per axis, at least degree + 1 and at most 64: as many
-// control points as points when the points fill the box evenly.
-std::int64_t defaultScatteredControlCount(std::int64_t pointCount, int degree);
+// The default control counts: as many control points per axis as the points' mean spacing
+// h = (V / P)^(1/3) fits into the box's extent on that axis (extent / h + 1), where V is the
+// volume the P points fill: a mesh's total tetrahedron volume, a point cloud's box. So a flat or
+// long domain gets its control points where it is long, and a mesh that fills a fraction of its
+// box gets the spacing of its points, not of the box. At least degree + 1 and at most 256 per
+// axis, and at most 64^3 in all (scaled down alike on every axis beyond that).
+Index3 defaultScatteredControlCounts(const ScatteredData& data, const Degree3& degree);
 
 // Resolves 0 entries of options.controlCounts and validates degrees, counts and smoothing.
 Index3 resolveScatteredControlCounts(const ScatteredData& data, const ScatteredFitOptions& options);
