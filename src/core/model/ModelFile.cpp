@@ -81,6 +81,18 @@ std::int64_t maskBytes(const Index3& dims) {
   return (dims[0] * dims[1] * dims[2] + 7) / 8;
 }
 
+// `raw` as one zlib stream (what: named in the error).
+std::string zlibCompressed(const std::string& raw, const char* what) {
+  uLongf size = compressBound(static_cast<uLong>(raw.size()));
+  std::string out(size, '\0');
+  if (compress2(reinterpret_cast<Bytef*>(out.data()), &size,
+                reinterpret_cast<const Bytef*>(raw.data()), static_cast<uLong>(raw.size()),
+                Z_BEST_COMPRESSION) != Z_OK)
+    throw Error(std::string("cannot compress the ") + what);
+  out.resize(size);
+  return out;
+}
+
 // The packed bits, zlib-compressed: masks are long runs of 0 and 1, and compress to a few
 // percent of their packed size.
 std::string compressedMask(const DomainMask& mask) {
@@ -88,14 +100,7 @@ std::string compressedMask(const DomainMask& mask) {
   std::string bits(static_cast<size_t>(maskBytes(mask.dims())), '\0');
   for (size_t i = 0; i < nodes.size(); ++i)
     if (nodes[i]) bits[i / 8] = static_cast<char>(bits[i / 8] | (1u << (i % 8)));
-  uLongf size = compressBound(static_cast<uLong>(bits.size()));
-  std::string out(size, '\0');
-  if (compress2(reinterpret_cast<Bytef*>(out.data()), &size,
-                reinterpret_cast<const Bytef*>(bits.data()), static_cast<uLong>(bits.size()),
-                Z_BEST_COMPRESSION) != Z_OK)
-    throw Error("cannot compress the domain mask");
-  out.resize(size);
-  return out;
+  return zlibCompressed(bits, "domain mask");
 }
 
 // A boundary's vertices (float32 x, y, z each) then its triangles (uint32 indices),
@@ -114,14 +119,7 @@ std::string compressedBoundary(const DomainBoundary* boundary) {
     for (int a = 0; a < 3; ++a) appendBytes(raw, v[a]);
   for (const BoundaryTriangle& t : boundary->triangles())
     for (std::uint32_t i : t) appendBytes(raw, i);
-  uLongf size = compressBound(static_cast<uLong>(raw.size()));
-  std::string out(size, '\0');
-  if (compress2(reinterpret_cast<Bytef*>(out.data()), &size,
-                reinterpret_cast<const Bytef*>(raw.data()), static_cast<uLong>(raw.size()),
-                Z_BEST_COMPRESSION) != Z_OK)
-    throw Error("cannot compress the domain boundary");
-  out.resize(size);
-  return out;
+  return zlibCompressed(raw, "domain boundary");
 }
 
 // How a knot vector is stored (version 3): as a rule when the rule gives exactly these knots
