@@ -30,6 +30,7 @@ packages=(
   libvtk9-dev python3-vtk9 python3-dev python3-matplotlib pybind11-dev python3-pytest
   clang libclang-rt-14-dev
   xvfb xauth
+  ffmpeg
 )
 if [ "$paraview" = 1 ]; then
   packages+=(paraview paraview-dev openmpi-bin)

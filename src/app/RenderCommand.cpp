@@ -12,6 +12,7 @@
 #include "app/EncodeCliOptions.h"
 #include "app/OptionParsing.h"
 #include "app/RenderOptions.h"
+#include "app/VideoWriter.h"
 #include "app/SceneLoader.h"
 #include "core/image/FloatImageFile.h"
 #include "core/image/PngFile.h"
@@ -52,7 +53,8 @@ std::string methodList(const std::vector<std::string>& names) {
 struct Options {
   std::string input, output, floatOutput, depthOutput, method, gradientFrom, gradient = "analytic";
   std::string device = "auto";
-  std::string spacing, origin, time, times;
+  std::string spacing, origin, time, times, video;
+  double fps = 24.0;
   FieldOptionTexts field;
   EncodeCliOptions encode;
   bool json = false, quiet = false, alpha = false;
@@ -221,8 +223,8 @@ Command addRenderCommand(CLI::App& app) {
                   "builtin:NAME[:N|:NXxNYxNZ]\n" +
                       supportedVolumeFormats() + "\n" + supportedScatteredFormats())
       ->required();
-  sub->add_option("-o,--output", o->output, "PNG to write (8-bit RGB; RGBA with --alpha)")
-      ->required();
+  sub->add_option("-o,--output", o->output,
+                  "PNG to write (8-bit RGB; RGBA with --alpha); required unless --video is given");
   sub->add_option("--method", o->method,
                   "Reconstruction: " + methodList(reconstructionMethodNames()) +
                       " [default: mfa; a non-model input is encoded first with the encoding "
@@ -266,11 +268,24 @@ Command addRenderCommand(CLI::App& app) {
                   "Time-varying models: an animation of N frames from T0 to T1 (T0:T1:N), "
                   "written to the output pattern (e.g. -o frame_%03d.png)")
       ->group("Time (docs/time-varying.md)");
+  sub->add_option("--video", o->video,
+                  "With --times: also (or, without -o, only) code the frames into a video file "
+                  "(.mp4, .mov, .mkv: H.264; .webm: VP9; .avi: MPEG-4; .gif) with ffmpeg, which "
+                  "must be installed (Debian: ffmpeg; or $MFADVR_FFMPEG)")
+      ->group("Time (docs/time-varying.md)");
+  sub->add_option("--fps", o->fps, "With --video: frames per second")
+      ->check(CLI::Range(0.1, 1000.0))
+      ->capture_default_str()
+      ->group("Time (docs/time-varying.md)");
   sub->add_flag("--json", o->json, "Print timings and counts as JSON");
   sub->add_flag("-q,--quiet", o->quiet, "No progress on stderr");
 
   auto run = [o]() -> int {
     const auto start = Clock::now();
+    if (o->output.empty() && o->video.empty())
+      throw CLI::ValidationError("--output", "is required (or --video with --times)");
+    if (!o->video.empty() && o->times.empty())
+      throw CLI::ValidationError("--video", "codes an animation: give --times T0:T1:N too");
     if ((!o->time.empty() || !o->times.empty()) && findVtkMethod(o->method))
       throw CLI::ValidationError("--time", "applies to models rendered with our ray caster");
     if (const auto vtk = findVtkMethod(o->method)) {
@@ -310,7 +325,7 @@ Command addRenderCommand(CLI::App& app) {
     if (!o->times.empty()) {
       if (!o->time.empty())
         throw CLI::ValidationError("--times", "renders several instants; --time renders one");
-      if (!isFramePattern(o->output))
+      if (!(o->output.empty() && !o->video.empty()) && !isFramePattern(o->output))
         throw CLI::ValidationError("--times",
                                    "needs an output pattern with one %d (e.g. frame_%03d.png), "
                                    "got '" +
@@ -337,6 +352,10 @@ Command addRenderCommand(CLI::App& app) {
         }
       if (!o->quiet && !o->json && !tfWarning.empty())
         std::cerr << "mfadvr render: warning: " << tfWarning << "\n";
+      // The video is started first, so that a missing ffmpeg is said before any rendering.
+      std::unique_ptr<VideoWriter> video;
+      if (!o->video.empty())
+        video = std::make_unique<VideoWriter>(o->video, settings.width, settings.height, o->fps);
       nlohmann::json list = nlohmann::json::array();
       double renderSum = 0.0, contractSum = 0.0;
       for (size_t i = 0; i < animation.size(); ++i) {
@@ -345,21 +364,26 @@ Command addRenderCommand(CLI::App& app) {
         const double contract = i > 0 ? secondsSince(contractStart) : 0.0;
         MethodRenderStats stats;
         const Image image = renderMethod(scene.view(), spec, settings, &stats);
-        const std::string file = frameFileName(o->output, static_cast<int>(i));
-        writePng(file, toImage8(image, o->alpha));
+        const Image8 pixels = toImage8(image, o->alpha);
+        nlohmann::json frame = {
+            {"time", animation[i]}, {"render", stats.seconds}, {"contract", contract}};
+        if (!o->output.empty()) {
+          frame["file"] = frameFileName(o->output, static_cast<int>(i));
+          writePng(frame["file"].get<std::string>(), pixels);
+        }
+        if (video) video->add(pixels);
         renderSum += stats.seconds;
         contractSum += contract;
-        list.push_back({{"file", file},
-                        {"time", animation[i]},
-                        {"render", stats.seconds},
-                        {"contract", contract}});
+        list.push_back(std::move(frame));
         if (progress) printProgress("frames", double(i + 1) / double(animation.size()));
       }
+      if (video) video->finish();
       const double n = static_cast<double>(animation.size());
       if (o->json) {
         nlohmann::json j;
         j["input"] = o->input;
         j["output"] = o->output;
+        if (video) j["video"] = o->video;
         j["method"] = methodName(spec.method);
         j["device"] = device.name;
         j["width"] = settings.width;
@@ -371,11 +395,15 @@ Command addRenderCommand(CLI::App& app) {
                         {"total", secondsSince(start)}};
         std::cout << j.dump(2) << "\n";
       } else {
+        const std::string written =
+            (o->output.empty() ? std::string()
+                               : list.front()["file"].get<std::string>() + " .. " +
+                                     list.back()["file"].get<std::string>()) +
+            (o->output.empty() || !video ? "" : ", ") + (video ? o->video : std::string());
         std::printf(
-            "%s .. %s: %zu frames, t = %g .. %g, %dx%d, mean render %.3f s, mean time "
+            "%s: %zu frames, t = %g .. %g, %dx%d, mean render %.3f s, mean time "
             "contraction %.4f s, total %.3f s\n  on the %s\n",
-            list.front()["file"].get<std::string>().c_str(),
-            list.back()["file"].get<std::string>().c_str(), animation.size(), animation.front(),
+            written.c_str(), animation.size(), animation.front(),
             animation.back(), settings.width, settings.height, renderSum / n,
             animation.size() > 1 ? contractSum / (n - 1) : 0.0, secondsSince(start),
             device.description.c_str());

@@ -50,6 +50,12 @@ struct NrrdGrid {
   bool bigEndian = false;
   std::string label;  // the first of "labels", or empty
   std::vector<std::string> notes;
+  // A time axis ('kinds: ... time') of more than one sample, stored as the last axis: the steps
+  // follow one another, each a whole volume. Its times: axis min (else 0) + step x spacing (else
+  // the length of its space direction, else 1).
+  std::int64_t timeSteps = 1;
+  int timeAxis = -1;
+  double timeStart = 0.0, timeStep = 1.0;
 };
 struct NrrdFile {
   NrrdGrid grid;

@@ -7,9 +7,18 @@
 
 namespace mfadvr {
 
-NrrdVolume describeNrrdVolume(const std::string& path) {
+NrrdVolume describeNrrdVolume(const std::string& path, bool timeSeries) {
   NrrdFile file = checkNrrdDeclaredSize(path);
+  if (file.grid.timeSteps > 1 && !timeSeries)
+    throw Error("cannot read " + path + " as NRRD: axis " + std::to_string(file.grid.timeAxis) +
+                " is a time axis of " + std::to_string(file.grid.timeSteps) +
+                " samples: a time series, which `mfadvr encode` makes one 4-D model of; where "
+                "one volume is read, take one time step first (e.g. unu slice -a " +
+                std::to_string(file.grid.timeAxis) + " -p 0)");
   NrrdVolume volume;
+  volume.timeSteps = file.grid.timeSteps;
+  volume.timeStart = file.grid.timeStart;
+  volume.timeStep = file.grid.timeStep;
   StructuredGrid& layout = volume.layout;
   for (int a = 0; a < 3; ++a) {
     layout.dims[a] = file.grid.dims[a];

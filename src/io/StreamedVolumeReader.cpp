@@ -4,16 +4,19 @@
 #include <vtkDataSetAttributes.h>
 #include <vtkInformation.h>
 #include <vtkMetaImageReader.h>
+#include <vtkNIFTIImageHeader.h>
 #include <vtkNIFTIImageReader.h>
 #include <vtkSmartPointer.h>
 #include <vtkStreamingDemandDrivenPipeline.h>
 #include <vtkStructuredPointsReader.h>
 
+#include <cmath>
 #include <filesystem>
 #include <optional>
 
 #include "core/analytic/BuiltinFunction.h"
 #include "core/grid/SampleRange.h"
+#include "core/util/Error.h"
 #include "io/DeclaredSizeCheck.h"
 #include "io/InflatedPayload.h"
 #include "io/InputFile.h"
@@ -88,6 +91,10 @@ struct HeaderVolume {
   StructuredGrid layout;     // dims, placement, names, notes; no values
   RawSampleLayout file;      // for gzip samples: offset counted in the inflated stream
   std::int64_t gzipAt = -1;  // where the gzip stream starts in file.path, or -1
+  // The volumes stored one after another (time steps), this one the first, and their times.
+  std::int64_t steps = 1;
+  double timeStart = 0.0, timeStep = 1.0;
+  std::string timeNote;
 };
 
 // The checks every streamed read starts with; false for inputs that are never streamed.
@@ -101,7 +108,7 @@ bool mayStream(const std::string& path, const VolumeLoadOptions& options) {
 
 // NRRD, MetaImage, NIfTI or legacy structured points, read up to its samples; nullopt when its
 // samples cannot be streamed or the format is none of these.
-std::optional<HeaderVolume> readHeaderVolume(const std::string& path) {
+std::optional<HeaderVolume> readHeaderVolume(const std::string& path, bool timeSeries = false) {
   const std::string ext = lowerExtension(path);
   requireNonEmptyFile(path, "a volume file or a directory of DICOM slices");
   DeclaredPayload payload;
@@ -110,12 +117,16 @@ std::optional<HeaderVolume> readHeaderVolume(const std::string& path) {
   std::string arrayName;  // the name VTK's reader gives the samples (tested)
   if (ext == ".nrrd" || ext == ".nhdr") {
     // Read by mfadvr alone (NrrdVolumeReader.h): the header gives the whole layout.
-    NrrdVolume nrrd = describeNrrdVolume(path);
+    NrrdVolume nrrd = describeNrrdVolume(path, timeSeries);
     if (nrrd.payload.file.empty()) return std::nullopt;  // ascii values
-    return HeaderVolume{
+    HeaderVolume volume{
         std::move(nrrd.layout),
         {nrrd.payload.file, nrrd.payload.offset, nrrd.payload.dtype, nrrd.payload.bigEndian},
         nrrd.payload.gzipAt};
+    volume.steps = nrrd.timeSteps;
+    volume.timeStart = nrrd.timeStart;
+    volume.timeStep = nrrd.timeStep;
+    return volume;
   }
   if (ext == ".mha" || ext == ".mhd") {
     payload = checkMetaImageDeclaredSize(path);
@@ -153,6 +164,23 @@ std::optional<HeaderVolume> readHeaderVolume(const std::string& path) {
       volume.layout.notes.push_back(calibration->note);
     }
     if (!placeUnreordered(*nifti, volume.layout)) return std::nullopt;
+    // dim[4]: time points, each a whole volume after the previous one.
+    if (payload.sizes.size() >= 4) {
+      volume.steps = payload.sizes[3];
+      vtkNIFTIImageHeader* header = nifti->GetNIFTIHeader();
+      const double step = nifti->GetTimeSpacing();
+      volume.timeStep = std::isfinite(step) && step > 0.0 ? step : 1.0;
+      const double offset = header ? header->GetTOffset() : 0.0;
+      volume.timeStart = std::isfinite(offset) ? offset : 0.0;
+      static const std::pair<int, const char*> kUnits[] = {
+          {8, "s"}, {16, "ms"}, {24, "us"}, {32, "Hz"}, {40, "ppm"}, {48, "rad/s"}};
+      const int unit = header ? (header->GetXYZTUnits() & 0x38) : 0;
+      for (const auto& [code, name] : kUnits)
+        if (code == unit) volume.timeNote = std::string("times in ") + name + " (xyzt_units)";
+      if (!(std::isfinite(step) && step > 0.0))
+        volume.timeNote += std::string(volume.timeNote.empty() ? "" : "; ") +
+                           "pixdim[4] gives no time step: steps 1 apart";
+    }
   }
   volume.layout.source = path;
   volume.layout.sampleType = payload.dtype;  // as the source opened on the samples says
@@ -161,6 +189,40 @@ std::optional<HeaderVolume> readHeaderVolume(const std::string& path) {
 }
 
 }  // namespace
+
+std::optional<TimeStepsInFile> describeTimeStepsInFile(const std::string& path) {
+  const std::string ext = lowerExtension(path);
+  if (ext != ".nrrd" && ext != ".nhdr" && !isNiftiPath(path)) return std::nullopt;
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) return std::nullopt;
+  std::optional<HeaderVolume> header = readHeaderVolume(path, true);
+  if (!header) {
+    // A NRRD of ascii values or a NIfTI image stored in another order than it is placed: read
+    // as one volume only; a time series of them is refused with the reason.
+    const DeclaredPayload nifti = isNiftiPath(path) ? checkNiftiDeclaredSize(path)
+                                                    : DeclaredPayload{};
+    if (isNiftiPath(path) && nifti.sizes.size() >= 4 && nifti.sizes[3] > 1)
+      throw Error("cannot read " + path + " as a time series of " +
+                  std::to_string(nifti.sizes[3]) +
+                  " steps: its header places the samples in another order than they are stored "
+                  "(flipped or rotated axes, several values per sample), which mfadvr reads as "
+                  "one volume only; resample it to stored order first");
+    if (!isNiftiPath(path) && describeNrrdVolume(path, true).timeSteps > 1)
+      throw Error("cannot read " + path +
+                  " as a time series: its values are ascii text; store them as raw or gzip");
+    return std::nullopt;
+  }
+  if (header->steps < 2) return std::nullopt;
+  TimeStepsInFile steps;
+  steps.layout = std::move(header->layout);
+  steps.file = std::move(header->file);
+  steps.gzipAt = header->gzipAt;
+  steps.stepBytes = steps.layout.sampleCount() * rawSampleSize(steps.file.dtype);
+  for (std::int64_t s = 0; s < header->steps; ++s)
+    steps.times.push_back(header->timeStart + header->timeStep * static_cast<double>(s));
+  if (!header->timeNote.empty()) steps.layout.notes.push_back(header->timeNote);
+  return steps;
+}
 
 std::unique_ptr<RawVolumeSource> GzipVolume::open(const InflateProgress& inflating) const {
   return openPlanes(0, layout.dims[2] - 1, inflating);

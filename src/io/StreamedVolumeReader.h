@@ -11,6 +11,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "io/InflatedPayload.h"
 #include "io/RawVolumeSource.h"
@@ -60,5 +61,22 @@ struct GzipVolume {
 // header that does not match its data.
 std::optional<GzipVolume> describeGzipVolume(const std::string& path,
                                              const VolumeLoadOptions& options = {});
+
+// A volume file that holds a time series, one whole volume per step: a NRRD with a time axis
+// (the last axis) or a NIfTI image with time points (dim[4] > 1; times toffset + pixdim[4] x
+// step, in the file's units). Its first step is the grid openStreamedVolume reads of it.
+struct TimeStepsInFile {
+  StructuredGrid layout;     // of one step: dims, placement, names, notes (the time unit)
+  RawSampleLayout file;      // step 0; step s lies `stepBytes` x s further on
+  std::int64_t gzipAt = -1;  // >= 0: the steps are one gzip stream from this byte of file.path
+  std::int64_t stepBytes = 0;
+  std::vector<double> times;  // one per step, increasing
+};
+
+// nullopt for a file of one volume (or of one time step) and for other formats. Throws
+// mfadvr::Error for a damaged header, as openStreamedVolume does, and with the reason for a time
+// series that cannot be read step by step (ascii values, a NIfTI image whose header reorders
+// its samples).
+std::optional<TimeStepsInFile> describeTimeStepsInFile(const std::string& path);
 
 }  // namespace mfadvr

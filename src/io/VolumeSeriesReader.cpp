@@ -10,7 +10,11 @@
 #include <set>
 #include <sstream>
 
+#include "core/grid/SampleRange.h"
 #include "core/util/Error.h"
+#include "io/InflatedPayload.h"
+#include "io/RawVolumeSource.h"
+#include "io/StreamedVolumeReader.h"
 
 namespace mfadvr {
 namespace {
@@ -239,6 +243,47 @@ std::optional<Steps> readDirectory(const std::string& input, bool strict) {
   return numberedSteps(input, only.second, only.second.begin()->second);
 }
 
+// The steps of one file that holds them all (StreamedVolumeReader.h, TimeStepsInFile): each
+// read a whole volume at a time from its place in the file; gzip-coded steps are inflated once,
+// all together, to a temporary file when the first is asked for (memory stays one step's).
+class StepsInFileSeries final : public VolumeSeries {
+ public:
+  StepsInFileSeries(std::string path, TimeStepsInFile steps, const VolumeLoadOptions& options)
+      : path_(std::move(path)), steps_(std::move(steps)) {
+    steps_.layout.origin = options.origin.value_or(steps_.layout.origin);
+    steps_.layout.spacing = options.spacing.value_or(steps_.layout.spacing);
+  }
+  int size() const override { return static_cast<int>(steps_.times.size()); }
+  double time(int step) const override { return steps_.times[static_cast<size_t>(step)]; }
+  std::string stepName(int step) const override {
+    return "step " + std::to_string(step) + " of " + path_;
+  }
+  std::string source() const override { return path_; }
+  void replaceTimes(std::vector<double> times) { steps_.times = std::move(times); }
+
+  StructuredGrid load(int step) const override {
+    RawSampleLayout file = steps_.file;
+    if (steps_.gzipAt >= 0) {
+      if (!inflated_)
+        inflated_ = std::make_unique<TemporaryFile>(inflateToTemporaryFile(
+            file.path, steps_.gzipAt, file.offset, steps_.stepBytes * size(), path_));
+      file.path = inflated_->path();
+      file.offset = 0;
+    }
+    file.offset += steps_.stepBytes * step;
+    RawVolumeSource source(file, steps_.layout);
+    StructuredGrid grid = source.read(wholeRange(steps_.layout.dims));
+    grid.notes = steps_.layout.notes;
+    grid.source = path_;
+    return grid;
+  }
+
+ private:
+  std::string path_;
+  TimeStepsInFile steps_;
+  mutable std::unique_ptr<TemporaryFile> inflated_;
+};
+
 }  // namespace
 
 CollectionSteps parseCollection(const std::string& text, const std::string& path, bool json) {
@@ -269,6 +314,14 @@ bool isVolumeSeriesInput(const std::string& input) {
   if (endsWith(l, ".pvd") || endsWith(l, ".series")) return true;
   if (l.rfind("builtin:", 0) == 0) return false;
   std::error_code ec;
+  if (fs::is_regular_file(input, ec)) {
+    // A file of several time steps; a damaged header is left to the volume reader's error.
+    try {
+      return describeTimeStepsInFile(input).has_value();
+    } catch (const Error&) {
+      return false;
+    }
+  }
   if (fs::is_directory(input, ec)) return readDirectory(input, false).has_value();
   return !fs::exists(input, ec) && isPattern(input);
 }
@@ -278,6 +331,20 @@ std::unique_ptr<VolumeSeries> openVolumeSeries(const std::string& input,
                                                std::optional<std::vector<double>> times) {
   const std::string l = lower(input);
   std::error_code ec;
+  if (fs::is_regular_file(input, ec) && !endsWith(l, ".pvd") && !endsWith(l, ".series")) {
+    if (options.field.chosen())
+      throw Error(input + ": a file of time steps holds one field; --field does not apply");
+    std::optional<TimeStepsInFile> inFile = describeTimeStepsInFile(input);
+    if (!inFile) throw Error(input + ": holds one volume, not a time series");
+    auto series = std::make_unique<StepsInFileSeries>(input, std::move(*inFile), options);
+    if (times) {
+      if (times->size() != static_cast<size_t>(series->size()))
+        throw Error("--times gives " + std::to_string(times->size()) + " times for the " +
+                    std::to_string(series->size()) + " steps of " + input);
+      series->replaceTimes(std::move(*times));
+    }
+    return series;
+  }
   Steps s;
   if (endsWith(l, ".pvd"))
     s = parsePvd(readText(input), input);

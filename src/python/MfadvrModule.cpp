@@ -26,6 +26,7 @@
 #include "core/encode/Encoder.h"
 #include "core/encode/PieceEncoder.h"
 #include "core/encode/StructuredEncoder.h"
+#include "core/encode/TimeSeriesEncoder.h"
 #include "core/image/Image.h"
 #include "core/model/BlockLocator.h"
 #include "core/model/BlockModelFile.h"
@@ -166,7 +167,8 @@ Vec3d triple(const py::object& value, const char* what, double fill) {
 // by index) as the encoder's grid.
 StructuredGrid gridOf(const py::array& input, const py::object& spacing, const py::object& origin) {
   if (input.ndim() != 3)
-    throw py::value_error("the array must have 3 dimensions indexed [z, y, x], got " +
+    throw py::value_error("the array must have 3 dimensions indexed [z, y, x] (4 for a time "
+                          "series, [t, z, y, x]), got " +
                           std::to_string(input.ndim()));
   StructuredGrid g;
   g.dims = {input.shape(2), input.shape(1), input.shape(0)};
@@ -263,8 +265,103 @@ PyModel encodeBlocks(const StructuredGrid& grid, const app::BlockChoice& choice,
   return PyModel(std::move(blocks), *choice.blocks, std::move(report));
 }
 
+// The steps of a 4-D array indexed [t, z, y, x], each converted when the encoder asks for it (so
+// that only one step is held as float32 besides the caller's array).
+class ArraySeries final : public VolumeSeries {
+ public:
+  ArraySeries(py::array array, std::vector<double> times, py::object spacing, py::object origin)
+      : array_(std::move(array)),
+        times_(std::move(times)),
+        spacing_(std::move(spacing)),
+        origin_(std::move(origin)) {}
+  int size() const override { return static_cast<int>(times_.size()); }
+  double time(int step) const override { return times_[static_cast<size_t>(step)]; }
+  std::string stepName(int step) const override {
+    return "step " + std::to_string(step) + " of the array";
+  }
+  std::string source() const override { return "numpy array"; }
+  StructuredGrid load(int step) const override {
+    py::gil_scoped_acquire gil;  // the encoder runs with the GIL released
+    StructuredGrid grid = gridOf(array_[py::int_(step)].cast<py::array>(), spacing_, origin_);
+    grid.inputBytes = static_cast<std::int64_t>(array_.nbytes()) / size();
+    return grid;
+  }
+
+ private:
+  py::array array_;
+  std::vector<double> times_;
+  py::object spacing_, origin_;
+};
+
+// `encode` of a time series (docs/time-varying.md): a 4-D array [t, z, y, x] with the keywords
+// times=, time_degree=, time_ctrl= (encode --times/--time-degree/--time-ctrl).
+PyModel encodeArraySeries(const py::array& array, const py::object& spacing,
+                          const py::object& origin, const py::kwargs& kwargs) {
+  py::kwargs rest;
+  py::object timesGiven = py::none();
+  TimeSeriesOptions time;
+  time.zfpForIntegerSamples = true;
+  for (const auto& item : kwargs) {
+    const std::string name = py::str(item.first);
+    if (name == "times") {
+      timesGiven = py::reinterpret_borrow<py::object>(item.second);
+    } else if (name == "time_degree") {
+      time.degree = item.second.cast<int>();
+      if (time.degree < 1 || time.degree > 7)
+        throw py::value_error("--time-degree: " + std::to_string(time.degree) +
+                              " not in range [1 - 7]");
+    } else if (name == "time_ctrl") {
+      time.controlCount = item.second.cast<int>();
+      if (time.controlCount < 1) throw py::value_error("--time-ctrl: must be positive");
+    } else if (name == "blocks" || name == "ghost" || name == "memory_limit") {
+      throw py::value_error("--" + name + ": does not apply to time series yet");
+    } else {
+      rest[item.first] = item.second;
+    }
+  }
+  const py::ssize_t steps = array.shape(0);
+  std::vector<double> times;
+  if (timesGiven.is_none()) {
+    for (py::ssize_t s = 0; s < steps; ++s) times.push_back(static_cast<double>(s));
+  } else {
+    times = timesGiven.cast<std::vector<double>>();
+    if (times.size() != static_cast<size_t>(steps))
+      throw py::value_error("times: " + std::to_string(times.size()) + " times for the " +
+                            std::to_string(steps) + " steps of the array");
+    for (size_t s = 0; s < times.size(); ++s)
+      if (!std::isfinite(times[s]) || (s > 0 && !(times[s] > times[s - 1])))
+        throw py::value_error("times must be finite and increase: step " + std::to_string(s) +
+                              " has t = " + std::to_string(times[s]));
+  }
+  if (array.shape(1) < 2 || array.shape(2) < 2 || array.shape(3) < 2)
+    throw py::value_error("each step must have at least 2 samples along z, y and x");
+  const EncodeKeywords keywords("mfadvr.encode", rest);
+  const ArraySeries series(array, std::move(times), spacing, origin);
+  return translated([&] {
+    EncodeOptions options = keywords.options();
+    if (!keywords.encode.maskRes.empty() || keywords.encode.noMask)
+      throw CLI::ValidationError("mask_res/no_mask", "apply to meshes and point clouds");
+    FitReport report;
+    std::vector<std::string> notes;
+    auto model = std::make_shared<const TimeVaryingModel>([&] {
+      py::gil_scoped_release release;
+      return encodeTimeSeries(series, options, time, &report, &notes);
+    }());
+    for (const std::string& note : notes) PyErr_WarnEx(PyExc_UserWarning, note.c_str(), 1);
+    report.peakMemoryBytes = peakResidentBytes();
+    PyModel out(std::make_shared<Model>(model->first()), app::fitReportJson(report, ""));
+    out.series = std::move(model);
+    return out;
+  });
+}
+
 PyModel encodeArray(const py::array& array, const py::object& spacing, const py::object& origin,
                     const py::kwargs& kwargs) {
+  if (array.ndim() == 4) return encodeArraySeries(array, spacing, origin, kwargs);
+  for (const char* name : {"times", "time_degree", "time_ctrl"})
+    if (kwargs.contains(name))
+      throw py::value_error(std::string(name) +
+                            ": applies to time series (a 4-D array indexed [t, z, y, x])");
   const EncodeKeywords keywords("mfadvr.encode", kwargs);
   const app::EncodeCliOptions& encode = keywords.encode;
   StructuredGrid grid = gridOf(array, spacing, origin);

@@ -19,7 +19,10 @@ def encode(array, spacing=None, origin=None, **options):
     Options: degree, ctrl, max_error, max_ctrl, max_rounds, smooth, coding, tolerance,
     bits_per_sample, psnr, rms_error, lossless (encode --help); blocks=(bx, by, bz) or "auto",
     ghost, memory_limit for a multi-block model (encode --blocks; also chosen when an in-core
-    fit would not fit the memory limit). model.report is the fit report."""
+    fit would not fit the memory limit). model.report is the fit report.
+    A 4-D array indexed [t, z, y, x] is a time series: one 4-D model (docs/time-varying.md), with
+    times=(t0, t1, ...) (default 0, 1, 2, ...), time_degree and time_ctrl (encode --times,
+    --time-degree, --time-ctrl); each step is converted when the encoder reads it."""
     return _mfadvr._encode(np.asanyarray(array), spacing, origin, **options)
 
 

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "GzipBytes.h"
 #include "TestSupport.h"
 #include "app/CliRunner.h"
 
@@ -170,6 +171,105 @@ TEST(TimeSeriesCli, BadSeriesAreClearErrorsAndWriteNothing) {
   fails((dir / "gone.pvd").string(), "lost.nrrd) does not exist");
 }
 
+// All steps' samples one after another, as 4-D files store them.
+std::string allSteps(int steps) {
+  std::string bytes;
+  for (int s = 0; s < steps; ++s) {
+    const auto v = stepValues(s);
+    bytes.append(reinterpret_cast<const char*>(v.data()), v.size());
+  }
+  return bytes;
+}
+
+// A NIfTI-1 image of uint8 samples with `steps` time points (dim[4]), pixdim[4] `dt`, toffset
+// `t0`, units mm and ms; its samples gzip-coded for a .nii.gz name.
+void writeNifti(const fs::path& path, int steps, float dt, float t0) {
+  std::string bytes(352, '\0');
+  auto put = [&](size_t at, auto value) { std::memcpy(bytes.data() + at, &value, sizeof value); };
+  put(0, std::int32_t{348});
+  const std::int16_t dim[8] = {4, kNx, kNy, kNz, static_cast<std::int16_t>(steps), 1, 1, 1};
+  for (int d = 0; d < 8; ++d) put(40 + 2 * size_t(d), dim[d]);
+  put(70, std::int16_t{2});  // DT_UINT8
+  put(72, std::int16_t{8});
+  const float pixdim[8] = {1.0f, 1.0f, 1.0f, 1.0f, dt, 1.0f, 1.0f, 1.0f};
+  for (int d = 0; d < 8; ++d) put(76 + 4 * size_t(d), pixdim[d]);
+  put(108, 352.0f);                 // vox_offset
+  put(123, char{2 | 16});           // xyzt_units: mm, ms
+  put(136, t0);                     // toffset
+  std::memcpy(bytes.data() + 344, "n+1\0", 4);
+  bytes += allSteps(steps);
+  std::ofstream out(path, std::ios::binary);
+  if (path.string().ends_with(".gz")) bytes = test::gzipBytes(bytes);
+  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+}
+
+TEST(TimeSeriesCli, FourDimensionalNrrdAndNiftiFilesAreSeries) {
+  const fs::path dir = test::scratchDir();
+  writeFrames(dir);
+  const std::string reference = (dir / "frames.mfa").string();
+  ASSERT_EQ(runMfadvr("encode '" + (dir / "frame_%03d.nrrd").string() +
+                      "' --times 1,1.5,2,2.5,3 -q -o " + reference)
+                .status,
+            0);
+  const std::string header = "NRRD0004\ntype: uint8\ndimension: 4\nsizes: " +
+                             std::to_string(kNx) + " " + std::to_string(kNy) + " " +
+                             std::to_string(kNz) +
+                             " 5\nkinds: space space space time\nspacings: nan nan nan 0.5\n"
+                             "axis mins: nan nan nan 1\n";
+  const std::string raw = allSteps(5);
+  {
+    std::ofstream(dir / "run.nrrd", std::ios::binary) << header << "encoding: raw\n\n" << raw;
+    std::ofstream(dir / "runz.nrrd", std::ios::binary)
+        << header << "encoding: gzip\n\n"
+        << test::gzipBytes(raw);
+  }
+  writeNifti(dir / "run.nii", 5, 0.5f, 1.0f);
+  writeNifti(dir / "run.nii.gz", 5, 0.5f, 1.0f);
+  for (const char* name : {"run.nrrd", "runz.nrrd", "run.nii", "run.nii.gz"}) {
+    SCOPED_TRACE(name);
+    const std::string model = (dir / (std::string(name) + ".mfa")).string();
+    const auto e = runMfadvr("encode " + (dir / name).string() + " --json -q -o " + model);
+    ASSERT_EQ(e.status, 0) << e.err;
+    EXPECT_EQ(jsonOf(e)["time"]["steps"], 5);
+    const auto ij = jsonOf(runMfadvr("info --json " + model));
+    EXPECT_EQ(ij["time"]["steps"], nlohmann::json({1.0, 1.5, 2.0, 2.5, 3.0}));
+    // The same samples at the same times as the numbered files: the same model, value for
+    // value, at any instant.
+    for (const char* t : {"1.5", "2.25"}) {
+      const std::string a = (dir / "a.raw").string(), b = (dir / "b.raw").string();
+      ASSERT_EQ(runMfadvr("decode " + model + " --time " + t + " --type float32 -q -o " + a).status,
+                0);
+      ASSERT_EQ(
+          runMfadvr("decode " + reference + " --time " + t + " --type float32 -q -o " + b).status,
+          0);
+      EXPECT_EQ(test::slurp(a), test::slurp(b)) << "t = " << t;
+    }
+  }
+  // --times replaces the file's times; a time axis that is not the last is refused with advice.
+  const auto t = runMfadvr("encode " + (dir / "run.nrrd").string() + " --times 0,1,2,4,8 -q -o " +
+                           (dir / "t.mfa").string());
+  ASSERT_EQ(t.status, 0) << t.err;
+  EXPECT_EQ(jsonOf(runMfadvr("info --json " + (dir / "t.mfa").string()))["time"]["range"],
+            nlohmann::json({0.0, 8.0}));
+  std::ofstream(dir / "first.nrrd", std::ios::binary)
+      << "NRRD0004\ntype: uint8\ndimension: 4\nsizes: 5 " << kNx << " " << kNy << " " << kNz
+      << "\nkinds: time space space space\nencoding: raw\n\n"
+      << raw;
+  const auto f = runMfadvr("encode " + (dir / "first.nrrd").string() + " -q -o " +
+                           (dir / "first.mfa").string());
+  EXPECT_EQ(f.status, 1);
+  EXPECT_NE(f.err.find("unu permute -p 1 2 3 0"), std::string::npos) << f.err;
+  EXPECT_FALSE(fs::exists(dir / "first.mfa"));
+  // A file cut short: nothing written.
+  std::ofstream(dir / "cut.nrrd", std::ios::binary)
+      << header << "encoding: raw\n\n"
+      << raw.substr(0, raw.size() - 100);
+  const auto c = runMfadvr("encode " + (dir / "cut.nrrd").string() + " -q -o " +
+                           (dir / "cut.mfa").string());
+  EXPECT_EQ(c.status, 1);
+  EXPECT_FALSE(fs::exists(dir / "cut.mfa"));
+}
+
 TEST(TimeSeriesCli, BuiltinSeriesRenderQueryAndDecodeAtAnyTime) {
   const fs::path dir = test::scratchDir();
   const std::string model = (dir / "blobs.mfa").string();
@@ -198,6 +298,35 @@ TEST(TimeSeriesCli, BuiltinSeriesRenderQueryAndDecodeAtAnyTime) {
                 .status,
             2);
   EXPECT_EQ(runMfadvr("render " + model + " --time 3 --size 32x32 -q -o " + png).status, 1);
+  // A video of the animation, through ffmpeg (installed by scripts/install-deps.sh).
+  const std::string video = (dir / "blobs.mp4").string();
+  if (std::system("command -v ffmpeg > /dev/null") == 0) {
+    const auto v = runMfadvr("render " + model + " --times 0:1:5 --size 33x24 -q --json --video " +
+                             video);
+    ASSERT_EQ(v.status, 0) << v.err;
+    EXPECT_EQ(jsonOf(v)["frames"].size(), 5u);
+    EXPECT_EQ(test::slurp(video).substr(4, 4), "ftyp");  // an MP4 file
+    const std::string gif = (dir / "blobs.gif").string();
+    ASSERT_EQ(runMfadvr("render " + model + " --times 0:1:3 --size 32x32 -q --video " + gif +
+                        " -o '" + (dir / "v_%d.png").string() + "'")
+                  .status,
+              0);
+    EXPECT_EQ(test::slurp(gif).substr(0, 3), "GIF");
+    EXPECT_TRUE(fs::exists(dir / "v_2.png"));
+  } else {
+    ADD_FAILURE() << "ffmpeg is not installed (scripts/install-deps.sh installs it): --video "
+                     "not tested";
+  }
+  const auto noFfmpeg = runMfadvr("render " + model + " --times 0:1:3 --size 32x32 -q --video " +
+                                  (dir / "none.mp4").string(),
+                                  "MFADVR_FFMPEG=/nonexistent/ffmpeg");
+  EXPECT_EQ(noFfmpeg.status, 1);
+  EXPECT_NE(noFfmpeg.err.find("--video needs ffmpeg"), std::string::npos) << noFfmpeg.err;
+  EXPECT_FALSE(fs::exists(dir / "none.mp4"));
+  EXPECT_EQ(runMfadvr("render " + model + " --size 32x32 -q --video " + video).status, 2);
+  EXPECT_EQ(runMfadvr("render " + model + " --times 0:1:3 -q --video " + (dir / "x.ogg").string())
+                .status,
+            1);
   EXPECT_EQ(
       runMfadvr("render builtin:marschner-lobb:8 --time 0.5 --size 32x32 -q -o " + png).status, 1);
 

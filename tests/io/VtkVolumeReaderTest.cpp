@@ -768,8 +768,15 @@ TEST(NrrdReader, UnreadLayoutsAreErrors) {
   };
   refused("vector.nrrd", "dimension: 4\nsizes: 3 10 4 3\nkinds: 3-vector space space space\n",
           {"axis 0", "kind 3-vector", "3 samples", "scalar volumes"});
-  refused("time.nrrd", "dimension: 4\nsizes: 10 4 3 2\nkinds: space space space time\n",
-          {"axis 3", "time axis of 2 samples"});
+  // A time series (read by `encode` as one 4-D model): one volume is not read from it.
+  {
+    const auto path = writeFile(dir / "time.nrrd",
+                                "NRRD0004\ntype: float\nencoding: raw\ndimension: 4\nsizes: 10 4 3 "
+                                "2\nkinds: space space space time\n\n" +
+                                    data + data);
+    expectError([&] { loadStructuredVolume(path); },
+                {"axis 3", "time axis of 2 samples", "4-D model", "unu slice -a 3 -p 0"});
+  }
   refused("flat.nrrd", "dimension: 2\nsizes: 40 3\n", {"2 spatial axes", "a volume has 3"});
   refused("thin.nrrd", "dimension: 3\nsizes: 40 3 1\n", {"40 x 3 x 1", "2-D data"});
   refused("list.nhdr", "dimension: 3\nsizes: 10 4 3\ndata file: LIST 2\na.raw\nb.raw\n",

@@ -269,3 +269,39 @@ def test_time_varying_models_load_query_in_time_and_give_any_instant(tmp_path):
     again = tmp_path / "again.mfa"
     series.save(str(again))
     assert mfadvr.load(str(again)).times == series.times
+
+
+def test_a_four_dimensional_array_encodes_as_the_series_of_its_steps(tmp_path):
+    # A blob moving along x, five uint8 steps [t, z, y, x]; the same steps as numbered NRRD files
+    # through `mfadvr encode` give the same model.
+    z, y, x = np.meshgrid(np.arange(8), np.arange(10), np.arange(12), indexing="ij")
+    steps = np.stack([np.rint(220 * np.exp(-((x - 3 - s) ** 2 + (y - 4.5) ** 2 + (z - 3.5) ** 2)
+                                           / 8.0)).astype(np.uint8) for s in range(5)])
+    times = [0.0, 0.5, 0.75, 1.5, 2.0]
+    series = mfadvr.encode(steps, spacing=0.5, times=times, time_degree=2)
+    assert series.times == times
+    assert series.report["time"]["steps"] == 5
+    assert series.report["time"]["degree"] == 2
+    assert series.report["max_error"] <= 0.5  # every step rounds back
+    for s in range(5):
+        header = ("NRRD0004\ntype: uint8\ndimension: 3\nsizes: 12 10 8\nspacings: 0.5 0.5 0.5\n"
+                  "encoding: raw\n\n")
+        (tmp_path / f"f_{s:03d}.nrrd").write_bytes(header.encode() + steps[s].tobytes())
+    path = tmp_path / "cli.mfa"
+    cli("encode", tmp_path / "f_%03d.nrrd", "--times", ",".join(map(str, times)),
+        "--time-degree", "2", "-q", "-o", path)
+    from_cli = mfadvr.load(str(path))
+    points = np.array([[1.5, 2.0, 1.5, 0.6], [3.0, 2.5, 2.0, 1.1], [0.5, 1.0, 3.0, 2.0]])
+    np.testing.assert_allclose(series.query(points), from_cli.query(points), atol=1e-4)
+    np.testing.assert_array_equal(series.at(0.75).decode(), steps[2])
+    saved = tmp_path / "saved.mfa"
+    series.save(str(saved))
+    assert mfadvr.load(str(saved)).times == times
+    with pytest.raises(ValueError, match="4 times for the 5 steps"):
+        mfadvr.encode(steps, times=times[:4])
+    with pytest.raises(ValueError, match="must be finite and increase"):
+        mfadvr.encode(steps, times=[0, 1, 3, 2, 4])
+    with pytest.raises(ValueError, match="time series"):
+        mfadvr.encode(steps, blocks=2)
+    with pytest.raises(ValueError, match=r"\[t, z, y, x\]"):
+        mfadvr.encode(steps[0], times=[0.0])

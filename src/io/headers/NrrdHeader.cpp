@@ -323,11 +323,38 @@ NrrdDataLocation checkNrrdHeaderText(const std::string& header, const std::strin
     const std::string kind = kinds.empty() ? std::string() : kinds[a];
     const bool noDirection = !spaceDirections.empty() && !directions[a];
     const bool component = (!kind.empty() && isComponentKind(kind)) || noDirection;
-    if (kind == "time" && sizes[a] > 1)
-      fail("axis " + std::to_string(a) + " is a time axis of " + std::to_string(sizes[a]) +
-           " samples: a time series, and mfadvr reads one volume; take one time step first "
-           "(e.g. unu slice -a " +
-           std::to_string(a) + " -p 0)");
+    if (kind == "time" && sizes[a] > 1) {
+      // Steps one whole volume after another; a time axis elsewhere interleaves them.
+      if (a + 1 != axes) {
+        std::string order;
+        for (size_t b = 0; b < axes; ++b)
+          if (b != a) order += std::to_string(b) + " ";
+        fail("axis " + std::to_string(a) + " is a time axis of " + std::to_string(sizes[a]) +
+             " samples that is not the last axis: mfadvr reads time series stored one volume "
+             "after another (time the slowest axis); reorder the axes first (e.g. unu permute "
+             "-p " +
+             order + std::to_string(a) + ")");
+      }
+      double step = spacingOf[a];
+      if (std::isnan(step) && directions[a]) {
+        double sum = 0.0;
+        for (double c : *directions[a]) sum += c * c;
+        step = std::sqrt(sum);
+      }
+      if (std::isnan(step)) step = 1.0;
+      if (!(step > 0.0) || !std::isfinite(step))
+        fail("the time axis " + std::to_string(a) + " has spacing " + std::to_string(step) +
+             ": time steps must be positive");
+      const double start = std::isnan(minOf[a]) ? 0.0 : minOf[a];
+      if (!std::isfinite(start) ||
+          !std::isfinite(start + step * static_cast<double>(sizes[a] - 1)))
+        fail("the time axis " + std::to_string(a) + " does not span finite times");
+      grid.timeSteps = sizes[a];
+      grid.timeAxis = static_cast<int>(a);
+      grid.timeStep = step;
+      grid.timeStart = start;
+      continue;
+    }
     if (component && sizes[a] > 1)
       fail("axis " + std::to_string(a) + " (" +
            (kind.empty() ? std::string("no space direction") : "kind " + kind) + ", " +
