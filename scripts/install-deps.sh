@@ -25,7 +25,7 @@ done
 packages=(
   build-essential cmake ninja-build pkg-config git ccache mold
   libeigen3-dev libtbb-dev libcli11-dev nlohmann-json3-dev
-  libpng-dev zlib1g-dev libzstd-dev libzfp-dev python3-zfpy python3-scipy
+  libpng-dev zlib1g-dev libzstd-dev libzfp-dev libnetcdf-dev python3-zfpy python3-scipy
   libgtest-dev libgmock-dev libbenchmark-dev
   libvtk9-dev python3-vtk9 python3-dev python3-matplotlib pybind11-dev python3-pytest
   clang libclang-rt-14-dev

@@ -5,6 +5,7 @@
 #include "core/analytic/BuiltinFunction.h"
 #include "core/util/Error.h"
 #include "io/InputFile.h"
+#include "io/NetcdfVolumeReader.h"
 #include "io/NrrdVolumeReader.h"
 #include "io/RawVolumeReader.h"
 #include "io/StreamedVolumeReader.h"
@@ -31,6 +32,7 @@ StructuredGrid readFile(const std::string& path, const FieldSelection& field) {
     return readRawVolume(path);
   }
   if (ext == ".nrrd" || ext == ".nhdr") return readNrrdVolume(path, field);
+  if (isNetcdfPath(path)) return readNetcdfVolume(path, field);
   if (ext == ".vti") return readVtkVolume(path, VtkVolumeFormat::kXmlImageData, field);
   if (ext == ".vtk") return readVtkVolume(path, VtkVolumeFormat::kLegacyStructuredPoints, field);
   if (ext == ".mha" || ext == ".mhd")
@@ -87,6 +89,9 @@ std::string supportedVolumeFormats() {
          "  .vtk                 legacy VTK, DATASET STRUCTURED_POINTS only\n"
          "  .mha, .mhd           MetaImage\n"
          "  .nii, .nii.gz        NIfTI-1/-2 (also Analyze .hdr + .img); sform/qform placement\n"
+         "  .nc, .nc4, .cdf      NetCDF (classic, 64-bit offset, netCDF-4): a variable of 3\n"
+         "                       dimensions (its first time step; encode: every step), CF\n"
+         "                       coordinates place it\n"
          "  DIRECTORY            a DICOM series: uncompressed single-frame slices\n"
          "  builtin:NAME[:N|:NXxNYxNZ]  analytic field sampled on [-1,1]^3\n";
 }

@@ -13,6 +13,7 @@
 #include "core/grid/SampleRange.h"
 #include "core/util/Error.h"
 #include "io/InflatedPayload.h"
+#include "io/NetcdfVolumeReader.h"
 #include "io/RawVolumeSource.h"
 #include "io/StreamedVolumeReader.h"
 
@@ -284,6 +285,27 @@ class StepsInFileSeries final : public VolumeSeries {
   mutable std::unique_ptr<TemporaryFile> inflated_;
 };
 
+// The time steps of a NetCDF variable, each read when it is asked for.
+class NetcdfSeries final : public VolumeSeries {
+ public:
+  NetcdfSeries(NetcdfVolume volume, const VolumeLoadOptions& options)
+      : volume_(std::move(volume)) {
+    volume_.layout.origin = options.origin.value_or(volume_.layout.origin);
+    volume_.layout.spacing = options.spacing.value_or(volume_.layout.spacing);
+  }
+  int size() const override { return static_cast<int>(volume_.times.size()); }
+  double time(int step) const override { return volume_.times[static_cast<size_t>(step)]; }
+  std::string stepName(int step) const override {
+    return "step " + std::to_string(step) + " of " + volume_.path;
+  }
+  std::string source() const override { return volume_.path; }
+  void replaceTimes(std::vector<double> times) { volume_.times = std::move(times); }
+  StructuredGrid load(int step) const override { return readNetcdfStep(volume_, step); }
+
+ private:
+  NetcdfVolume volume_;
+};
+
 }  // namespace
 
 CollectionSteps parseCollection(const std::string& text, const std::string& path, bool json) {
@@ -309,7 +331,7 @@ StructuredGrid FileVolumeSeries::load(int step) const {
   return loadStructuredVolume(f, options_);
 }
 
-bool isVolumeSeriesInput(const std::string& input) {
+bool isVolumeSeriesInput(const std::string& input, const FieldSelection& field) {
   const std::string l = lower(input);
   if (endsWith(l, ".pvd") || endsWith(l, ".series")) return true;
   if (l.rfind("builtin:", 0) == 0) return false;
@@ -317,6 +339,7 @@ bool isVolumeSeriesInput(const std::string& input) {
   if (fs::is_regular_file(input, ec)) {
     // A file of several time steps; a damaged header is left to the volume reader's error.
     try {
+      if (isNetcdfPath(input)) return describeNetcdfVolume(input, field).times.size() > 1;
       return describeTimeStepsInFile(input).has_value();
     } catch (const Error&) {
       return false;
@@ -331,6 +354,18 @@ std::unique_ptr<VolumeSeries> openVolumeSeries(const std::string& input,
                                                std::optional<std::vector<double>> times) {
   const std::string l = lower(input);
   std::error_code ec;
+  if (fs::is_regular_file(input, ec) && isNetcdfPath(input)) {
+    auto series = std::make_unique<NetcdfSeries>(describeNetcdfVolume(input, options.field),
+                                                 options);
+    if (series->size() < 2) throw Error(input + ": holds one volume, not a time series");
+    if (times) {
+      if (times->size() != static_cast<size_t>(series->size()))
+        throw Error("--times gives " + std::to_string(times->size()) + " times for the " +
+                    std::to_string(series->size()) + " steps of " + input);
+      series->replaceTimes(std::move(*times));
+    }
+    return series;
+  }
   if (fs::is_regular_file(input, ec) && !endsWith(l, ".pvd") && !endsWith(l, ".series")) {
     if (options.field.chosen())
       throw Error(input + ": a file of time steps holds one field; --field does not apply");

@@ -7,6 +7,9 @@
 //                 a missing number in between is an error naming it
 //   a directory   its numbered volume files of one format (name_000.vti, name_001.vti, ...);
 //                 a directory of DICOM slices stays one volume
+//   one file      a NRRD with a time axis, a NIfTI image with time points
+//                 (StreamedVolumeReader.h, TimeStepsInFile), a NetCDF variable with a time
+//                 dimension (NetcdfVolumeReader.h)
 // Times: the file's, else the numbers; `times` (encode --times) replaces them (as many as steps).
 // Each step is read when the encoder asks for it, with loadStructuredVolume and the given options.
 #include <memory>
@@ -20,7 +23,9 @@
 namespace mfadvr {
 
 // Whether `input` names a series (by the rules above); a plain volume file is not one.
-bool isVolumeSeriesInput(const std::string& input);
+// A file of several time steps (a 4-D NRRD or NIfTI file, a NetCDF variable with a time
+// dimension: `field` chooses the variable) is one too.
+bool isVolumeSeriesInput(const std::string& input, const FieldSelection& field = {});
 
 // Throws mfadvr::Error for a malformed collection, a pattern without files, a missing step, a
 // step file that does not exist, a number of `times` that differs from the steps.

@@ -1,6 +1,7 @@
 // Time series end to end: `encode` of numbered files, collections and time-varying built-ins into
 // one 4-D model, then `info`, `decode --time`, `query` in time and `render --time/--times`.
 #include <gtest/gtest.h>
+#include <netcdf.h>
 
 #include <cmath>
 #include <cstring>
@@ -268,6 +269,109 @@ TEST(TimeSeriesCli, FourDimensionalNrrdAndNiftiFilesAreSeries) {
                            (dir / "cut.mfa").string());
   EXPECT_EQ(c.status, 1);
   EXPECT_FALSE(fs::exists(dir / "cut.mfa"));
+}
+
+// A CF NetCDF file: density(time, z, y, x) of the five steps as float, coordinates x = 0, 1, ...
+// (and y, z), times 1, 1.5, ... in "seconds since 2000-01-01"; `extra` adds a second volume and
+// `hole` puts a fill value into step 3.
+void writeNetcdf(const fs::path& path, bool extra = false, bool hole = false) {
+  int nc = -1, dims[4], var = -1;
+  ASSERT_EQ(nc_create(path.c_str(), NC_CLOBBER, &nc), NC_NOERR);
+  const char* names[4] = {"time", "z", "y", "x"};
+  const size_t sizes[4] = {NC_UNLIMITED, kNz, kNy, kNx};
+  int coords[4];
+  for (int d = 0; d < 4; ++d) {
+    nc_def_dim(nc, names[d], sizes[d], &dims[d]);
+    nc_def_var(nc, names[d], NC_DOUBLE, 1, &dims[d], &coords[d]);
+  }
+  nc_put_att_text(nc, coords[0], "units", 27, "seconds since 2000-01-01 0");
+  nc_def_var(nc, "density", NC_FLOAT, 4, dims, &var);
+  const float fill = -999.0f;
+  nc_put_att_float(nc, var, "_FillValue", NC_FLOAT, 1, &fill);
+  int other = -1;
+  if (extra) nc_def_var(nc, "pressure", NC_FLOAT, 4, dims, &other);
+  ASSERT_EQ(nc_enddef(nc), NC_NOERR);
+  for (int d = 1; d < 4; ++d) {
+    std::vector<double> c(sizes[d]);
+    for (size_t i = 0; i < c.size(); ++i) c[i] = static_cast<double>(i);
+    nc_put_var_double(nc, coords[d], c.data());
+  }
+  for (size_t s = 0; s < 5; ++s) {
+    const double t = 1.0 + 0.5 * static_cast<double>(s);
+    nc_put_var1_double(nc, coords[0], &s, &t);
+    const auto v = stepValues(static_cast<int>(s));
+    std::vector<float> f(v.begin(), v.end());
+    if (hole && s == 3) f[7] = fill;
+    const size_t start[4] = {s, 0, 0, 0}, count[4] = {1, kNz, kNy, kNx};
+    ASSERT_EQ(nc_put_vara_float(nc, var, start, count, f.data()), NC_NOERR);
+    if (extra) nc_put_vara_float(nc, other, start, count, f.data());
+  }
+  ASSERT_EQ(nc_close(nc), NC_NOERR);
+}
+
+TEST(TimeSeriesCli, NetcdfVariablesWithATimeAxisAreSeries) {
+  const fs::path dir = test::scratchDir();
+  writeFrames(dir);
+  const std::string reference = (dir / "frames.mfa").string();
+  ASSERT_EQ(runMfadvr("encode '" + (dir / "frame_%03d.nrrd").string() +
+                      "' --times 1,1.5,2,2.5,3 --coding float32 -q -o " + reference)
+                .status,
+            0);
+  writeNetcdf(dir / "run.nc");
+  const std::string model = (dir / "nc.mfa").string();
+  const auto e = runMfadvr("encode " + (dir / "run.nc").string() + " --coding float32 -o " + model);
+  ASSERT_EQ(e.status, 0) << e.err;
+  EXPECT_NE(e.err.find("times in seconds since 2000-01-01"), std::string::npos) << e.err;
+  const auto ij = jsonOf(runMfadvr("info --json " + model));
+  EXPECT_EQ(ij["time"]["steps"], nlohmann::json({1.0, 1.5, 2.0, 2.5, 3.0}));
+  for (const char* t : {"1.5", "2.25"}) {
+    const std::string a = (dir / "a.raw").string(), b = (dir / "b.raw").string();
+    ASSERT_EQ(runMfadvr("decode " + model + " --time " + t + " --type float32 -q -o " + a).status,
+              0);
+    ASSERT_EQ(
+        runMfadvr("decode " + reference + " --time " + t + " --type float32 -q -o " + b).status,
+        0);
+    EXPECT_EQ(test::slurp(a), test::slurp(b)) << "t = " << t;
+  }
+  // As one volume (render, or encode of a variable without time): the first step.
+  const std::string png = (dir / "first.png").string();
+  const auto r = runMfadvr("render " + (dir / "run.nc").string() +
+                           " --method trilinear --size 24x24 -o " + png);
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("holds 5 time steps: the first is read"), std::string::npos) << r.err;
+
+  // Two volumes: --field chooses, else a clear error that lists them.
+  writeNetcdf(dir / "two.nc", true);
+  const auto two = runMfadvr("encode " + (dir / "two.nc").string() + " -q -o " + model + "2");
+  EXPECT_EQ(two.status, 1);
+  EXPECT_NE(two.err.find("several volumes (density(time=5, z=8, y=10, x=12), pressure("),
+            std::string::npos)
+      << two.err;
+  EXPECT_NE(two.err.find("--field NAME"), std::string::npos);
+  const auto chosen = runMfadvr("encode " + (dir / "two.nc").string() +
+                                " --field pressure -q --json -o " + model + "2");
+  ASSERT_EQ(chosen.status, 0) << chosen.err;
+  EXPECT_EQ(jsonOf(chosen)["time"]["steps"], 5);
+  const auto unknown =
+      runMfadvr("encode " + (dir / "two.nc").string() + " --field speed -q -o " + model + "3");
+  EXPECT_EQ(unknown.status, 1);
+  EXPECT_NE(unknown.err.find("no numeric variable 'speed'"), std::string::npos) << unknown.err;
+  EXPECT_FALSE(fs::exists(model + "3"));
+  // Missing data is named; a file cut short is an error (libnetcdf's; it does not see a
+  // classic file cut inside its last record, which it reads as zeros); nothing is written.
+  writeNetcdf(dir / "hole.nc", false, true);
+  const auto hole = runMfadvr("encode " + (dir / "hole.nc").string() + " -q -o " + model + "3");
+  EXPECT_EQ(hole.status, 1);
+  EXPECT_NE(hole.err.find("1 of the 960 samples of density at step 3 are missing"),
+            std::string::npos)
+      << hole.err;
+  const std::string whole = test::slurp(dir / "run.nc");
+  for (size_t keep : {size_t{100}, whole.size() / 2}) {
+    std::ofstream(dir / "cut.nc", std::ios::binary) << whole.substr(0, keep);
+    const auto cut = runMfadvr("encode " + (dir / "cut.nc").string() + " -q -o " + model + "3");
+    EXPECT_EQ(cut.status, 1) << keep << ": " << cut.err;
+    EXPECT_FALSE(fs::exists(model + "3")) << keep;
+  }
 }
 
 TEST(TimeSeriesCli, BuiltinSeriesRenderQueryAndDecodeAtAnyTime) {

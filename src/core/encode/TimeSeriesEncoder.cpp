@@ -143,6 +143,8 @@ TimeVaryingModel encodeTimeSeries(const VolumeSeries& series, const EncodeOption
       first = grid;
       first.values.clear();
       first.values.shrink_to_fit();
+      // What the reader said of the input (a time unit, a placement), once for the series.
+      if (notes) notes->insert(notes->end(), grid.notes.begin(), grid.notes.end());
     } else if (!sameLayout(first, grid)) {
       throw Error(series.stepName(s) + " has another grid than " + series.stepName(0) + " (" +
                   dimsText(grid.dims) + " samples from (" + std::to_string(grid.origin[0]) + ", " +
