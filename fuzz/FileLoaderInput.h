@@ -15,6 +15,7 @@
 #include "io/ScatteredLoader.h"
 #include "io/StreamedVolumeReader.h"
 #include "io/VolumeLoader.h"
+#include "io/VolumeSeriesReader.h"
 
 namespace mfadvr::fuzzing {
 
@@ -26,7 +27,7 @@ struct FileKind {
 inline constexpr FileKind kFileKinds[] = {
     {"f.nrrd", true}, {"f.mha", true},    {"f.vtk", true},  {"f.vti", true},
     {"f.nii", true},  {"f.nii.gz", true}, {"", true},       {"v_4x3x2_uint8.raw", true},
-    {"m.vtu", false}, {"m.vtk", false},   {"p.csv", false},
+    {"m.vtu", false}, {"m.vtk", false},   {"p.csv", false}, {"f.nc", true},
 };
 
 // Writes the input as a file of its kind under `dir` (emptied first) and loads it as the
@@ -47,7 +48,15 @@ inline bool loadFuzzInput(const std::uint8_t* data, size_t size, const std::file
   std::ofstream(file, std::ios::binary)
       .write(reinterpret_cast<const char*>(data) + 1, static_cast<std::streamsize>(size - 1));
   try {
-    if (kind.volume) {
+    // A file of several time steps (4-D NRRD or NIfTI, NetCDF with a time dimension): every
+    // step, as `encode` reads a series.
+    if (kind.volume && isVolumeSeriesInput(input.string())) {
+      const auto series = openVolumeSeries(input.string());
+      for (int s = 0; s < series->size(); ++s) {
+        const StructuredGrid step = series->load(s);
+        if (static_cast<std::int64_t>(step.values.size()) != step.sampleCount()) __builtin_trap();
+      }
+    } else if (kind.volume) {
       const StructuredGrid g = loadStructuredVolume(input.string());
       if (static_cast<std::int64_t>(g.values.size()) != g.sampleCount()) __builtin_trap();
       // A streamed file read a box at a time (the out-of-core encoder's reads) must give the

@@ -2,6 +2,8 @@
 // the byte that selects its kind (fuzz_file_loaders.cpp, fuzz_declared_size.cpp).
 // Usage: make_reader_seed_corpus LOADERS_DIR HEADERS_DIR
 
+#include <netcdf.h>
+
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -29,6 +31,42 @@ std::string floats(int count) {
 void write(const std::filesystem::path& dir, const std::string& name, char kind,
            const std::string& bytes) {
   std::ofstream(dir / name, std::ios::binary) << kind << bytes;
+}
+
+// A small CF NetCDF file (classic format): v(time, z, y, x) of 3 steps of 4 x 3 x 2 floats,
+// with coordinate variables and a fill value, written by libnetcdf to `scratch` and read back.
+std::string netcdfBytes(const std::filesystem::path& scratch) {
+  int nc = -1, dims[4], coords[4], var = -1;
+  if (nc_create(scratch.c_str(), NC_CLOBBER, &nc) != NC_NOERR) return {};
+  const char* names[4] = {"time", "z", "y", "x"};
+  const size_t sizes[4] = {NC_UNLIMITED, 2, 3, 4};
+  for (int d = 0; d < 4; ++d) {
+    nc_def_dim(nc, names[d], sizes[d], &dims[d]);
+    nc_def_var(nc, names[d], NC_DOUBLE, 1, &dims[d], &coords[d]);
+  }
+  nc_put_att_text(nc, coords[0], "units", 11, "s since 0 0");
+  nc_def_var(nc, "v", NC_FLOAT, 4, dims, &var);
+  const float fill = -1.0f;
+  nc_put_att_float(nc, var, "_FillValue", NC_FLOAT, 1, &fill);
+  nc_enddef(nc);
+  for (int d = 1; d < 4; ++d) {
+    const double c[4] = {0.0, 0.5, 1.0, 1.5};
+    nc_put_var_double(nc, coords[d], c);
+  }
+  for (size_t s = 0; s < 3; ++s) {
+    const double t = 0.25 * double(s);
+    nc_put_var1_double(nc, coords[0], &s, &t);
+    float v[24];
+    for (int i = 0; i < 24; ++i) v[i] = float(i % 7) + float(s);
+    const size_t start[4] = {s, 0, 0, 0}, count[4] = {1, 2, 3, 4};
+    nc_put_vara_float(nc, var, start, count, v);
+  }
+  nc_close(nc);
+  std::ifstream in(scratch, std::ios::binary);
+  std::ostringstream bytes;
+  bytes << in.rdbuf();
+  std::filesystem::remove(scratch);
+  return bytes.str();
 }
 
 }  // namespace
@@ -94,6 +132,15 @@ int main(int argc, char** argv) {
   write(loaders, "vtu", 8, vtu);
   write(loaders, "legacy-mesh", 9, legacyMesh);
   write(loaders, "csv", 10, csv);
+  write(loaders, "netcdf", 11, netcdfBytes(loaders / "scratch.nc"));
+  // Time series in one file: a NRRD with a time axis last, a NIfTI image of two time points.
+  write(loaders, "nrrd-time", 0,
+        "NRRD0004\ntype: float\ndimension: 4\nsizes: 10 4 3 2\nkinds: space space space time\n"
+        "encoding: raw\nendian: little\n\n" +
+            floats(2 * n));
+  mfadvr::test::NiftiHeader twoTimes;
+  twoTimes.timePoints = 2;
+  write(loaders, "nii-time", 4, mfadvr::test::niftiBytes(twoTimes));
 
   write(headers, "nrrd", 0, nrrd);
   write(headers, "nrrd-ascii", 0, nrrdAscii);

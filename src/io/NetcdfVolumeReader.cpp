@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <filesystem>
 #include <limits>
 #include <optional>
 #include <sstream>
@@ -296,6 +297,21 @@ NetcdfVolume describeNetcdfVolume(const std::string& path, const FieldSelection&
     }
     g.spacing[a] = step;
     g.origin[a] = x[0];
+  }
+  // A damaged header may declare more samples than the file can hold; refused before any
+  // allocation (compressed netCDF-4 data: at most 1032 bytes per stored byte, deflate's limit).
+  {
+    int format = 0;
+    f.check(nc_inq_format(f.id(), &format), "its format");
+    const bool compressed = format == NC_FORMAT_NETCDF4 || format == NC_FORMAT_NETCDF4_CLASSIC;
+    std::error_code ec;
+    const double fileBytes = static_cast<double>(std::filesystem::file_size(path, ec));
+    const double stepBytes = static_cast<double>(g.dims[0]) * static_cast<double>(g.dims[1]) *
+                             static_cast<double>(g.dims[2]) * typeBytes(v.type);
+    if (ec || stepBytes > (compressed ? 1032.0 : 1.0) * fileBytes + 4096.0)
+      f.fail("variable " + describeDims(f, v) + " declares more samples per step than the file's " +
+             std::to_string(static_cast<std::int64_t>(fileBytes)) +
+             " bytes can hold: the file is cut short or damaged");
   }
   const auto scale = f.number(v.id, "scale_factor");
   const auto offset = f.number(v.id, "add_offset");
