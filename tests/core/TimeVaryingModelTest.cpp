@@ -9,6 +9,8 @@
 #include "core/analytic/BuiltinSeries.h"
 #include "core/encode/TimeSeriesEncoder.h"
 #include "core/model/ModelFile.h"
+#include "core/render/EmptySpaceGrid.h"
+#include "core/render/RayCaster.h"
 #include "core/util/Error.h"
 
 namespace mfadvr {
@@ -222,6 +224,63 @@ TEST(TimeVarying, AStepOnAnotherGridIsNamed) {
     EXPECT_NE(std::string(e.what()).find("frame2.nrrd has another grid"), std::string::npos)
         << e.what();
   }
+}
+
+// The envelope of the slabs bounds every instant's control points; skip flags built from it
+// serve every instant from one cache entry, and the images are those of no skipping.
+TEST(TimeVarying, EnvelopeFlagsServeEveryInstantWithTheImagesOfNoSkipping) {
+  const BuiltinVolumeSeries series("builtin:orbiting-blobs:20x20x20x8");
+  EncodeOptions o;
+  o.degree = {3, 3, 3};
+  const TimeVaryingModel model = encodeTimeSeries(series, o, TimeSeriesOptions{});
+  const auto envelope = model.controlEnvelope();
+  ASSERT_TRUE(envelope);
+  const auto lo = envelope->lower.controlPoints(), hi = envelope->upper.controlPoints();
+  TransferFunction tf;
+  tf.color = {{0.0, Vec3f(1, 1, 1)}, {1.0, Vec3f(1, 0.5f, 0)}};
+  tf.space = TfSpace::Data;  // the blobs peak at 1
+  tf.opacity = {{0.0, 0.0f}, {0.45, 0.0f}, {0.5, 0.6f}, {1.0, 0.6f}};  // a step at 0.45
+  EmptySpaceCache cache;
+  std::shared_ptr<const EmptySpaceFlags> first;
+  std::int64_t skipped = 0;
+  for (double t : {0.0, 0.13, 0.5, 0.77, 1.0}) {
+    SCOPED_TRACE(t);
+    const Model instant = model.at(t);
+    EXPECT_EQ(instant.controlEnvelope(), envelope.get());
+    const auto c = instant.spline().controlPoints();
+    for (size_t i = 0; i < c.size(); ++i) ASSERT_TRUE(lo[i] <= c[i] && c[i] <= hi[i]) << i;
+    RenderSettings s;
+    s.width = 48;
+    s.height = 40;
+    s.camera.resetToBounds(instant.domain().min, instant.domain().max);
+    s.camera.azimuth(30);
+    s.sampleDistance = 0.5 * instant.dataSpacing().minCoeff();
+    s.transferFunction = tf;
+    RenderStats cached, again, off;
+    const Image a = renderVolume(ModelField(instant, &cache), s, &cached);
+    // The first render of an instant: the envelope's flags, one object for every instant.
+    const auto used = cache.current();
+    if (!first) first = used;
+    EXPECT_EQ(used, first);
+    // Rendered again at the same time: its own flags, which skip at least as much.
+    const Image d = renderVolume(ModelField(instant, &cache), s, &again);
+    EXPECT_NE(cache.current(), first);
+    EXPECT_LE(cache.current()->emptyCells, instant.spline().spanRanges()->cellCount());
+    EXPECT_GE(cache.current()->emptyCells, first->emptyCells);
+    s.skipEmptySpace = false;
+    const Image b = renderVolume(ModelField(instant), s, &off);
+    EXPECT_EQ(a.rgba, b.rgba);
+    EXPECT_EQ(d.rgba, b.rgba);
+    EXPECT_LE(again.samples, cached.samples);
+    skipped += cached.skipped;
+  }
+  ASSERT_TRUE(first);
+  EXPECT_GT(first->emptyCells, 0);
+  EXPECT_GT(skipped, 0);  // the test has to exercise the skipping
+  // A 3-D model (no time axis) carries no envelope.
+  EXPECT_EQ(TimeVaryingModel(model.first()).controlEnvelope(), nullptr);
+  EXPECT_EQ(Model(model.first().spline(), model.first().domain(), 0, 1).controlEnvelope(),
+            nullptr);
 }
 
 }  // namespace

@@ -14,6 +14,7 @@
 #include "core/mask/DomainBoundary.h"
 #include "core/mask/DomainMask.h"
 #include "core/model/ControlCoding.h"
+#include "core/model/ControlEnvelope.h"
 #include "core/model/DomainBox.h"
 #include "core/spline/TensorBSpline.h"
 #include "core/util/Vec.h"
@@ -72,6 +73,16 @@ class Model {
     return mask_.insideParameter(domain_.toParameter(x));  // clamps onto the box
   }
 
+  // An instant of a time-varying model carries the envelope of its slabs (ControlEnvelope.h):
+  // renderers that keep skip flags across frames build them from it once for every instant.
+  // Null for other models; the constructor never sets it, so a model made from new control
+  // points has none.
+  const ControlEnvelope* controlEnvelope() const { return envelope_.get(); }
+  const std::shared_ptr<const ControlEnvelope>& sharedControlEnvelope() const { return envelope_; }
+  void setControlEnvelope(std::shared_ptr<const ControlEnvelope> envelope) {
+    envelope_ = std::move(envelope);
+  }
+
   // How the file stores the control points (ControlCoding.h). The coded bytes, when present, are
   // the ones the model was read from or coded to (codeControlPoints): they decode to
   // spline().controlPoints() exactly, and the writer stores them as they are.
@@ -108,6 +119,7 @@ class Model {
   std::shared_ptr<const DomainBoundary> boundary_;  // shared: models are copied freely
   ControlCoding coding_;
   std::shared_ptr<const std::string> codedControls_;  // shared: models are copied freely
+  std::shared_ptr<const ControlEnvelope> envelope_;
 };
 
 }  // namespace mfadvr

@@ -4,6 +4,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <cmath>
 
 #include "core/util/Error.h"
 
@@ -67,7 +68,35 @@ Model TimeVaryingModel::at(double t) const {
     }
   });
   Model out = withControls(first_, TensorBSpline(first_.spline().allKnots(), std::move(ctrl)));
+  out.setControlEnvelope(controlEnvelope());
   return out;
+}
+
+std::shared_ptr<const ControlEnvelope> TimeVaryingModel::controlEnvelope() const {
+  if (!time_) return nullptr;
+  std::call_once(envelope_->once, [&] {
+    const std::int64_t m = static_cast<std::int64_t>(controls_->size()) / time_->controlCount();
+    const std::int64_t nt = time_->controlCount();
+    std::vector<float> lower(static_cast<size_t>(m)), upper(static_cast<size_t>(m));
+    const float* all = controls_->data();
+    tbb::parallel_for(tbb::blocked_range<std::int64_t>(0, m, 1 << 14), [&](const auto& range) {
+      for (std::int64_t i = range.begin(); i < range.end(); ++i) {
+        float lo = all[i], hi = all[i];
+        for (std::int64_t l = 1; l < nt; ++l) {
+          const float v = all[l * m + i];
+          // NaN reaches both ends (a cell with one is never skipped).
+          lo = v < lo || std::isnan(v) ? v : lo;
+          hi = v > hi || std::isnan(v) ? v : hi;
+        }
+        lower[static_cast<size_t>(i)] = lo;
+        upper[static_cast<size_t>(i)] = hi;
+      }
+    });
+    const auto& knots = first_.spline().allKnots();
+    envelope_->value = std::make_shared<const ControlEnvelope>(ControlEnvelope{
+        TensorBSpline(knots, std::move(lower)), TensorBSpline(knots, std::move(upper))});
+  });
+  return envelope_->value;
 }
 
 void TimeVaryingModel::evaluate(std::span<const Vec3d> points, std::span<const double> times,

@@ -7,6 +7,7 @@
 // The control points of a 4-D model are nt slabs one after the other, each a spatial grid x
 // fastest: point (i, j, k, l) is number i + nx (j + ny (k + nz l)).
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <span>
 #include <string>
@@ -39,6 +40,10 @@ class TimeVaryingModel {
   // every instant).
   const Model& first() const { return first_; }
 
+  // The envelope of the slabs (ControlEnvelope.h), computed on the first call (two 3-D control
+  // grids); every model at() returns carries it. Null without a time axis.
+  std::shared_ptr<const ControlEnvelope> controlEnvelope() const;
+
   // Every control point: nt slabs (one without a time axis).
   std::span<const float> controlPoints() const;
   std::int64_t slabCount() const { return time_ ? time_->controlCount() : 1; }
@@ -68,6 +73,11 @@ class TimeVaryingModel {
   std::shared_ptr<const std::vector<float>> controls_;  // 4-D only
   ControlCoding coding_;
   std::shared_ptr<const std::string> coded_;
+  struct LazyEnvelope {
+    std::once_flag once;
+    std::shared_ptr<const ControlEnvelope> value;
+  };
+  std::shared_ptr<LazyEnvelope> envelope_ = std::make_shared<LazyEnvelope>();
 };
 
 // `models` (the codings of the models are ignored) with one time axis: nt = models.size() slabs

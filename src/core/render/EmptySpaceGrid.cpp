@@ -12,8 +12,19 @@
 
 namespace mfadvr {
 
+SpanRanges envelopeRanges(const ControlEnvelope& envelope) {
+  SpanRanges r = *envelope.lower.spanRanges();
+  const SpanRanges& upper = *envelope.upper.spanRanges();
+  r.highest = upper.highest;
+  // NaN anywhere: the whole range is NaN, as for one spline.
+  if (std::isnan(upper.lowest) || std::isnan(upper.highest)) r.lowest = r.highest = upper.highest;
+  return r;
+}
+
 EmptySpaceFlags buildEmptySpaceFlags(const SplineView& spline, const SpanRanges& r,
-                                     const TransferFunctionTable& table, bool bezierRanges) {
+                                     const TransferFunctionTable& table, bool bezierRanges,
+                                     const SplineView* upper) {
+  if (upper) bezierRanges = false;
   const std::int64_t n = r.cellCount();
   EmptySpaceFlags out;
   // A cell's widened range lies within the whole spline's, widened by at least as much, and
@@ -30,6 +41,9 @@ EmptySpaceFlags buildEmptySpaceFlags(const SplineView& spline, const SpanRanges&
   const std::int64_t slab = std::max<std::int64_t>(16, (Z + 15) / 16);
   tbb::enumerable_thread_specific<CellRangeScanners> perThread(
       [&] { return CellRangeScanners(spline, plane); });
+  // The upper end's scanners (with an envelope): their highs replace the lower end's.
+  tbb::enumerable_thread_specific<SpanRangeScanner> upperScanners(
+      [&] { return SpanRangeScanner(upper ? *upper : spline); });
   const double bezierRounding = perThread.local().bezier.relativeRounding();
   std::atomic<std::int64_t> empties{0};
   tbb::parallel_for(std::int64_t(0), (Z + slab - 1) / slab, [&](std::int64_t task) {
@@ -40,6 +54,7 @@ EmptySpaceFlags buildEmptySpaceFlags(const SplineView& spline, const SpanRanges&
     std::int64_t count = 0;
     for (std::int64_t z = task * slab; z < std::min(Z, (task + 1) * slab); ++z) {
       scan.plane(z, lo.data(), hi.data());
+      if (upper) upperScanners.local().plane(z, bezierHi.data(), hi.data());  // its lows unused
       // By the control points' range first: empty, visible everywhere, or undecided (the
       // range touches a transparent table entry and a visible one). The Bezier range lies
       // within it, so only undecided cells can change: flagged 2 here, then computed.
@@ -125,7 +140,8 @@ EmptySpaceFlags buildEmptySpaceFlags(const SplineView& spline, const SpanRanges&
 }
 
 std::shared_ptr<const EmptySpaceFlags> EmptySpaceCache::flags(const TensorBSpline& spline,
-                                                              const TransferFunctionTable& table) {
+                                                              const TransferFunctionTable& table,
+                                                              const ControlEnvelope* envelope) {
   const std::shared_ptr<const SpanRanges> ranges = spline.spanRanges();
   const TransferFunctionView v = table.view();
   std::vector<std::uint64_t> key(static_cast<size_t>((v.count + 63) / 64) + 1, 0);
@@ -137,13 +153,30 @@ std::shared_ptr<const EmptySpaceFlags> EmptySpaceCache::flags(const TensorBSplin
   key.back() = (std::uint64_t(lo) << 32) | scale;
 
   std::lock_guard lock(mutex_);
-  if (!flags_ || ranges != ranges_ || key != key_) {
+  const bool repeated = ranges == lastSpline_;
+  lastSpline_ = ranges;
+  const bool exactKept = flags_ && ranges == ranges_ && key == key_;
+  // An instant of a time-varying model seen for the first time: the envelope's flags (built once
+  // for every instant) rather than a build for this instant alone; an instant rendered again
+  // (the camera moves, the time stays) gets its own, tighter flags.
+  if (envelope && !repeated && !exactKept) {
+    const std::shared_ptr<const SpanRanges> identity = envelope->lower.spanRanges();
+    if (!envelopeFlags_ || identity != envelopeRanges_ || key != envelopeKey_) {
+      const SplineView upper = envelope->upper.view();
+      envelopeFlags_ = std::make_shared<const EmptySpaceFlags>(buildEmptySpaceFlags(
+          envelope->lower.view(), envelopeRanges(*envelope), table, false, &upper));
+      envelopeRanges_ = identity;
+      envelopeKey_ = key;
+    }
+    return current_ = envelopeFlags_;
+  }
+  if (!exactKept) {
     flags_ = std::make_shared<const EmptySpaceFlags>(
         buildEmptySpaceFlags(spline.view(), *ranges, table));
     ranges_ = ranges;
     key_ = std::move(key);
   }
-  return flags_;
+  return current_ = flags_;
 }
 
 std::shared_ptr<const ExtremeBounds> EmptySpaceCache::extremeBounds(const TensorBSpline& spline) {

@@ -19,6 +19,7 @@
 #include <mutex>
 #include <vector>
 
+#include "core/model/ControlEnvelope.h"
 #include "core/render/ExtremeBounds.h"
 #include "core/render/TransferFunctionTable.h"
 #include "core/render/kernel/SplineRaySampler.h"  // EmptyLevelView
@@ -102,8 +103,15 @@ struct CellRangeScanners {
 // `ranges`: spline's (SpanRanges::compute). The cells' bounds are computed here, a slab of cells
 // per task, and not kept. Without `bezierRanges` a cell is classified by its control points
 // alone: fewer empty cells, a faster build (for flags that serve few samples per cell).
+// With `upper`, `spline` and `upper` are the two ends of an envelope (ControlEnvelope.h): a
+// cell's range is the least of `spline`'s control points to the greatest of `upper`'s, and
+// `ranges` spans both (envelopeRanges); Bezier ranges do not apply then.
 EmptySpaceFlags buildEmptySpaceFlags(const SplineView& spline, const SpanRanges& ranges,
-                                     const TransferFunctionTable& table, bool bezierRanges = true);
+                                     const TransferFunctionTable& table, bool bezierRanges = true,
+                                     const SplineView* upper = nullptr);
+
+// The ranges of an envelope: the lower end's, up to the upper end's highest control point.
+SpanRanges envelopeRanges(const ControlEnvelope& envelope);
 
 // Flags made for one render serve its samples once: below this many samples per cell (of the
 // rays over the model, at the render's step), the Bezier ranges cost more than the samples
@@ -114,15 +122,20 @@ inline constexpr double kBezierRangesMinSamplesPerCell = 3.0;
 class EmptySpaceCache {
  public:
   // Flags for `spline` under `table`; the object stays valid as long as the pointer is held.
+  // With `envelope` (an instant of a time-varying model: Model::controlEnvelope), an instant
+  // asked for the first time gets the envelope's flags, which serve every instant (built once
+  // per envelope and zero set: changing the time costs no build); asked again in a row (the time
+  // stays), it gets its own, which skip more.
   std::shared_ptr<const EmptySpaceFlags> flags(const TensorBSpline& spline,
-                                               const TransferFunctionTable& table);
+                                               const TransferFunctionTable& table,
+                                               const ControlEnvelope* envelope = nullptr);
   // The extreme bounds of `spline` for maximum and minimum intensity skipping (ExtremeBounds.h):
   // built on the first call for a spline, then kept while it is the same.
   std::shared_ptr<const ExtremeBounds> extremeBounds(const TensorBSpline& spline);
-  // The flags built last, or null before the first call.
+  // The flags the last call of flags() returned, or null before the first call.
   std::shared_ptr<const EmptySpaceFlags> current() {
     std::lock_guard lock(mutex_);
-    return flags_;
+    return current_;
   }
 
  private:
@@ -130,6 +143,11 @@ class EmptySpaceCache {
   std::shared_ptr<const SpanRanges> ranges_;  // identifies the spline (shared by its copies)
   std::vector<std::uint64_t> key_;            // the table's zero-opacity entries, lo and scale
   std::shared_ptr<const EmptySpaceFlags> flags_;
+  std::shared_ptr<const SpanRanges> lastSpline_;  // the spline of the previous flags() call
+  std::shared_ptr<const SpanRanges> envelopeRanges_;  // the envelope's lower end's
+  std::vector<std::uint64_t> envelopeKey_;
+  std::shared_ptr<const EmptySpaceFlags> envelopeFlags_;
+  std::shared_ptr<const EmptySpaceFlags> current_;
   std::shared_ptr<const SpanRanges> extremeRanges_;  // identifies extremes_' spline
   std::shared_ptr<const ExtremeBounds> extremes_;
 };

@@ -55,7 +55,7 @@ ModelRenderSetup::ModelRenderSetup(const ModelField& field, const RenderSettings
     const TransferFunctionTable band(isoBandTransferFunction(settings.isoSurfaces),
                                      OpacityCorrection(1.0));
     if (EmptySpaceCache* cache = field.emptySpaceCache()) {
-      flags_ = cache->flags(model.spline(), band);
+      flags_ = cache->flags(model.spline(), band, model.controlEnvelope());
     } else {
       flags_ = std::make_shared<const EmptySpaceFlags>(buildEmptySpaceFlags(
           view_.spline, *model.spline().spanRanges(), band, bezierRangesPayOff(model, settings)));
@@ -64,7 +64,7 @@ ModelRenderSetup::ModelRenderSetup(const ModelField& field, const RenderSettings
   } else if (settings.skipEmptySpace &&
              (blend == BlendMode::Composite || (blend == BlendMode::Additive && unshaded))) {
     if (EmptySpaceCache* cache = field.emptySpaceCache()) {
-      flags_ = cache->flags(model.spline(), tables_.table());
+      flags_ = cache->flags(model.spline(), tables_.table(), model.controlEnvelope());
     } else {
       const std::shared_ptr<const SpanRanges> ranges = model.spline().spanRanges();
       flags_ = std::make_shared<const EmptySpaceFlags>(buildEmptySpaceFlags(
