@@ -236,7 +236,8 @@ Command addEncodeCommand(CLI::App& app) {
     options.coding = o->coding.parse();
     const bool series =
         isBuiltinSeriesSpec(o->input) ||
-        isVolumeSeriesInput(o->input, parseVolumeLoadOptions(o->spacing, o->origin, o->field).field);
+        isVolumeSeriesInput(o->input,
+                            parseVolumeLoadOptions(o->spacing, o->origin, o->field).field);
     if (series) {
       if (!o->blocks.empty() || !o->memoryLimit.empty() || o->ghost >= 0)
         throw CLI::ValidationError("--blocks", "does not apply to time series yet");

@@ -12,8 +12,8 @@
 #include "app/EncodeCliOptions.h"
 #include "app/OptionParsing.h"
 #include "app/RenderOptions.h"
-#include "app/VideoWriter.h"
 #include "app/SceneLoader.h"
+#include "app/VideoWriter.h"
 #include "core/image/FloatImageFile.h"
 #include "core/image/PngFile.h"
 #include "core/render/BlendMode.h"
@@ -403,10 +403,9 @@ Command addRenderCommand(CLI::App& app) {
         std::printf(
             "%s: %zu frames, t = %g .. %g, %dx%d, mean render %.3f s, mean time "
             "contraction %.4f s, total %.3f s\n  on the %s\n",
-            written.c_str(), animation.size(), animation.front(),
-            animation.back(), settings.width, settings.height, renderSum / n,
-            animation.size() > 1 ? contractSum / (n - 1) : 0.0, secondsSince(start),
-            device.description.c_str());
+            written.c_str(), animation.size(), animation.front(), animation.back(), settings.width,
+            settings.height, renderSum / n, animation.size() > 1 ? contractSum / (n - 1) : 0.0,
+            secondsSince(start), device.description.c_str());
       }
       return 0;
     }

@@ -68,14 +68,15 @@ VideoWriter::VideoWriter(const std::string& path, int width, int height, double 
   const std::string format = formatArguments(path);
   const std::string ffmpeg = findFfmpeg();
   if (ffmpeg.empty())
-    throw Error("--video needs ffmpeg, which is not on the PATH (Debian: apt-get install ffmpeg; "
-                "or set MFADVR_FFMPEG to its path); -o 'frame_%03d.png' writes the frames as "
-                "PNG files instead");
+    throw Error(
+        "--video needs ffmpeg, which is not on the PATH (Debian: apt-get install ffmpeg; "
+        "or set MFADVR_FFMPEG to its path); -o 'frame_%03d.png' writes the frames as "
+        "PNG files instead");
   file_ = std::make_unique<AtomicFileWriter>(path);
   std::ostringstream command;
   command << shellQuoted(ffmpeg) << " -nostdin -hide_banner -loglevel error -y -f rawvideo"
-          << " -pix_fmt rgb24 -s " << width << "x" << height << " -framerate " << fps
-          << " -i - " << format << " " << shellQuoted(file_->temporaryPath().string());
+          << " -pix_fmt rgb24 -s " << width << "x" << height << " -framerate " << fps << " -i - "
+          << format << " " << shellQuoted(file_->temporaryPath().string());
   pipe_ = ::popen(command.str().c_str(), "w");
   if (!pipe_) throw Error("--video: cannot start " + ffmpeg);
 }
@@ -94,7 +95,8 @@ void VideoWriter::add(const Image8& frame) {
   for (int y = 0; y < height_; ++y) {
     const std::uint8_t* in = frame.data.data() + static_cast<size_t>(y) * width_ * frame.channels;
     for (int x = 0; x < width_; ++x)
-      for (int c = 0; c < 3; ++c) row_[3 * size_t(x) + size_t(c)] = char(in[x * frame.channels + c]);
+      for (int c = 0; c < 3; ++c)
+        row_[3 * size_t(x) + size_t(c)] = char(in[x * frame.channels + c]);
     if (std::fwrite(row_.data(), 1, row_.size(), pipe_) != row_.size())
       throw Error("--video " + path_ + ": ffmpeg stopped taking frames (its message is above)");
   }

@@ -59,8 +59,8 @@ class NetcdfFile {
   std::optional<double> number(int var, const char* name) const {
     nc_type type = 0;
     size_t length = 0;
-    if (nc_inq_att(id_, var, name, &type, &length) != NC_NOERR || length < 1 ||
-        type == NC_CHAR || type == NC_STRING)
+    if (nc_inq_att(id_, var, name, &type, &length) != NC_NOERR || length < 1 || type == NC_CHAR ||
+        type == NC_STRING)
       return {};
     std::vector<double> v(length);
     if (nc_get_att_double(id_, var, name, v.data()) != NC_NOERR) return {};
@@ -126,8 +126,8 @@ bool isTimeDimension(const NetcdfFile& f, int dim) {
     if (const auto axis = f.text(c->id, "axis")) return lower(*axis) == "t";
     if (const auto name = f.text(c->id, "standard_name"); name && lower(*name) == "time")
       return true;
-    if (const auto units = f.text(c->id, "units"); units && lower(*units).find(" since ") !=
-                                                                std::string::npos)
+    if (const auto units = f.text(c->id, "units");
+        units && lower(*units).find(" since ") != std::string::npos)
       return true;
   }
   const std::string name = lower(dimName(f, dim));
@@ -141,27 +141,39 @@ bool isNumeric(nc_type t) {
 
 const char* sampleTypeOf(nc_type t) {
   switch (t) {
-    case NC_BYTE: return "int8";
-    case NC_UBYTE: return "uint8";
-    case NC_SHORT: return "int16";
-    case NC_USHORT: return "uint16";
-    case NC_INT: return "int32";
-    case NC_UINT: return "uint32";
-    case NC_FLOAT: return "float32";
-    default: return "float64";
+    case NC_BYTE:
+      return "int8";
+    case NC_UBYTE:
+      return "uint8";
+    case NC_SHORT:
+      return "int16";
+    case NC_USHORT:
+      return "uint16";
+    case NC_INT:
+      return "int32";
+    case NC_UINT:
+      return "uint32";
+    case NC_FLOAT:
+      return "float32";
+    default:
+      return "float64";
   }
 }
 
 int typeBytes(nc_type t) {
   switch (t) {
     case NC_BYTE:
-    case NC_UBYTE: return 1;
+    case NC_UBYTE:
+      return 1;
     case NC_SHORT:
-    case NC_USHORT: return 2;
+    case NC_USHORT:
+      return 2;
     case NC_INT:
     case NC_UINT:
-    case NC_FLOAT: return 4;
-    default: return 8;
+    case NC_FLOAT:
+      return 4;
+    default:
+      return 8;
   }
 }
 
@@ -214,11 +226,13 @@ bool isNetcdfPath(const std::string& path) {
 NetcdfVolume describeNetcdfVolume(const std::string& path, const FieldSelection& field) {
   requireNonEmptyFile(path, "a NetCDF file");
   if (field.association == FieldAssociation::kCells)
-    throw Error(path + ": a NetCDF variable of a regular grid holds samples at its points, not "
-                       "cell data");
+    throw Error(path +
+                ": a NetCDF variable of a regular grid holds samples at its points, not "
+                "cell data");
   if (field.component != FieldSelection::kWholeArray)
-    throw Error(path + ": a NetCDF variable read by mfadvr holds one scalar per sample, so "
-                       "--component does not apply to it");
+    throw Error(path +
+                ": a NetCDF variable read by mfadvr holds one scalar per sample, so "
+                "--component does not apply to it");
   const NetcdfFile f(path);
   int nvars = 0;
   f.check(nc_inq_nvars(f.id(), &nvars), "its variables");
@@ -253,8 +267,9 @@ NetcdfVolume describeNetcdfVolume(const std::string& path, const FieldSelection&
   } else if (volumes.size() == 1) {
     chosen = &volumes.front();
   } else if (volumes.empty()) {
-    f.fail("none of its variables is a volume (three dimensions of more than one value, "
-           "besides an optional time dimension first)");
+    f.fail(
+        "none of its variables is a volume (three dimensions of more than one value, "
+        "besides an optional time dimension first)");
   } else {
     f.fail("it holds several volumes (" + list + "): choose one with --field NAME");
   }
@@ -324,8 +339,7 @@ NetcdfVolume describeNetcdfVolume(const std::string& path, const FieldSelection&
     volume.times.resize(n);
     const auto c = coordinateOf(f, dim);
     if (c && isNumeric(c->type)) {
-      f.check(nc_get_var_double(f.id(), c->id, volume.times.data()),
-              "the times of " + c->name);
+      f.check(nc_get_var_double(f.id(), c->id, volume.times.data()), "the times of " + c->name);
       for (size_t s = 0; s < n; ++s)
         if (!std::isfinite(volume.times[s]))
           f.fail("time " + std::to_string(s) + " of '" + c->name + "' is not a finite number");
@@ -358,8 +372,8 @@ StructuredGrid readNetcdfStep(const NetcdfVolume& volume, int step) {
   const std::int64_t n = grid.sampleCount();
   std::vector<double> raw(static_cast<size_t>(n));
   f.check(nc_get_vara_double(f.id(), id, start.data(), count.data(), raw.data()),
-          "the samples of " + volume.variable + (shape->time >= 0 ? ", step " + std::to_string(step)
-                                                                   : std::string()));
+          "the samples of " + volume.variable +
+              (shape->time >= 0 ? ", step " + std::to_string(step) : std::string()));
   // Missing data: the fill value, missing_value, and for float data netCDF's default fill.
   std::vector<double> missing;
   for (const char* name : {"_FillValue", "missing_value"})

@@ -172,8 +172,8 @@ std::optional<HeaderVolume> readHeaderVolume(const std::string& path, bool timeS
       volume.timeStep = std::isfinite(step) && step > 0.0 ? step : 1.0;
       const double offset = header ? header->GetTOffset() : 0.0;
       volume.timeStart = std::isfinite(offset) ? offset : 0.0;
-      static const std::pair<int, const char*> kUnits[] = {
-          {8, "s"}, {16, "ms"}, {24, "us"}, {32, "Hz"}, {40, "ppm"}, {48, "rad/s"}};
+      static const std::pair<int, const char*> kUnits[] = {{8, "s"},   {16, "ms"},  {24, "us"},
+                                                           {32, "Hz"}, {40, "ppm"}, {48, "rad/s"}};
       const int unit = header ? (header->GetXYZTUnits() & 0x38) : 0;
       for (const auto& [code, name] : kUnits)
         if (code == unit) volume.timeNote = std::string("times in ") + name + " (xyzt_units)";
@@ -199,11 +199,10 @@ std::optional<TimeStepsInFile> describeTimeStepsInFile(const std::string& path) 
   if (!header) {
     // A NRRD of ascii values or a NIfTI image stored in another order than it is placed: read
     // as one volume only; a time series of them is refused with the reason.
-    const DeclaredPayload nifti = isNiftiPath(path) ? checkNiftiDeclaredSize(path)
-                                                    : DeclaredPayload{};
+    const DeclaredPayload nifti =
+        isNiftiPath(path) ? checkNiftiDeclaredSize(path) : DeclaredPayload{};
     if (isNiftiPath(path) && nifti.sizes.size() >= 4 && nifti.sizes[3] > 1)
-      throw Error("cannot read " + path + " as a time series of " +
-                  std::to_string(nifti.sizes[3]) +
+      throw Error("cannot read " + path + " as a time series of " + std::to_string(nifti.sizes[3]) +
                   " steps: its header places the samples in another order than they are stored "
                   "(flipped or rotated axes, several values per sample), which mfadvr reads as "
                   "one volume only; resample it to stored order first");

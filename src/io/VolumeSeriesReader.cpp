@@ -288,8 +288,7 @@ class StepsInFileSeries final : public VolumeSeries {
 // The time steps of a NetCDF variable, each read when it is asked for.
 class NetcdfSeries final : public VolumeSeries {
  public:
-  NetcdfSeries(NetcdfVolume volume, const VolumeLoadOptions& options)
-      : volume_(std::move(volume)) {
+  NetcdfSeries(NetcdfVolume volume, const VolumeLoadOptions& options) : volume_(std::move(volume)) {
     volume_.layout.origin = options.origin.value_or(volume_.layout.origin);
     volume_.layout.spacing = options.spacing.value_or(volume_.layout.spacing);
   }
@@ -305,6 +304,15 @@ class NetcdfSeries final : public VolumeSeries {
  private:
   NetcdfVolume volume_;
 };
+
+// `times` (encode --times) for the `steps` steps of `input`, as many as there are.
+std::vector<double> checkedTimes(std::vector<double> times, size_t steps,
+                                 const std::string& input) {
+  if (times.size() != steps)
+    throw Error("--times gives " + std::to_string(times.size()) + " times for the " +
+                std::to_string(steps) + " steps of " + input);
+  return times;
+}
 
 }  // namespace
 
@@ -355,15 +363,12 @@ std::unique_ptr<VolumeSeries> openVolumeSeries(const std::string& input,
   const std::string l = lower(input);
   std::error_code ec;
   if (fs::is_regular_file(input, ec) && isNetcdfPath(input)) {
-    auto series = std::make_unique<NetcdfSeries>(describeNetcdfVolume(input, options.field),
-                                                 options);
+    auto series =
+        std::make_unique<NetcdfSeries>(describeNetcdfVolume(input, options.field), options);
     if (series->size() < 2) throw Error(input + ": holds one volume, not a time series");
-    if (times) {
-      if (times->size() != static_cast<size_t>(series->size()))
-        throw Error("--times gives " + std::to_string(times->size()) + " times for the " +
-                    std::to_string(series->size()) + " steps of " + input);
-      series->replaceTimes(std::move(*times));
-    }
+    if (times)
+      series->replaceTimes(
+          checkedTimes(std::move(*times), static_cast<size_t>(series->size()), input));
     return series;
   }
   if (fs::is_regular_file(input, ec) && !endsWith(l, ".pvd") && !endsWith(l, ".series")) {
@@ -372,12 +377,9 @@ std::unique_ptr<VolumeSeries> openVolumeSeries(const std::string& input,
     std::optional<TimeStepsInFile> inFile = describeTimeStepsInFile(input);
     if (!inFile) throw Error(input + ": holds one volume, not a time series");
     auto series = std::make_unique<StepsInFileSeries>(input, std::move(*inFile), options);
-    if (times) {
-      if (times->size() != static_cast<size_t>(series->size()))
-        throw Error("--times gives " + std::to_string(times->size()) + " times for the " +
-                    std::to_string(series->size()) + " steps of " + input);
-      series->replaceTimes(std::move(*times));
-    }
+    if (times)
+      series->replaceTimes(
+          checkedTimes(std::move(*times), static_cast<size_t>(series->size()), input));
     return series;
   }
   Steps s;
@@ -393,12 +395,7 @@ std::unique_ptr<VolumeSeries> openVolumeSeries(const std::string& input,
     throw Error(input +
                 ": not a time series (a .pvd or .series file, a name_%03d pattern or a "
                 "folder of numbered volumes)");
-  if (times) {
-    if (times->size() != s.files.size())
-      throw Error("--times gives " + std::to_string(times->size()) + " times for the " +
-                  std::to_string(s.files.size()) + " steps of " + input);
-    s.times = std::move(*times);
-  }
+  if (times) s.times = checkedTimes(std::move(*times), s.files.size(), input);
   return std::make_unique<FileVolumeSeries>(input, std::move(s.files), std::move(s.times), options);
 }
 

@@ -167,9 +167,10 @@ Vec3d triple(const py::object& value, const char* what, double fill) {
 // by index) as the encoder's grid.
 StructuredGrid gridOf(const py::array& input, const py::object& spacing, const py::object& origin) {
   if (input.ndim() != 3)
-    throw py::value_error("the array must have 3 dimensions indexed [z, y, x] (4 for a time "
-                          "series, [t, z, y, x]), got " +
-                          std::to_string(input.ndim()));
+    throw py::value_error(
+        "the array must have 3 dimensions indexed [z, y, x] (4 for a time "
+        "series, [t, z, y, x]), got " +
+        std::to_string(input.ndim()));
   StructuredGrid g;
   g.dims = {input.shape(2), input.shape(1), input.shape(0)};
   g.spacing = triple(spacing, "spacing", 1.0);

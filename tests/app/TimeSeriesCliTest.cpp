@@ -194,9 +194,9 @@ void writeNifti(const fs::path& path, int steps, float dt, float t0) {
   put(72, std::int16_t{8});
   const float pixdim[8] = {1.0f, 1.0f, 1.0f, 1.0f, dt, 1.0f, 1.0f, 1.0f};
   for (int d = 0; d < 8; ++d) put(76 + 4 * size_t(d), pixdim[d]);
-  put(108, 352.0f);                 // vox_offset
-  put(123, char{2 | 16});           // xyzt_units: mm, ms
-  put(136, t0);                     // toffset
+  put(108, 352.0f);        // vox_offset
+  put(123, char{2 | 16});  // xyzt_units: mm, ms
+  put(136, t0);            // toffset
   std::memcpy(bytes.data() + 344, "n+1\0", 4);
   bytes += allSteps(steps);
   std::ofstream out(path, std::ios::binary);
@@ -212,17 +212,15 @@ TEST(TimeSeriesCli, FourDimensionalNrrdAndNiftiFilesAreSeries) {
                       "' --times 1,1.5,2,2.5,3 -q -o " + reference)
                 .status,
             0);
-  const std::string header = "NRRD0004\ntype: uint8\ndimension: 4\nsizes: " +
-                             std::to_string(kNx) + " " + std::to_string(kNy) + " " +
-                             std::to_string(kNz) +
+  const std::string header = "NRRD0004\ntype: uint8\ndimension: 4\nsizes: " + std::to_string(kNx) +
+                             " " + std::to_string(kNy) + " " + std::to_string(kNz) +
                              " 5\nkinds: space space space time\nspacings: nan nan nan 0.5\n"
                              "axis mins: nan nan nan 1\n";
   const std::string raw = allSteps(5);
   {
     std::ofstream(dir / "run.nrrd", std::ios::binary) << header << "encoding: raw\n\n" << raw;
-    std::ofstream(dir / "runz.nrrd", std::ios::binary)
-        << header << "encoding: gzip\n\n"
-        << test::gzipBytes(raw);
+    std::ofstream(dir / "runz.nrrd", std::ios::binary) << header << "encoding: gzip\n\n"
+                                                       << test::gzipBytes(raw);
   }
   writeNifti(dir / "run.nii", 5, 0.5f, 1.0f);
   writeNifti(dir / "run.nii.gz", 5, 0.5f, 1.0f);
@@ -262,11 +260,10 @@ TEST(TimeSeriesCli, FourDimensionalNrrdAndNiftiFilesAreSeries) {
   EXPECT_NE(f.err.find("unu permute -p 1 2 3 0"), std::string::npos) << f.err;
   EXPECT_FALSE(fs::exists(dir / "first.mfa"));
   // A file cut short: nothing written.
-  std::ofstream(dir / "cut.nrrd", std::ios::binary)
-      << header << "encoding: raw\n\n"
-      << raw.substr(0, raw.size() - 100);
-  const auto c = runMfadvr("encode " + (dir / "cut.nrrd").string() + " -q -o " +
-                           (dir / "cut.mfa").string());
+  std::ofstream(dir / "cut.nrrd", std::ios::binary) << header << "encoding: raw\n\n"
+                                                    << raw.substr(0, raw.size() - 100);
+  const auto c =
+      runMfadvr("encode " + (dir / "cut.nrrd").string() + " -q -o " + (dir / "cut.mfa").string());
   EXPECT_EQ(c.status, 1);
   EXPECT_FALSE(fs::exists(dir / "cut.mfa"));
 }
@@ -329,8 +326,7 @@ TEST(TimeSeriesCli, NetcdfVariablesWithATimeAxisAreSeries) {
     ASSERT_EQ(runMfadvr("decode " + model + " --time " + t + " --type float32 -q -o " + a).status,
               0);
     ASSERT_EQ(
-        runMfadvr("decode " + reference + " --time " + t + " --type float32 -q -o " + b).status,
-        0);
+        runMfadvr("decode " + reference + " --time " + t + " --type float32 -q -o " + b).status, 0);
     EXPECT_EQ(test::slurp(a), test::slurp(b)) << "t = " << t;
   }
   // As one volume (render, or encode of a variable without time): the first step.
@@ -405,8 +401,8 @@ TEST(TimeSeriesCli, BuiltinSeriesRenderQueryAndDecodeAtAnyTime) {
   // A video of the animation, through ffmpeg (installed by scripts/install-deps.sh).
   const std::string video = (dir / "blobs.mp4").string();
   if (std::system("command -v ffmpeg > /dev/null") == 0) {
-    const auto v = runMfadvr("render " + model + " --times 0:1:5 --size 33x24 -q --json --video " +
-                             video);
+    const auto v =
+        runMfadvr("render " + model + " --times 0:1:5 --size 33x24 -q --json --video " + video);
     ASSERT_EQ(v.status, 0) << v.err;
     EXPECT_EQ(jsonOf(v)["frames"].size(), 5u);
     EXPECT_EQ(test::slurp(video).substr(4, 4), "ftyp");  // an MP4 file
@@ -421,16 +417,16 @@ TEST(TimeSeriesCli, BuiltinSeriesRenderQueryAndDecodeAtAnyTime) {
     ADD_FAILURE() << "ffmpeg is not installed (scripts/install-deps.sh installs it): --video "
                      "not tested";
   }
-  const auto noFfmpeg = runMfadvr("render " + model + " --times 0:1:3 --size 32x32 -q --video " +
-                                  (dir / "none.mp4").string(),
-                                  "MFADVR_FFMPEG=/nonexistent/ffmpeg");
+  const auto noFfmpeg = runMfadvr(
+      "render " + model + " --times 0:1:3 --size 32x32 -q --video " + (dir / "none.mp4").string(),
+      "MFADVR_FFMPEG=/nonexistent/ffmpeg");
   EXPECT_EQ(noFfmpeg.status, 1);
   EXPECT_NE(noFfmpeg.err.find("--video needs ffmpeg"), std::string::npos) << noFfmpeg.err;
   EXPECT_FALSE(fs::exists(dir / "none.mp4"));
   EXPECT_EQ(runMfadvr("render " + model + " --size 32x32 -q --video " + video).status, 2);
-  EXPECT_EQ(runMfadvr("render " + model + " --times 0:1:3 -q --video " + (dir / "x.ogg").string())
-                .status,
-            1);
+  EXPECT_EQ(
+      runMfadvr("render " + model + " --times 0:1:3 -q --video " + (dir / "x.ogg").string()).status,
+      1);
   EXPECT_EQ(
       runMfadvr("render builtin:marschner-lobb:8 --time 0.5 --size 32x32 -q -o " + png).status, 1);
 

@@ -238,7 +238,7 @@ TEST(TimeVarying, EnvelopeFlagsServeEveryInstantWithTheImagesOfNoSkipping) {
   const auto lo = envelope->lower.controlPoints(), hi = envelope->upper.controlPoints();
   TransferFunction tf;
   tf.color = {{0.0, Vec3f(1, 1, 1)}, {1.0, Vec3f(1, 0.5f, 0)}};
-  tf.space = TfSpace::Data;  // the blobs peak at 1
+  tf.space = TfSpace::Data;                                            // the blobs peak at 1
   tf.opacity = {{0.0, 0.0f}, {0.45, 0.0f}, {0.5, 0.6f}, {1.0, 0.6f}};  // a step at 0.45
   EmptySpaceCache cache;
   std::shared_ptr<const EmptySpaceFlags> first;
@@ -279,8 +279,7 @@ TEST(TimeVarying, EnvelopeFlagsServeEveryInstantWithTheImagesOfNoSkipping) {
   EXPECT_GT(skipped, 0);  // the test has to exercise the skipping
   // A 3-D model (no time axis) carries no envelope.
   EXPECT_EQ(TimeVaryingModel(model.first()).controlEnvelope(), nullptr);
-  EXPECT_EQ(Model(model.first().spline(), model.first().domain(), 0, 1).controlEnvelope(),
-            nullptr);
+  EXPECT_EQ(Model(model.first().spline(), model.first().domain(), 0, 1).controlEnvelope(), nullptr);
 }
 
 }  // namespace

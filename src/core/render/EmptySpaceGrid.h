@@ -143,7 +143,7 @@ class EmptySpaceCache {
   std::shared_ptr<const SpanRanges> ranges_;  // identifies the spline (shared by its copies)
   std::vector<std::uint64_t> key_;            // the table's zero-opacity entries, lo and scale
   std::shared_ptr<const EmptySpaceFlags> flags_;
-  std::shared_ptr<const SpanRanges> lastSpline_;  // the spline of the previous flags() call
+  std::shared_ptr<const SpanRanges> lastSpline_;      // the spline of the previous flags() call
   std::shared_ptr<const SpanRanges> envelopeRanges_;  // the envelope's lower end's
   std::vector<std::uint64_t> envelopeKey_;
   std::shared_ptr<const EmptySpaceFlags> envelopeFlags_;

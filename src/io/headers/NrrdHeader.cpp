@@ -346,8 +346,7 @@ NrrdDataLocation checkNrrdHeaderText(const std::string& header, const std::strin
         fail("the time axis " + std::to_string(a) + " has spacing " + std::to_string(step) +
              ": time steps must be positive");
       const double start = std::isnan(minOf[a]) ? 0.0 : minOf[a];
-      if (!std::isfinite(start) ||
-          !std::isfinite(start + step * static_cast<double>(sizes[a] - 1)))
+      if (!std::isfinite(start) || !std::isfinite(start + step * static_cast<double>(sizes[a] - 1)))
         fail("the time axis " + std::to_string(a) + " does not span finite times");
       grid.timeSteps = sizes[a];
       grid.timeAxis = static_cast<int>(a);
