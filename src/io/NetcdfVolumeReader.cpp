@@ -284,11 +284,31 @@ NetcdfVolume describeNetcdfVolume(const std::string& path, const FieldSelection&
   g.fieldAssociation = "point data";
   g.source = path;
   for (int a = 0; a < 3; ++a) {
+    const size_t n = dimLength(f, v.dims[static_cast<size_t>(shape.axis[a])]);
+    if (n > static_cast<size_t>(std::numeric_limits<std::int32_t>::max()))
+      f.fail("dimension '" + dimName(f, v.dims[static_cast<size_t>(shape.axis[a])]) +
+             "' is too long");
+    g.dims[a] = static_cast<std::int64_t>(n);
+  }
+  // A damaged header may declare more values than the file can hold; refused before any
+  // allocation (compressed netCDF-4 data: at most 1032 bytes per stored byte, deflate's limit).
+  int format = 0;
+  f.check(nc_inq_format(f.id(), &format), "its format");
+  const bool compressed = format == NC_FORMAT_NETCDF4 || format == NC_FORMAT_NETCDF4_CLASSIC;
+  std::error_code ec;
+  const double fileBytes = static_cast<double>(std::filesystem::file_size(path, ec));
+  const auto requireHeld = [&](double bytes, const std::string& what) {
+    if (ec || bytes > (compressed ? 1032.0 : 1.0) * fileBytes + 4096.0)
+      f.fail(what + " declares more values than the file's " +
+             std::to_string(static_cast<std::int64_t>(fileBytes)) +
+             " bytes can hold: the file is cut short or damaged");
+  };
+  requireHeld(static_cast<double>(g.dims[0]) * static_cast<double>(g.dims[1]) *
+                  static_cast<double>(g.dims[2]) * typeBytes(v.type),
+              "variable " + describeDims(f, v));
+  for (int a = 0; a < 3; ++a) {
     const int dim = v.dims[static_cast<size_t>(shape.axis[a])];
     const size_t n = dimLength(f, dim);
-    if (n > static_cast<size_t>(std::numeric_limits<std::int32_t>::max()))
-      f.fail("dimension '" + dimName(f, dim) + "' is too long");
-    g.dims[a] = static_cast<std::int64_t>(n);
     g.spacing[a] = 1.0;
     g.origin[a] = 0.0;
     const char axisName = "xyz"[a];
@@ -298,6 +318,7 @@ NetcdfVolume describeNetcdfVolume(const std::string& path, const FieldSelection&
                         "') has no coordinate variable: placed by index");
       continue;
     }
+    requireHeld(static_cast<double>(n) * typeBytes(c->type), "coordinate " + c->name);
     std::vector<double> x(n);
     f.check(nc_get_var_double(f.id(), c->id, x.data()), "the coordinates of " + c->name);
     const double step = (x[n - 1] - x[0]) / static_cast<double>(n - 1);
@@ -313,21 +334,6 @@ NetcdfVolume describeNetcdfVolume(const std::string& path, const FieldSelection&
     g.spacing[a] = step;
     g.origin[a] = x[0];
   }
-  // A damaged header may declare more samples than the file can hold; refused before any
-  // allocation (compressed netCDF-4 data: at most 1032 bytes per stored byte, deflate's limit).
-  {
-    int format = 0;
-    f.check(nc_inq_format(f.id(), &format), "its format");
-    const bool compressed = format == NC_FORMAT_NETCDF4 || format == NC_FORMAT_NETCDF4_CLASSIC;
-    std::error_code ec;
-    const double fileBytes = static_cast<double>(std::filesystem::file_size(path, ec));
-    const double stepBytes = static_cast<double>(g.dims[0]) * static_cast<double>(g.dims[1]) *
-                             static_cast<double>(g.dims[2]) * typeBytes(v.type);
-    if (ec || stepBytes > (compressed ? 1032.0 : 1.0) * fileBytes + 4096.0)
-      f.fail("variable " + describeDims(f, v) + " declares more samples per step than the file's " +
-             std::to_string(static_cast<std::int64_t>(fileBytes)) +
-             " bytes can hold: the file is cut short or damaged");
-  }
   const auto scale = f.number(v.id, "scale_factor");
   const auto offset = f.number(v.id, "add_offset");
   g.sampleType = scale || offset ? "float32" : sampleTypeOf(v.type);
@@ -336,6 +342,7 @@ NetcdfVolume describeNetcdfVolume(const std::string& path, const FieldSelection&
   if (shape.time >= 0) {
     const int dim = v.dims[static_cast<size_t>(shape.time)];
     const size_t n = dimLength(f, dim);
+    requireHeld(static_cast<double>(n), "time dimension '" + dimName(f, dim) + "'");
     volume.times.resize(n);
     const auto c = coordinateOf(f, dim);
     if (c && isNumeric(c->type)) {
