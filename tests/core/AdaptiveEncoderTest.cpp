@@ -141,5 +141,50 @@ TEST(AdaptiveEncoder, ScatteredBoundHolds) {
   EXPECT_EQ(m.provenance().encoder, "scattered-least-squares-adaptive");
 }
 
+// The memory estimate of a scattered fit: a first round that does not fit is refused before it
+// starts; a later round that would not fit stops the refinement with the best model so far.
+TEST(AdaptiveEncoder, ScatteredRefinementStopsAtTheMemoryLimit) {
+  const auto beam = makeBuiltin("gaussian-beam");
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-1, 1);
+  ScatteredData d;
+  for (int i = 0; i < 6000; ++i) {
+    const Vec3d x(u(rng), u(rng), u(rng));
+    d.points.push_back(x);
+    d.values.push_back(beam->value(x));
+  }
+  const Degree3 cubic{3, 3, 3};
+  // More control points need more, and 256^3 of them gigabytes whatever the points.
+  EXPECT_LT(scatteredFitPeakBytes(6000, {5, 5, 5}, cubic),
+            scatteredFitPeakBytes(6000, {9, 9, 9}, cubic));
+  EXPECT_GT(scatteredFitPeakBytes(100000, {256, 256, 256}, cubic), std::int64_t{4'000'000'000});
+  struct Limit {
+    explicit Limit(std::int64_t bytes) {
+      setenv("MFADVR_MEMORY_LIMIT", std::to_string(bytes).c_str(), 1);
+    }
+    ~Limit() { unsetenv("MFADVR_MEMORY_LIMIT"); }
+  };
+  const std::int64_t first = scatteredFitPeakBytes(6000, {5, 5, 5}, cubic);
+  {
+    const Limit limit(first + 200'000);  // the first round and little more
+    FitReport r;
+    const Model m = fitScatteredAdaptive(d, ScatteredFitOptions{}, bound(1e-5), &r);
+    EXPECT_FALSE(r.reachedTarget);
+    EXPECT_NE(r.stopReason.find("memory limit: the next round ("), std::string::npos)
+        << r.stopReason;
+    EXPECT_GE(r.rounds, 1);
+    expectClampedValidKnots(m);
+    // A fixed fit that needs more is refused before it starts, with advice.
+    ScatteredFitOptions big;
+    big.controlCounts = {40, 40, 40};
+    test::expectError([&] { fitScattered(d, big); }, {"40x40x40 control points", "--ctrl"});
+  }
+  {
+    const Limit limit(first / 2);
+    test::expectError([&] { fitScatteredAdaptive(d, ScatteredFitOptions{}, bound(1e-2)); },
+                      {"first round of the adaptive fit", "5x5x5"});
+  }
+}
+
 }  // namespace
 }  // namespace mfadvr

@@ -3,12 +3,14 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <optional>
 #include <sstream>
 
 #include "core/encode/KnotPlacement.h"
 #include "core/model/ModelFile.h"
 #include "core/util/Error.h"
+#include "core/util/MemoryBudget.h"
 
 namespace mfadvr {
 namespace {
@@ -87,7 +89,16 @@ struct AxisRules {
   // Called for an axis whose failing spans cannot be split; returns whether it refined the
   // axis some other way (grids: all the way to interpolation, if the cap allows).
   std::function<bool(int axis, std::array<KnotVector, 3>&)> saturate;
+  // Bytes a round with these knots holds (scattered fits: scatteredFitPeakBytes). The first
+  // round must fit in the memory; a later one that would not stops the refinement, with the
+  // best model so far, instead of failing for want of memory.
+  std::function<std::int64_t(const std::array<KnotVector, 3>&)> peakBytes;
 };
+
+std::string countsText(const std::array<KnotVector, 3>& k) {
+  return std::to_string(k[0].controlCount()) + "x" + std::to_string(k[1].controlCount()) + "x" +
+         std::to_string(k[2].controlCount());
+}
 
 // The refinement loop shared by grids and points. fit(knots, previous, report, spanErrors)
 // fits one round.
@@ -103,6 +114,20 @@ Model adapt(std::array<KnotVector, 3> knots, const Index3& caps, const AdaptiveO
   int round = 0;
   int solverIterations = 0;
   for (round = 1;; ++round) {
+    if (rules.peakBytes) {
+      const std::int64_t need = rules.peakBytes(knots);
+      if (round == 1) {
+        requireMemory(need, "the first round of the adaptive fit (" + countsText(knots) +
+                                " control points; fewer to start with, --ctrl, need less)");
+      } else if (const std::int64_t available = availableMemoryBytes();
+                 available > 0 && need > available) {
+        stopReason = "memory limit: the next round (" + countsText(knots) +
+                     " control points) would need " + formatBytes(need) + ", " +
+                     formatBytes(available) + " available";
+        --round;
+        break;
+      }
+    }
     FitReport r;
     std::array<std::vector<double>, 3> spanErrors;
     Model m = fit(knots, previous ? &*previous : nullptr, r, spanErrors);
@@ -260,6 +285,11 @@ Model fitScatteredAdaptive(const ScatteredData& data, const ScatteredFitOptions&
       return 0.5 * (lo + hi);
     };
   }
+  rules.peakBytes = [&](const std::array<KnotVector, 3>& k) {
+    return scatteredFitPeakBytes(static_cast<std::int64_t>(data.points.size()),
+                                 {k[0].controlCount(), k[1].controlCount(), k[2].controlCount()},
+                                 fit.degree);
+  };
   ScatteredFitOptions round = fit;
   round.progress = nullptr;
   return adapt(

@@ -18,6 +18,7 @@
 #include "core/spline/BasisFunctions.h"
 #include "core/spline/DerivativePenalty.h"
 #include "core/util/Error.h"
+#include "core/util/MemoryBudget.h"
 #include "core/util/UtcTime.h"
 
 namespace mfadvr {
@@ -481,11 +482,27 @@ Model fitScatteredWithKnots(const ScatteredData& data, std::array<KnotVector, 3>
   return model;
 }
 
+std::int64_t scatteredFitPeakBytes(std::int64_t points, const Index3& counts,
+                                   const Degree3& degree) {
+  const std::int64_t perPoint = std::int64_t(degree[0] + 1) * (degree[1] + 1) * (degree[2] + 1);
+  const std::int64_t c = counts[0] * counts[1] * counts[2];
+  const std::int64_t params = 24 * points;
+  const std::int64_t basis = 2 * 12 * perPoint * points + 8 * points;  // N and N^T
+  const std::int64_t penalty = 12 * 9 * c + 12 * 13 * c;  // second differences and D^T D
+  const std::int64_t vectors = 8 * (8 * c + 3 * points);  // right side, CG, diagonal, values
+  return params + basis + penalty + vectors;
+}
+
 Model fitScattered(const ScatteredData& data, const ScatteredFitOptions& options,
                    FitReport* report) {
   const auto start = Clock::now();
   data.validate();
   const Index3 n = resolveScatteredControlCounts(data, options);
+  requireMemory(
+      scatteredFitPeakBytes(static_cast<std::int64_t>(data.points.size()), n, options.degree),
+      "fitting " + std::to_string(data.points.size()) + " points with " + std::to_string(n[0]) +
+          "x" + std::to_string(n[1]) + "x" + std::to_string(n[2]) +
+          " control points (fewer control points, --ctrl, need less)");
   // Levels: halve the number of spans per axis until every axis has at most 4 spans.
   std::vector<Index3> levels{n};
   for (;;) {

@@ -54,11 +54,20 @@ struct ScatteredFitOptions {
 // axis, and at most 64^3 in all (scaled down alike on every axis beyond that).
 Index3 defaultScatteredControlCounts(const ScatteredData& data, const Degree3& degree);
 
+// Bytes one fit of `points` points with `counts` control points holds at most, the points
+// themselves not counted: their parameters, the sparse basis matrix and its transpose (12 bytes
+// per entry, (p+1)^3 entries per point), the second differences and the penalty (13 entries per
+// control point), and the solver's vectors. The control counts weigh most: 256^3 control points
+// need about 6 GB whatever the number of points.
+std::int64_t scatteredFitPeakBytes(std::int64_t points, const Index3& counts,
+                                   const Degree3& degree);
+
 // Resolves 0 entries of options.controlCounts and validates degrees, counts and smoothing.
 Index3 resolveScatteredControlCounts(const ScatteredData& data, const ScatteredFitOptions& options);
 
-// Throws mfadvr::Error for invalid data (ScatteredData::validate) or options. The model's box is
-// the points' bounding box; it has no mask (the caller adds one, see encodeScattered).
+// Throws mfadvr::Error for invalid data (ScatteredData::validate) or options, and before it
+// starts when the fit needs more memory than there is (scatteredFitPeakBytes). The model's box
+// is the points' bounding box; it has no mask (the caller adds one, see encodeScattered).
 Model fitScattered(const ScatteredData& data, const ScatteredFitOptions& options,
                    FitReport* report = nullptr);
 
