@@ -12,14 +12,12 @@
 
 #include "core/util/Error.h"
 #include "io/InputFile.h"
+#include "io/headers/HeaderText.h"
 
 namespace mfadvr {
 namespace {
 
-std::string lower(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
-  return s;
-}
+using headers::lower;
 
 // An open file, closed when it goes.
 class NetcdfFile {

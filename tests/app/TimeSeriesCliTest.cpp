@@ -172,6 +172,20 @@ TEST(TimeSeriesCli, BadSeriesAreClearErrorsAndWriteNothing) {
   fails((dir / "gone.pvd").string(), "lost.nrrd) does not exist");
 }
 
+// Two time-varying models give the same values, float for float, at a step (1.5) and between
+// steps (2.25): decoded on their grid in scratch files of `dir`.
+void expectSameInstants(const std::string& model, const std::string& reference,
+                        const fs::path& dir) {
+  for (const char* t : {"1.5", "2.25"}) {
+    const std::string a = (dir / "a.raw").string(), b = (dir / "b.raw").string();
+    ASSERT_EQ(runMfadvr("decode " + model + " --time " + t + " --type float32 -q -o " + a).status,
+              0);
+    ASSERT_EQ(
+        runMfadvr("decode " + reference + " --time " + t + " --type float32 -q -o " + b).status, 0);
+    EXPECT_EQ(test::slurp(a), test::slurp(b)) << "t = " << t;
+  }
+}
+
 // All steps' samples one after another, as 4-D files store them.
 std::string allSteps(int steps) {
   std::string bytes;
@@ -234,15 +248,7 @@ TEST(TimeSeriesCli, FourDimensionalNrrdAndNiftiFilesAreSeries) {
     EXPECT_EQ(ij["time"]["steps"], nlohmann::json({1.0, 1.5, 2.0, 2.5, 3.0}));
     // The same samples at the same times as the numbered files: the same model, value for
     // value, at any instant.
-    for (const char* t : {"1.5", "2.25"}) {
-      const std::string a = (dir / "a.raw").string(), b = (dir / "b.raw").string();
-      ASSERT_EQ(runMfadvr("decode " + model + " --time " + t + " --type float32 -q -o " + a).status,
-                0);
-      ASSERT_EQ(
-          runMfadvr("decode " + reference + " --time " + t + " --type float32 -q -o " + b).status,
-          0);
-      EXPECT_EQ(test::slurp(a), test::slurp(b)) << "t = " << t;
-    }
+    expectSameInstants(model, reference, dir);
   }
   // --times replaces the file's times; a time axis that is not the last is refused with advice.
   const auto t = runMfadvr("encode " + (dir / "run.nrrd").string() + " --times 0,1,2,4,8 -q -o " +
@@ -321,14 +327,7 @@ TEST(TimeSeriesCli, NetcdfVariablesWithATimeAxisAreSeries) {
   EXPECT_NE(e.err.find("times in seconds since 2000-01-01"), std::string::npos) << e.err;
   const auto ij = jsonOf(runMfadvr("info --json " + model));
   EXPECT_EQ(ij["time"]["steps"], nlohmann::json({1.0, 1.5, 2.0, 2.5, 3.0}));
-  for (const char* t : {"1.5", "2.25"}) {
-    const std::string a = (dir / "a.raw").string(), b = (dir / "b.raw").string();
-    ASSERT_EQ(runMfadvr("decode " + model + " --time " + t + " --type float32 -q -o " + a).status,
-              0);
-    ASSERT_EQ(
-        runMfadvr("decode " + reference + " --time " + t + " --type float32 -q -o " + b).status, 0);
-    EXPECT_EQ(test::slurp(a), test::slurp(b)) << "t = " << t;
-  }
+  expectSameInstants(model, reference, dir);
   // As one volume (render, or encode of a variable without time): the first step.
   const std::string png = (dir / "first.png").string();
   const auto r = runMfadvr("render " + (dir / "run.nc").string() +

@@ -119,9 +119,10 @@ TEST(AdaptiveEncoder, RejectsBadOptions) {
   test::expectError([&] { fitStructuredAdaptive(g, StructuredFitOptions{}, o); }, {"round"});
 }
 
-TEST(AdaptiveEncoder, ScatteredBoundHolds) {
+// 6000 random points of the Gaussian beam in [-1,1]^3.
+ScatteredData beamPoints(unsigned seed) {
   const auto beam = makeBuiltin("gaussian-beam");
-  std::mt19937 rng(3);
+  std::mt19937 rng(seed);
   std::uniform_real_distribution<double> u(-1, 1);
   ScatteredData d;
   for (int i = 0; i < 6000; ++i) {
@@ -129,6 +130,11 @@ TEST(AdaptiveEncoder, ScatteredBoundHolds) {
     d.points.push_back(x);
     d.values.push_back(beam->value(x));
   }
+  return d;
+}
+
+TEST(AdaptiveEncoder, ScatteredBoundHolds) {
+  const ScatteredData d = beamPoints(3);
   FitReport r;
   const Model m = fitScatteredAdaptive(d, ScatteredFitOptions{}, bound(1e-2), &r);
   EXPECT_TRUE(r.reachedTarget) << r.stopReason;
@@ -144,15 +150,7 @@ TEST(AdaptiveEncoder, ScatteredBoundHolds) {
 // The memory estimate of a scattered fit: a first round that does not fit is refused before it
 // starts; a later round that would not fit stops the refinement with the best model so far.
 TEST(AdaptiveEncoder, ScatteredRefinementStopsAtTheMemoryLimit) {
-  const auto beam = makeBuiltin("gaussian-beam");
-  std::mt19937 rng(5);
-  std::uniform_real_distribution<double> u(-1, 1);
-  ScatteredData d;
-  for (int i = 0; i < 6000; ++i) {
-    const Vec3d x(u(rng), u(rng), u(rng));
-    d.points.push_back(x);
-    d.values.push_back(beam->value(x));
-  }
+  const ScatteredData d = beamPoints(5);
   const Degree3 cubic{3, 3, 3};
   // More control points need more, and 256^3 of them gigabytes whatever the points.
   EXPECT_LT(scatteredFitPeakBytes(6000, {5, 5, 5}, cubic),

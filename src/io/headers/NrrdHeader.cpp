@@ -134,6 +134,16 @@ std::optional<double> parseAxisNumber(const std::string& w) {
   return v;
 }
 
+// An axis's sample step: its spacing, else the length of its space direction, else 1.
+double axisStep(double spacing, const std::optional<std::vector<double>>& direction) {
+  if (std::isnan(spacing) && direction) {
+    double sum = 0.0;
+    for (double c : *direction) sum += c * c;
+    return std::sqrt(sum);
+  }
+  return std::isnan(spacing) ? 1.0 : spacing;
+}
+
 // NRRD's kinds of an axis of values at one place rather than of places (teem's nrrdKind).
 bool isComponentKind(const std::string& kind) {
   static const std::set<std::string> kDomain = {"domain", "space", "time", "???", "none"};
@@ -335,13 +345,7 @@ NrrdDataLocation checkNrrdHeaderText(const std::string& header, const std::strin
              "-p " +
              order + std::to_string(a) + ")");
       }
-      double step = spacingOf[a];
-      if (std::isnan(step) && directions[a]) {
-        double sum = 0.0;
-        for (double c : *directions[a]) sum += c * c;
-        step = std::sqrt(sum);
-      }
-      if (std::isnan(step)) step = 1.0;
+      const double step = axisStep(spacingOf[a], directions[a]);
       if (!(step > 0.0) || !std::isfinite(step))
         fail("the time axis " + std::to_string(a) + " has spacing " + std::to_string(step) +
              ": time steps must be positive");
@@ -383,13 +387,7 @@ NrrdDataLocation checkNrrdHeaderText(const std::string& header, const std::strin
   for (int i = 0; i < 3; ++i) {
     const size_t a = spatial[size_t(i)];
     grid.dims[i] = sizes[a];
-    double step = spacingOf[a];
-    if (std::isnan(step) && directions[a]) {
-      double sum = 0.0;
-      for (double c : *directions[a]) sum += c * c;
-      step = std::sqrt(sum);
-    }
-    if (std::isnan(step)) step = 1.0;
+    double step = axisStep(spacingOf[a], directions[a]);
     // A negative spacing flips its axis, which is not applied (as flipping directions).
     if (step < 0.0) {
       step = -step;
