@@ -38,6 +38,57 @@ namespace {
 // Exit status when --strict is given and the bound was not reached.
 constexpr int kBoundNotReached = 3;
 
+// The rounds of an adaptive encode (--max-error), printed as they finish and kept for --json.
+struct RoundLog {
+  std::vector<AdaptiveRound> rounds;
+  void attachTo(AdaptiveOptions& adaptive, bool progress) {
+    adaptive.onRound = [this, progress](const AdaptiveRound& r) {
+      rounds.push_back(r);
+      if (progress)
+        std::fprintf(stderr,
+                     "  round %d: %lld x %lld x %lld control points, max error %.3e, %.1f s\n",
+                     r.round, static_cast<long long>(r.controlCounts[0]),
+                     static_cast<long long>(r.controlCounts[1]),
+                     static_cast<long long>(r.controlCounts[2]), r.maxRelativeError, r.seconds);
+    };
+  }
+  nlohmann::json json() const {
+    nlohmann::json list = nlohmann::json::array();
+    for (const auto& r : rounds)
+      list.push_back({{"round", r.round},
+                      {"control_counts", r.controlCounts},
+                      {"max_relative_error", r.maxRelativeError},
+                      {"rms_relative_error", r.rmsRelativeError},
+                      {"seconds", r.seconds}});
+    return list;
+  }
+};
+
+// Prints the report (text or --json, with the adaptive history), then the warning of a bound
+// not reached, or with --strict the error; returns the exit status.
+int reportEncode(FitReport report, const std::string& written, bool json, const RoundLog* rounds,
+                 bool strict, bool wroteModel) {
+  report.peakMemoryBytes = peakResidentBytes();
+  if (json) {
+    nlohmann::json j = fitReportJson(report, written);
+    if (rounds) j["adaptive"]["history"] = rounds->json();
+    std::cout << j.dump(2) << "\n";
+  } else {
+    std::cout << formatFitReport(report, written);
+  }
+  if (rounds && !report.reachedTarget) {
+    std::cerr << "mfadvr: " << (strict ? "error" : "warning")
+              << ": the error bound was not reached (" << report.stopReason << "); max error is "
+              << report.maxRelativeError() << " of the value range";
+    if (strict) {
+      std::cerr << "; nothing written (--strict)\n";
+      return kBoundNotReached;
+    }
+    std::cerr << (wroteModel ? "; wrote the best model" : "") << "\n";
+  }
+  return 0;
+}
+
 // `encode --blocks`: fits the blocks one at a time, appends each to the multi-block file as it
 // is done, reports per block.
 int encodeBlocks(GridSampleSource& source, const Index3& blocks, int ghost, EncodeOptions options,
@@ -120,7 +171,7 @@ struct SeriesCliOptions {
 // `encode SERIES`: one 4-D model of every step.
 int encodeSeries(const std::string& input, const VolumeLoadOptions& load,
                  const SeriesCliOptions& cli, EncodeOptions options, const std::string& output,
-                 bool json, bool progress) {
+                 bool json, bool progress, bool strict) {
   std::optional<std::vector<double>> times;
   if (!cli.times.empty()) times = parseNumberList("--times", cli.times, 2, 1 << 20);
   std::unique_ptr<VolumeSeries> series;
@@ -141,6 +192,11 @@ int encodeSeries(const std::string& input, const VolumeLoadOptions& load,
   if (progress)
     std::cerr << "  " << series->size() << " steps, t = " << series->time(0) << " .. "
               << series->time(series->size() - 1) << "\n";
+  RoundLog rounds;
+  if (options.adaptive) {
+    rounds.attachTo(*options.adaptive, progress);
+    options.progress = nullptr;  // the rounds say how it goes
+  }
   TimeSeriesOptions time;
   time.degree = cli.degree;
   time.controlCount = cli.controlCount;
@@ -149,13 +205,10 @@ int encodeSeries(const std::string& input, const VolumeLoadOptions& load,
   std::vector<std::string> notes;
   const TimeVaryingModel model = encodeTimeSeries(*series, options, time, &report, &notes);
   for (const std::string& note : notes) std::cerr << "mfadvr: note: " << note << "\n";
-  if (!output.empty()) saveModel(model, output);
-  report.peakMemoryBytes = peakResidentBytes();
-  if (json)
-    std::cout << fitReportJson(report, output).dump(2) << "\n";
-  else
-    std::cout << formatFitReport(report, output);
-  return 0;
+  const bool failedStrict = strict && !report.reachedTarget;
+  if (!output.empty() && !failedStrict) saveModel(model, output);
+  return reportEncode(report, failedStrict ? std::string() : output, json,
+                      options.adaptive ? &rounds : nullptr, strict, !output.empty());
 }
 
 }  // namespace
@@ -241,7 +294,9 @@ Command addEncodeCommand(CLI::App& app) {
     if (series) {
       if (!o->blocks.empty() || !o->memoryLimit.empty() || o->ghost >= 0)
         throw CLI::ValidationError("--blocks", "does not apply to time series yet");
-      if (o->strict) throw CLI::ValidationError("--strict", "applies to adaptive encoding");
+      if (o->strict && !options.adaptive)
+        throw CLI::ValidationError("--strict",
+                                   "applies to adaptive encoding; give --max-error too");
       if (!o->encode.maskRes.empty() || o->encode.noMask || o->encode.noBoundary)
         throw CLI::ValidationError("--mask-res/--no-mask/--no-boundary",
                                    "apply to meshes and point clouds");
@@ -253,7 +308,7 @@ Command addEncodeCommand(CLI::App& app) {
         };
       }
       return encodeSeries(o->input, parseVolumeLoadOptions(o->spacing, o->origin, o->field),
-                          o->series, options, o->output, o->json, progress);
+                          o->series, options, o->output, o->json, progress, o->strict);
     }
     if (o->series.given())
       throw CLI::ValidationError("--time-degree/--time-ctrl/--times",
@@ -282,17 +337,9 @@ Command addEncodeCommand(CLI::App& app) {
 
     const bool progress = wantProgress(o->quiet || o->json);
     if (progress) std::cerr << "reading " << o->input << "\n";
-    std::vector<AdaptiveRound> rounds;
+    RoundLog rounds;
     if (options.adaptive) {
-      options.adaptive->onRound = [&rounds, progress](const AdaptiveRound& r) {
-        rounds.push_back(r);
-        if (progress)
-          std::fprintf(stderr,
-                       "  round %d: %lld x %lld x %lld control points, max error %.3e, %.1f s\n",
-                       r.round, static_cast<long long>(r.controlCounts[0]),
-                       static_cast<long long>(r.controlCounts[1]),
-                       static_cast<long long>(r.controlCounts[2]), r.maxRelativeError, r.seconds);
-      };
+      rounds.attachTo(*options.adaptive, progress);
     } else if (progress) {
       options.progress = [](double f, const std::string& stage) {
         printProgress("encoding", f, stage);
@@ -379,35 +426,8 @@ Command addEncodeCommand(CLI::App& app) {
                    "faster\n";
     const bool failedStrict = o->strict && !report.reachedTarget;
     if (!o->output.empty() && !failedStrict) saveModel(model, o->output);
-    report.peakMemoryBytes = peakResidentBytes();
-    const std::string written = failedStrict ? std::string() : o->output;
-    if (o->json) {
-      nlohmann::json j = fitReportJson(report, written);
-      if (options.adaptive) {
-        nlohmann::json list = nlohmann::json::array();
-        for (const auto& r : rounds)
-          list.push_back({{"round", r.round},
-                          {"control_counts", r.controlCounts},
-                          {"max_relative_error", r.maxRelativeError},
-                          {"rms_relative_error", r.rmsRelativeError},
-                          {"seconds", r.seconds}});
-        j["adaptive"]["history"] = list;
-      }
-      std::cout << j.dump(2) << "\n";
-    } else {
-      std::cout << formatFitReport(report, written);
-    }
-    if (options.adaptive && !report.reachedTarget) {
-      std::cerr << "mfadvr: " << (o->strict ? "error" : "warning")
-                << ": the error bound was not reached (" << report.stopReason << "); max error is "
-                << report.maxRelativeError() << " of the value range";
-      if (o->strict) {
-        std::cerr << "; nothing written (--strict)\n";
-        return kBoundNotReached;
-      }
-      std::cerr << (o->output.empty() ? "" : "; wrote the best model") << "\n";
-    }
-    return 0;
+    return reportEncode(report, failedStrict ? std::string() : o->output, o->json,
+                        options.adaptive ? &rounds : nullptr, o->strict, !o->output.empty());
   };
   return {sub, run};
 }

@@ -96,6 +96,26 @@ TEST(TimeSeriesCli, NumberedFilesBecomeOneModelThatDecodesBackEveryStep) {
   ASSERT_EQ(folder.status, 0) << folder.err;
   EXPECT_EQ(jsonOf(folder)["time"]["steps"], 5);
   EXPECT_EQ(runMfadvr("decode " + model + " --time 9 -q -o " + (dir / "x.raw").string()).status, 1);
+
+  // --dequantize, --max-error and budgets apply to the 4-D model; a dequantized one still decodes
+  // back to every sample.
+  const std::string pattern = "'" + (dir / "frame_%03d.nrrd").string() + "'";
+  const std::string smooth = (dir / "smooth.mfa").string();
+  const auto dq = runMfadvr("encode " + pattern + " --dequantize --json -q -o " + smooth);
+  ASSERT_EQ(dq.status, 0) << dq.err;
+  EXPECT_EQ(jsonOf(dq)["encoder"], "time-series-dequantize");
+  EXPECT_LT(jsonOf(dq)["max_error"].get<double>(), 0.5);
+  const std::string out = (dir / "smooth3.raw").string();
+  ASSERT_EQ(runMfadvr("decode " + smooth + " --time 3 -q -o " + out).status, 0);
+  EXPECT_EQ(test::slurp(out),
+            std::string(reinterpret_cast<const char*>(stepValues(3).data()), stepValues(3).size()));
+  const auto ad = runMfadvr("encode " + pattern + " --max-error 0.05 --strict --json -q");
+  ASSERT_EQ(ad.status, 0) << ad.err;
+  EXPECT_GE(jsonOf(ad)["adaptive"]["history"].size(), 1u);
+  EXPECT_EQ(jsonOf(ad)["encoder"], "time-series-least-squares-adaptive");
+  const auto budget = runMfadvr("encode " + pattern + " --psnr 35 --json -q");
+  ASSERT_EQ(budget.status, 0) << budget.err;
+  EXPECT_GE(jsonOf(budget)["psnr"].get<double>(), 35.0);
 }
 
 TEST(TimeSeriesCli, CollectionsGiveTheirTimes) {
@@ -153,7 +173,10 @@ TEST(TimeSeriesCli, BadSeriesAreClearErrorsAndWriteNothing) {
   fails(pattern + " --times 0,1,2", "3 times for the 5 steps");
   fails(pattern + " --times 0,1,3,2,4", "must increase");
   fails(pattern + " --time-ctrl 9", "--time-ctrl 9");
-  fails(pattern + " --max-error 1e-3", "not available for time series");
+  fails(pattern + " --max-error 1e-3 --time-ctrl 4", "interpolates in time");
+  fails(pattern + " --dequantize 0.5 --time-ctrl 4", "interpolates in time");
+  fails(pattern + " --psnr 40 --coding lossless", "needs --coding zfp");
+  fails(pattern + " --strict", "give --max-error too");
   fails(pattern + " --blocks 2", "does not apply to time series");
   fails("builtin:marschner-lobb:8 --time-ctrl 3", "apply to time series");
   // A step on another grid, named.

@@ -7,6 +7,7 @@
 #include <random>
 
 #include "core/analytic/BuiltinSeries.h"
+#include "core/encode/StructuredEncoder.h"
 #include "core/encode/TimeSeriesEncoder.h"
 #include "core/model/ModelFile.h"
 #include "core/render/EmptySpaceGrid.h"
@@ -193,9 +194,6 @@ TEST(TimeVarying, BadSeriesAreClearErrors) {
   EXPECT_EQ(two.timeAxis().degree(), 1);
   ASSERT_EQ(notes.size(), 1u);
   EXPECT_NE(notes[0].find("lowered"), std::string::npos);
-  EncodeOptions adaptive = spatialOptions();
-  adaptive.adaptive = AdaptiveOptions();
-  EXPECT_THROW(encodeTimeSeries(polynomialSeries(), adaptive, TimeSeriesOptions()), Error);
 }
 
 // A series whose steps do not share one grid.
@@ -224,6 +222,171 @@ TEST(TimeVarying, AStepOnAnotherGridIsNamed) {
     EXPECT_NE(std::string(e.what()).find("frame2.nrrd has another grid"), std::string::npos)
         << e.what();
   }
+}
+
+// The polynomial series scaled by `scale` and rounded, as an 8-bit scan's steps are, with the
+// clean field kept for comparisons.
+class QuantizedPolynomial final : public VolumeSeries {
+ public:
+  explicit QuantizedPolynomial(double scale) : clean_(polynomialSeries()), scale_(scale) {}
+  int size() const override { return clean_.size(); }
+  double time(int s) const override { return clean_.time(s); }
+  std::string stepName(int s) const override { return clean_.stepName(s); }
+  std::string source() const override { return "quantized polynomial"; }
+  StructuredGrid load(int s) const override { return quantized(clean_.load(s)); }
+  StructuredGrid truthAt(double t) const {
+    StructuredGrid g = clean_.sampleAt(t);
+    for (float& v : g.values) v = static_cast<float>(scale_ * v);
+    return g;
+  }
+
+ private:
+  StructuredGrid quantized(StructuredGrid g) const {
+    for (float& v : g.values) v = static_cast<float>(std::round(scale_ * v));
+    g.sampleType = "uint8";
+    return g;
+  }
+  BuiltinVolumeSeries clean_;
+  double scale_;
+};
+
+TEST(TimeVarying, DequantizedSeriesRoundBackToEverySampleAndComeCloserToTheCleanField) {
+  const QuantizedPolynomial series(8.0);  // about 20 levels over the range: coarse terraces
+  EncodeOptions o;
+  o.degree = {3, 3, 3};
+  o.coding.coder = ControlCoder::kZfp;  // as `mfadvr encode` codes integer samples
+  TimeSeriesOptions time;
+  FitReport plainReport, report;
+  const TimeVaryingModel plain = encodeTimeSeries(series, o, time, &plainReport);
+  o.dequantizeStep = 0.0;  // the default step of integer samples: 1
+  const TimeVaryingModel smooth = encodeTimeSeries(series, o, time, &report);
+  EXPECT_EQ(report.encoder, "time-series-dequantize");
+  EXPECT_EQ(report.dequantizeStep, 1.0);
+  EXPECT_GT(report.dequantizeIterations, 0);
+  EXPECT_GT(report.dequantizeEdgeShare, 0.0);
+  EXPECT_EQ(report.coding, "zfp");
+  // Within half a step of every sample of every step, on the model as stored: rounding gives the
+  // samples back.
+  EXPECT_LT(report.maxError, 0.5);
+  for (int s = 0; s < series.size(); ++s) {
+    const StructuredGrid step = series.load(s);
+    const Model at = smooth.at(series.time(s));
+    for (std::int64_t k = 0; k < step.dims[2]; ++k)
+      for (std::int64_t j = 0; j < step.dims[1]; ++j)
+        for (std::int64_t i = 0; i < step.dims[0]; ++i)
+          ASSERT_EQ(std::round(at.value(step.position(i, j, k))), step.at(i, j, k))
+              << "step " << s << " at " << i << "," << j << "," << k;
+  }
+  // Closer to the clean field than the interpolating model, at the steps and between them.
+  for (double t : {series.time(2), 0.5 * (series.time(2) + series.time(3))}) {
+    const StructuredGrid truth = series.truthAt(t);
+    const double plainRms = errorsOnGrid(plain.at(t).spline(), truth).rms;
+    const double smoothRms = errorsOnGrid(smooth.at(t).spline(), truth).rms;
+    EXPECT_LT(smoothRms, 0.8 * plainRms) << "t = " << t;
+  }
+  // Only a model that interpolates in time keeps the bound; float samples need their step.
+  TimeSeriesOptions fewer;
+  fewer.controlCount = 4;
+  EXPECT_THROW(encodeTimeSeries(series, o, fewer), Error);
+  EncodeOptions floats = spatialOptions();
+  floats.dequantizeStep = 0.0;
+  try {
+    encodeTimeSeries(polynomialSeries(), floats, TimeSeriesOptions());
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("give the step"), std::string::npos) << e.what();
+  }
+}
+
+TEST(TimeVarying, AutomaticSmoothingIsTheFitWithTheLambdaChosenOnTheMiddleStep) {
+  const BuiltinVolumeSeries series("builtin:orbiting-blobs:16x16x16x5");
+  EncodeOptions o;
+  o.controlCounts = {10, 10, 10};
+  o.autoSmoothing = true;
+  FitReport report;
+  const TimeVaryingModel chosen = encodeTimeSeries(series, o, TimeSeriesOptions(), &report);
+  EXPECT_NE(report.smoothingNote.find("the middle step"), std::string::npos)
+      << report.smoothingNote;
+  EXPECT_GT(report.smoothing, 0.0);
+  o.autoSmoothing = false;
+  o.smoothing = report.smoothing;
+  const TimeVaryingModel given = encodeTimeSeries(series, o, TimeSeriesOptions());
+  const auto a = chosen.controlPoints(), b = given.controlPoints();
+  ASSERT_EQ(a.size(), b.size());
+  for (size_t i = 0; i < a.size(); ++i) ASSERT_EQ(a[i], b[i]);
+  o.autoSmoothing = true;
+  EXPECT_THROW(encodeTimeSeries(series, o, TimeSeriesOptions()), Error);  // both
+}
+
+TEST(TimeVarying, BudgetsChooseTheZfpToleranceOfTheFourDimensionalArray) {
+  const BuiltinVolumeSeries series("builtin:orbiting-blobs:16x16x16x6");
+  const double samples = 16.0 * 16 * 16 * 6;
+  auto encode = [&](BudgetKind kind, double value, FitReport* r) {
+    EncodeOptions o;
+    o.coding.budget = {kind, value};
+    return encodeTimeSeries(series, o, TimeSeriesOptions(), r);
+  };
+  FitReport small, large;
+  const TimeVaryingModel a = encode(BudgetKind::kBitsPerSample, 3.0, &small);
+  const TimeVaryingModel b = encode(BudgetKind::kBitsPerSample, 10.0, &large);
+  EXPECT_EQ(small.coding, "zfp");
+  auto bits = [&](const TimeVaryingModel& m) {
+    EXPECT_NE(m.codedControlPoints(), nullptr);
+    return m.codedControlPoints()
+               ? 8.0 * static_cast<double>(m.codedControlPoints()->size()) / samples
+               : 1e30;
+  };
+  EXPECT_LE(bits(a), 3.0);
+  EXPECT_LE(bits(b), 10.0);
+  EXPECT_GT(bits(b), 3.0);
+  EXPECT_LT(large.rmsError, small.rmsError);
+  FitReport psnr;
+  encode(BudgetKind::kPsnr, 45.0, &psnr);
+  EXPECT_GE(psnr.psnr(), 45.0);
+  EXPECT_NE(psnr.codingNote.find("--psnr 45"), std::string::npos) << psnr.codingNote;
+  FitReport rms;
+  encode(BudgetKind::kRmsError, 1e-3, &rms);
+  EXPECT_LE(rms.rmsError, 1e-3);
+  // Out of reach, or a coder that has no tolerance: clear errors.
+  try {
+    encode(BudgetKind::kPsnr, 400.0, nullptr);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("before any coding"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(encode(BudgetKind::kBitsPerSample, 1e-6, nullptr), Error);
+  EncodeOptions lossless;
+  lossless.coding.coder = ControlCoder::kLossless;
+  lossless.coding.budget = {BudgetKind::kPsnr, 40.0};
+  EXPECT_THROW(encodeTimeSeries(series, lossless, TimeSeriesOptions()), Error);
+}
+
+TEST(TimeVarying, AnErrorBoundRefinesOneSetOfKnotsForEveryStep) {
+  const BuiltinVolumeSeries series("builtin:orbiting-blobs:24x24x24x5");
+  EncodeOptions o;
+  o.adaptive = AdaptiveOptions();
+  o.adaptive->maxRelativeError = 0.01;
+  std::vector<int> rounds;
+  o.adaptive->onRound = [&](const AdaptiveRound& r) { rounds.push_back(r.round); };
+  o.coding.coder = ControlCoder::kZfp;  // the fit gets half the bound, zfp the room it leaves
+  FitReport report;
+  const TimeVaryingModel m = encodeTimeSeries(series, o, TimeSeriesOptions(), &report);
+  EXPECT_TRUE(report.reachedTarget) << report.stopReason;
+  EXPECT_GT(report.rounds, 1);
+  EXPECT_EQ(rounds.size(), static_cast<size_t>(report.rounds));
+  EXPECT_EQ(report.encoder, "time-series-least-squares-adaptive");
+  EXPECT_LT(report.controlCounts[0] * report.controlCounts[1] * report.controlCounts[2],
+            24 * 24 * 24);
+  EXPECT_GT(report.codingTolerance, 0.0);
+  // The bound holds at every sample of every step, on the model as stored.
+  const double bound = 0.01 * (report.valueMax - report.valueMin);
+  EXPECT_LE(report.maxError, bound);
+  for (int s = 0; s < series.size(); ++s)
+    EXPECT_LE(errorsOnGrid(m.at(series.time(s)).spline(), series.load(s)).max, bound) << s;
+  // Only a model that interpolates in time keeps it.
+  TimeSeriesOptions fewer;
+  fewer.controlCount = 4;
+  EXPECT_THROW(encodeTimeSeries(series, o, fewer), Error);
 }
 
 // The envelope of the slabs bounds every instant's control points; skip flags built from it

@@ -195,28 +195,30 @@ Model adapt(std::array<KnotVector, 3> knots, const Index3& caps, const AdaptiveO
 
 }  // namespace
 
-Model fitStructuredAdaptive(const StructuredGrid& grid, const StructuredFitOptions& fit,
-                            const AdaptiveOptions& adaptive, FitReport* report) {
-  validate(adaptive);
-  grid.validate();
+namespace {
+
+// The rules of grids of `dims` samples: spans split between their two middle samples, an axis
+// taken to interpolation when a failing span holds one sample. Returns the starting knots and
+// fills caps and rules (all but curveErrors, which needs the samples).
+std::array<KnotVector, 3> gridRules(const Index3& dims, const StructuredFitOptions& fit,
+                                    const AdaptiveOptions& adaptive, Index3& caps,
+                                    AxisRules& rules) {
+  StructuredGrid layout;
+  layout.dims = dims;
   StructuredFitOptions start = fit;
   for (int a = 0; a < 3; ++a)
     if (start.controlCounts[a] == 0)
-      start.controlCounts[a] = std::min<std::int64_t>(grid.dims[a], fit.degree[a] + 2);
-  const Index3 n = resolveControlCounts(grid, start);
-  Index3 caps{};
+      start.controlCounts[a] = std::min<std::int64_t>(dims[a], fit.degree[a] + 2);
+  const Index3 n = resolveControlCounts(layout, start);
   std::array<KnotVector, 3> knots;
-  AxisRules rules;
   auto& split = rules.split;
   for (int a = 0; a < 3; ++a) {
-    caps[a] = adaptive.maxControlCounts[a] == 0
-                  ? grid.dims[a]
-                  : std::min(adaptive.maxControlCounts[a], grid.dims[a]);
+    caps[a] = adaptive.maxControlCounts[a] == 0 ? dims[a]
+                                                : std::min(adaptive.maxControlCounts[a], dims[a]);
     caps[a] = std::max(caps[a], n[a]);
-    knots[a] = knotsForSamples(fit.degree[a], static_cast<int>(n[a]), grid.dims[a]);
-    const double last = static_cast<double>(grid.dims[a] - 1);
-    // Samples t_i = i / (N-1) in [u_s, u_{s+1}) (the last span also holds t = 1).
-    const std::int64_t samples = grid.dims[a];
+    knots[a] = knotsForSamples(fit.degree[a], static_cast<int>(n[a]), dims[a]);
+    const double last = static_cast<double>(dims[a] - 1);
+    const std::int64_t samples = dims[a];
     split[a] = [last, samples](const KnotVector& kv, int s) -> std::optional<double> {
       const double lo = kv.knots()[static_cast<size_t>(s)],
                    hi = kv.knots()[static_cast<size_t>(s + 1)];
@@ -236,21 +238,33 @@ Model fitStructuredAdaptive(const StructuredGrid& grid, const StructuredFitOptio
       return (static_cast<double>(m) + 0.5) / last;
     };
   }
+  // With a control point per sample, the averaged knots make the fit an exact interpolation.
+  rules.normalize = [dims](std::array<KnotVector, 3>& k) {
+    for (int a = 0; a < 3; ++a)
+      if (k[a].controlCount() >= dims[a])
+        k[a] = knotsForSamples(k[a].degree(), static_cast<int>(dims[a]), dims[a]);
+  };
+  // A failing span with a single sample: only interpolation along that axis can do better.
+  rules.saturate = [dims, caps](int a, std::array<KnotVector, 3>& k) {
+    if (k[a].controlCount() >= dims[a] || caps[a] < dims[a]) return false;
+    k[a] = knotsForSamples(k[a].degree(), static_cast<int>(dims[a]), dims[a]);
+    return true;
+  };
+  return knots;
+}
+
+}  // namespace
+
+Model fitStructuredAdaptive(const StructuredGrid& grid, const StructuredFitOptions& fit,
+                            const AdaptiveOptions& adaptive, FitReport* report) {
+  validate(adaptive);
+  grid.validate();
+  Index3 caps{};
+  AxisRules rules;
+  std::array<KnotVector, 3> knots = gridRules(grid.dims, fit, adaptive, caps, rules);
   // Refine an axis where 1-D fits of the grid lines along it miss the bound (so that a feature
   // along x does not refine y and z); only when none do, by the full model's errors.
   rules.curveErrors = [&](const std::array<KnotVector, 3>& k) { return curveSpanErrors(grid, k); };
-  // With a control point per sample, the averaged knots make the fit an exact interpolation.
-  rules.normalize = [&](std::array<KnotVector, 3>& k) {
-    for (int a = 0; a < 3; ++a)
-      if (k[a].controlCount() >= grid.dims[a])
-        k[a] = knotsForSamples(k[a].degree(), static_cast<int>(grid.dims[a]), grid.dims[a]);
-  };
-  // A failing span with a single sample: only interpolation along that axis can do better.
-  rules.saturate = [&](int a, std::array<KnotVector, 3>& k) {
-    if (k[a].controlCount() >= grid.dims[a] || caps[a] < grid.dims[a]) return false;
-    k[a] = knotsForSamples(k[a].degree(), static_cast<int>(grid.dims[a]), grid.dims[a]);
-    return true;
-  };
   StructuredFitOptions round = fit;
   round.progress = nullptr;
   return adapt(
@@ -260,6 +274,21 @@ Model fitStructuredAdaptive(const StructuredGrid& grid, const StructuredFitOptio
         return fitStructuredWithKnots(grid, k, round, &r, &spanErrors);
       },
       report);
+}
+
+std::array<KnotVector, 3> adaptSharedKnots(const Index3& dims, const StructuredFitOptions& fit,
+                                           const AdaptiveOptions& adaptive,
+                                           const SharedKnotsFit& fitAll, FitReport* report) {
+  validate(adaptive);
+  Index3 caps{};
+  AxisRules rules;
+  std::array<KnotVector, 3> knots = gridRules(dims, fit, adaptive, caps, rules);
+  const Model best = adapt(
+      std::move(knots), caps, adaptive, rules,
+      [&](const std::array<KnotVector, 3>& k, const Model*, FitReport& r,
+          std::array<std::vector<double>, 3>& spanErrors) { return fitAll(k, r, spanErrors); },
+      report);
+  return best.spline().allKnots();
 }
 
 Model fitScatteredAdaptive(const ScatteredData& data, const ScatteredFitOptions& fit,

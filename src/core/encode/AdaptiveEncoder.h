@@ -47,4 +47,18 @@ Model fitStructuredAdaptive(const StructuredGrid& grid, const StructuredFitOptio
 Model fitScatteredAdaptive(const ScatteredData& data, const ScatteredFitOptions& fit,
                            const AdaptiveOptions& adaptive, FitReport* report = nullptr);
 
+// One set of knots refined for several grids of `dims` samples (the steps of a time series,
+// TimeSeriesEncoder.h), with the grid rules above. Each round calls fitAll(knots, report,
+// spanErrors), which fits every grid with these knots and gives the worst over them: the report's
+// errors and value range, and per axis and span the largest error; it returns any of its fits
+// with these knots. Returns the knots of the round with the smallest max error; `report` as
+// fitStructuredAdaptive's.
+using SharedKnotsFit =
+    std::function<Model(const std::array<KnotVector, 3>& knots, FitReport& report,
+                        std::array<std::vector<double>, 3>& spanErrors)>;
+std::array<KnotVector, 3> adaptSharedKnots(const Index3& dims, const StructuredFitOptions& fit,
+                                           const AdaptiveOptions& adaptive,
+                                           const SharedKnotsFit& fitAll,
+                                           FitReport* report = nullptr);
+
 }  // namespace mfadvr

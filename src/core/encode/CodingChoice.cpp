@@ -8,6 +8,7 @@
 #include <optional>
 #include <sstream>
 
+#include "core/encode/ToleranceSearch.h"
 #include "core/model/ModelFile.h"
 #include "core/util/Error.h"
 
@@ -125,34 +126,13 @@ std::int64_t codedSize(const Model& m, ControlCoder coder) {
       encodeControlPoints(ctrl, m.spline().counts(), {coder, 0.0}).size());
 }
 
-// The exponents worth trying for data of this range: from far below float32 resolution of the
-// range (where coding no longer adds error) to the range itself (where every block is nearly
-// empty).
 std::pair<int, int> exponentRange(const Model& fit) {
-  const double scale = std::max(
-      {std::abs(fit.valueMin()), std::abs(fit.valueMax()), fit.valueMax() - fit.valueMin(), 1e-30});
-  const int top = static_cast<int>(std::ceil(std::log2(scale)));
-  return {top - 26, top + 1};
+  return toleranceExponentRange(fit.valueMin(), fit.valueMax());
 }
 
-// Largest k in [lo, hi] with pass(k), for pass true up to some k* and false after; lo - 1 when
-// none passes.
-template <class Pass>
-int largestPassing(int lo, int hi, Pass pass) {
-  if (!pass(lo)) return lo - 1;
-  while (lo < hi) {
-    const int mid = lo + (hi - lo + 1) / 2;
-    if (pass(mid))
-      lo = mid;
-    else
-      hi = mid - 1;
-  }
-  return lo;
-}
-
-// The same, searched outward from `start` (a likely answer): a candidate next to the answer
-// fails there, and failures are cheap to find (Coder::within), so this measures fewer
-// candidates in full than halving the interval.
+// largestPassing (ToleranceSearch.h), searched outward from `start` (a likely answer): a candidate
+// next to the answer fails there, and failures are cheap to find (Coder::within), so this measures
+// fewer candidates in full than halving the interval.
 template <class Pass>
 int largestPassingFrom(int lo, int hi, int start, Pass pass) {
   int k = std::clamp(start, lo, hi);
@@ -163,21 +143,6 @@ int largestPassingFrom(int lo, int hi, int start, Pass pass) {
   while (--k >= lo && !pass(k)) {
   }
   return k;
-}
-
-// Smallest k in [lo, hi] with pass(k), for pass false up to some k* and true after; hi + 1 when
-// none passes.
-template <class Pass>
-int smallestPassing(int lo, int hi, Pass pass) {
-  if (!pass(hi)) return hi + 1;
-  while (lo < hi) {
-    const int mid = lo + (hi - lo) / 2;
-    if (pass(mid))
-      hi = mid;
-    else
-      lo = mid + 1;
-  }
-  return hi;
 }
 
 // The coded model with the errors it states measured on it; `report` (optional) becomes its

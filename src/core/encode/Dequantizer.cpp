@@ -81,8 +81,7 @@ DequantizeResult dequantizeTargets(const StructuredGrid& grid,
         });
     result.iterations = k + 1;
     result.primalResidual = r.primal;
-    if (options.progress)
-      options.progress(double(k + 1) / options.maxIterations, "dequantize");
+    if (options.progress) options.progress(double(k + 1) / options.maxIterations, "dequantize");
     if (r.primal <= tolerance && r.dual <= tolerance) {
       result.converged = true;
       break;
@@ -95,8 +94,7 @@ DequantizeResult dequantizeTargets(const StructuredGrid& grid,
     if (std::abs(z[i] - grid.values[i]) >= h * (1.0 - 1e-6)) ++onEdge;
   }
   result.edgeShare = n ? double(onEdge) / double(n) : 0.0;
-  result.seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }
 

@@ -29,19 +29,34 @@ struct TimeSeriesOptions {
 
 inline constexpr int kDefaultTimeDegree = 3;
 
-// Spatial options as encodeStructured's, with these limits (each a clear mfadvr::Error for now):
-// no --max-error, budgets, --smooth auto or --dequantize. Coding: float32, lossless, or zfp over
-// the 4-D array (tolerance given, else 0.25 for integer samples: the model then rounds back to
-// the samples when it interpolates them; 1e-5 of the value range for float ones). Throws
-// mfadvr::Error for fewer than two steps, times that do not increase (naming the step), a step
-// whose grid differs from the first's (naming it) and bad time options. `notes` receives what
-// was adjusted (a lowered degree).
+// Spatial options as encodeStructured's, with these differences:
+// - `--smooth auto` chooses lambda by GCV on the middle step (SmoothingChoice.h); that lambda
+//   fits every step and the time axis.
+// - `--dequantize` dequantizes each step on its own (Dequantizer.h) and interpolates them in time
+//   (no smoothing in time; --time-ctrl must equal the steps), so that every sample of every step
+//   stays within half a quantization step; zfp then gets the room the fits leave.
+// - A budget (--bits-per-sample, --psnr, --rms-error) searches the zfp tolerance of the 4-D array
+//   for the given or default control grid (the grid encoder also searches control counts); an
+//   error budget measures each candidate over every step (one pass over the series each).
+// - --max-error is refused (mfadvr::Error).
+// Coding: float32, lossless, or zfp over the 4-D array (tolerance given, else 0.25 for integer
+// samples: the model then rounds back to the samples when it interpolates them; 1e-5 of the value
+// range for float ones). Throws mfadvr::Error for fewer than two steps, times that do not
+// increase (naming the step), a step whose grid differs from the first's (naming it) and bad
+// options. `notes` receives what was adjusted (a lowered degree).
 TimeVaryingModel encodeTimeSeries(const VolumeSeries& series, const EncodeOptions& options,
                                   const TimeSeriesOptions& time, FitReport* report = nullptr,
                                   std::vector<std::string>* notes = nullptr);
 
+// What an encode does beside the plain fit, for its memory estimate.
+struct TimeSeriesWork {
+  bool budget = false;      // a candidate decoded beside the control points
+  bool dequantize = false;  // the dequantizer's vectors beside a step's samples
+};
+
 // Bytes the encode holds at most: the 4-D control points (float32), one step's samples and its
-// fit (structuredFitPeakBytes) and, with zfp, the coded copy.
-std::int64_t timeSeriesPeakBytes(const Index3& dims, const Index3& counts, std::int64_t slabs);
+// fit (structuredFitPeakBytes), one step's control grid, and what `work` adds.
+std::int64_t timeSeriesPeakBytes(const Index3& dims, const Index3& counts, std::int64_t slabs,
+                                 const TimeSeriesWork& work = {});
 
 }  // namespace mfadvr
