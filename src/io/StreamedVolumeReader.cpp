@@ -119,10 +119,11 @@ std::optional<HeaderVolume> readHeaderVolume(const std::string& path, bool timeS
     // Read by mfadvr alone (NrrdVolumeReader.h): the header gives the whole layout.
     NrrdVolume nrrd = describeNrrdVolume(path, timeSeries);
     if (nrrd.payload.file.empty()) return std::nullopt;  // ascii values
-    HeaderVolume volume{
-        std::move(nrrd.layout),
-        {nrrd.payload.file, nrrd.payload.offset, nrrd.payload.dtype, nrrd.payload.bigEndian},
-        nrrd.payload.gzipAt};
+    HeaderVolume volume;
+    volume.layout = std::move(nrrd.layout);
+    volume.file = {nrrd.payload.file, nrrd.payload.offset, nrrd.payload.dtype,
+                   nrrd.payload.bigEndian};
+    volume.gzipAt = nrrd.payload.gzipAt;
     volume.steps = nrrd.timeSteps;
     volume.timeStart = nrrd.timeStart;
     volume.timeStep = nrrd.timeStep;
@@ -153,8 +154,10 @@ std::optional<HeaderVolume> readHeaderVolume(const std::string& path, bool timeS
   // VTK decodes %xx escapes in legacy names; such names are left to the in-memory read.
   if (payload.arrayName.find('%') != std::string::npos) return std::nullopt;
   layout->fieldName = payload.arrayName.empty() ? arrayName : payload.arrayName;
-  HeaderVolume volume{
-      *layout, {payload.file, payload.offset, payload.dtype, payload.bigEndian}, payload.gzipAt};
+  HeaderVolume volume;
+  volume.layout = *layout;
+  volume.file = {payload.file, payload.offset, payload.dtype, payload.bigEndian};
+  volume.gzipAt = payload.gzipAt;
   if (auto* nifti = vtkNIFTIImageReader::SafeDownCast(reader)) {
     // VTK's reader flips the slice order of a left-handed qform (qfac -1) while reading.
     if (nifti->GetQFac() < 0) return std::nullopt;

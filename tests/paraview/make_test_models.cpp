@@ -11,7 +11,9 @@
 //                            builtin:ct-head:64);
 //   blobs.mfa, blobs-0.3.mfa a time-varying model (builtin:orbiting-blobs:24x24x24x6, steps at
 //                            t = 0, 0.2, ..., 1) and, as a 3-D model, its instant at t = 0.3
-//                            (between two steps) as `mfadvr render --time 0.3` renders it.
+//                            (between two steps) as `mfadvr render --time 0.3` renders it;
+//   blobs.pvd, blobs_N.vti   the steps of that series as a ParaView collection (MFA Encode's
+//                            TimeSeries).
 // Interpolating quadratic fits throughout. The scan's samples are 8-bit integers, so its models
 // are coded as `mfadvr encode` codes an integer scan by default: zfp control points that round
 // back to every sample (ParaView's process also holds CFITSIO, whose stream_* functions once
@@ -120,6 +122,18 @@ int main(int argc, char** argv) {
                                  mfadvr::EncodeOptions{}, mfadvr::TimeSeriesOptions{});
     mfadvr::saveModel(blobs, dir / "blobs.mfa");
     mfadvr::saveModel(blobs.at(0.3), dir / "blobs-0.3.mfa");
+    // The same steps as a ParaView collection of image files, for MFA Encode's TimeSeries.
+    const mfadvr::BuiltinVolumeSeries steps("builtin:orbiting-blobs:24x24x24x6");
+    std::ofstream pvd(dir / "blobs.pvd");
+    pvd << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n"
+           "<Collection>\n";
+    for (int s = 0; s < steps.size(); ++s) {
+      const std::string name = "blobs_" + std::to_string(s) + ".vti";
+      writeVti(steps.load(s), dir / name);
+      pvd << "<DataSet timestep=\"" << steps.time(s) << "\" file=\"" << name << "\"/>\n";
+    }
+    pvd << "</Collection>\n</VTKFile>\n";
+    if (!pvd) throw std::runtime_error("cannot write blobs.pvd");
   } catch (const std::exception& e) {
     std::fprintf(stderr, "%s\n", e.what());
     return 1;

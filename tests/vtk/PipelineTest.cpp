@@ -9,8 +9,11 @@
 #include <vtkDoubleArray.h>
 #include <vtkExtentTranslator.h>
 #include <vtkFieldData.h>
+#include <vtkImageAlgorithm.h>
 #include <vtkImageData.h>
 #include <vtkInformation.h>
+#include <vtkInformationVector.h>
+#include <vtkObjectFactory.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
@@ -229,6 +232,96 @@ TEST(MFAReader, ReadsZfpBlocksAndReportsADamagedOne) {
   const auto [model, errors] = read(damaged, 1);
   EXPECT_FALSE(model);
   EXPECT_NE(errors.find(damaged.string()), std::string::npos) << errors;
+}
+
+// An image source with time steps (as a file series is in ParaView): the builtin series' step
+// at the time asked for, counting how often it runs.
+class StepSource : public vtkImageAlgorithm {
+ public:
+  static StepSource* New();
+  vtkTypeMacro(StepSource, vtkImageAlgorithm);
+  std::shared_ptr<BuiltinVolumeSeries> series;
+  int executions = 0;
+
+ protected:
+  StepSource() { this->SetNumberOfInputPorts(0); }
+  int RequestInformation(vtkInformation*, vtkInformationVector**,
+                         vtkInformationVector* outInfo) override {
+    vtkInformation* info = outInfo->GetInformationObject(0);
+    std::vector<double> steps;
+    for (int s = 0; s < series->size(); ++s) steps.push_back(series->time(s));
+    info->Set(vtkStreamingDemandDrivenPipeline::TIME_STEPS(), steps.data(),
+              static_cast<int>(steps.size()));
+    const double range[2] = {steps.front(), steps.back()};
+    info->Set(vtkStreamingDemandDrivenPipeline::TIME_RANGE(), range, 2);
+    const Index3 d = series->dims();
+    const int extent[6] = {0, int(d[0]) - 1, 0, int(d[1]) - 1, 0, int(d[2]) - 1};
+    info->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent, 6);
+    return 1;
+  }
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector* outInfo) override {
+    ++executions;
+    vtkInformation* info = outInfo->GetInformationObject(0);
+    const double t = info->Get(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP());
+    vtkImageData* out = vtkImageData::GetData(info);
+    out->ShallowCopy(imageOf(series->sampleAt(t)));
+    out->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), t);
+    return 1;
+  }
+};
+vtkStandardNewMacro(StepSource);
+
+TEST(MFAEncoder, FitsEveryTimeStepIntoOneModelAndGivesAnyInstant) {
+  auto series = std::make_shared<BuiltinVolumeSeries>("builtin:orbiting-blobs:12x12x12x5");
+  EncodeOptions options;
+  options.controlCounts = {10, 10, 10};
+  const TimeVaryingModel direct = encodeTimeSeries(*series, options, TimeSeriesOptions());
+  vtkNew<StepSource> source;
+  source->series = series;
+  const auto path = scratchDir() / "encoded-series.mfa";
+  vtkNew<vtkMFAEncoder> encoder;
+  encoder->SetInputConnection(source->GetOutputPort());
+  encoder->SetNumberOfControlPoints(10, 10, 10);
+  encoder->TimeSeriesOn();
+  encoder->SetModelFileName(path.c_str());
+  encoder->UpdateInformation();
+  vtkInformation* info = encoder->GetOutputInformation(0);
+  ASSERT_TRUE(info->Has(vtkStreamingDemandDrivenPipeline::TIME_STEPS()));
+  EXPECT_EQ(info->Length(vtkStreamingDemandDrivenPipeline::TIME_STEPS()), 5);
+  int afterFit = 0;
+  for (const double t : {0.4, 0.75, 0.0, 0.4}) {
+    encoder->UpdateTimeStep(t);
+    vtkDataObject* out = encoder->GetOutputDataObject(0);
+    EXPECT_DOUBLE_EQ(out->GetInformation()->Get(vtkDataObject::DATA_TIME_STEP()), t);
+    auto* model = vtkMFAModelData::SafeDownCast(out);
+    ASSERT_NE(model, nullptr);
+    ASSERT_TRUE(model->HasModel());
+    for (const Vec3d& p : {Vec3d(0.3, -0.2, 0.1), Vec3d(-0.5, 0.4, 0.0)})
+      EXPECT_NEAR(model->EvaluateValue(p[0], p[1], p[2]), direct.at(t).value(p), 1e-5)
+          << "t = " << t;
+    // Every step read for the fit (twice: the fit and its errors), none after it.
+    if (afterFit == 0) afterFit = source->executions;
+    EXPECT_EQ(source->executions, afterFit) << "t = " << t;
+  }
+  EXPECT_GE(afterFit, 10);
+  // The file holds the 4-D model.
+  const TimeVaryingModel saved = loadTimeVaryingModel(path);
+  ASSERT_TRUE(saved.hasTime());
+  EXPECT_EQ(saved.timeAxis().steps.size(), 5u);
+  EXPECT_NEAR(saved.at(0.6).value(Vec3d(0.1, 0.1, 0.1)), direct.at(0.6).value(Vec3d(0.1, 0.1, 0.1)),
+              1e-5);
+  // A property changed: fitted again.
+  encoder->SetTimeDegree(2);
+  encoder->UpdateTimeStep(0.4);
+  EXPECT_GT(source->executions, afterFit);
+  // An input without time steps is fitted as it is, with a warning.
+  vtkNew<vtkMFAEncoder> plain;
+  plain->SetInputData(imageOf(mlGrid(9)));
+  plain->TimeSeriesOn();
+  ErrorLog warnings(plain, vtkCommand::WarningEvent);
+  plain->Update();
+  EXPECT_TRUE(plain->GetOutput()->HasModel());
+  EXPECT_NE(warnings.text.find("fewer than two time steps"), std::string::npos) << warnings.text;
 }
 
 TEST(MFAEncoder, FitsImageDataWithTheGivenControlCounts) {

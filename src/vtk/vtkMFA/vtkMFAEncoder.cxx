@@ -4,6 +4,7 @@
 #include "vtkDataObject.h"
 #include "vtkDataSet.h"
 #include "vtkDataSetAttributes.h"
+#include "vtkDemandDrivenPipeline.h"
 #include "vtkExtentTranslator.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
@@ -26,7 +27,11 @@
 #include "core/encode/Encoder.h"
 #include "core/encode/FitReport.h"
 #include "core/encode/PieceEncoder.h"
+#include "core/encode/TimeSeriesEncoder.h"
+#include "core/grid/VolumeSeries.h"
 #include "core/model/Model.h"
+#include "core/model/ModelFile.h"
+#include "core/model/TimeVaryingModel.h"
 #include "core/util/Error.h"
 #include "io/VtkDataConversion.h"
 
@@ -39,7 +44,22 @@ vtkMFAEncoder::vtkMFAEncoder() {
                                vtkDataSetAttributes::SCALARS);
 }
 
-vtkMFAEncoder::~vtkMFAEncoder() = default;
+vtkMFAEncoder::~vtkMFAEncoder() {
+  this->SetModelFileName(nullptr);
+}
+
+// The 4-D model of TimeSeries and what it was fitted from: it serves every time asked for until
+// the pipeline (this filter's properties or anything upstream) changes.
+struct vtkMFAEncoder::SeriesFit {
+  std::shared_ptr<const mfadvr::TimeVaryingModel> model;
+  vtkMTimeType pipelineTime = 0;
+  std::vector<double> steps;
+  std::string field;
+  double loadedTime = 0.0;  // the step the input holds after the fit
+  // The instant last given (rendering one time again does not contract the time axis again).
+  std::shared_ptr<const mfadvr::Model> instant;
+  double instantTime = 0.0;
+};
 
 void vtkMFAEncoder::PrintSelf(ostream& os, vtkIndent indent) {
   this->Superclass::PrintSelf(os, indent);
@@ -56,6 +76,11 @@ void vtkMFAEncoder::PrintSelf(ostream& os, vtkIndent indent) {
   os << indent << "MaskResolution: " << this->MaskResolution << "\n";
   os << indent << "GhostLevels: " << this->GhostLevels << "\n";
   os << indent << "PassInputValues: " << this->PassInputValues << "\n";
+  os << indent << "TimeSeries: " << this->TimeSeries << "\n";
+  os << indent << "TimeDegree: " << this->TimeDegree << "\n";
+  os << indent << "TimeControlPoints: " << this->TimeControlPoints << "\n";
+  os << indent << "ModelFileName: " << (this->ModelFileName ? this->ModelFileName : "(none)")
+     << "\n";
 }
 
 int vtkMFAEncoder::FillInputPortInformation(int, vtkInformation* info) {
@@ -118,6 +143,74 @@ int requestedPieces(vtkInformation* out) {
   return out->Has(SDDP::UPDATE_NUMBER_OF_PIECES()) ? out->Get(SDDP::UPDATE_NUMBER_OF_PIECES()) : 1;
 }
 
+// The input's time steps (empty when it advertises none).
+std::vector<double> inputTimeSteps(vtkInformation* in) {
+  using SDDP = vtkStreamingDemandDrivenPipeline;
+  if (!in->Has(SDDP::TIME_STEPS())) return {};
+  const double* t = in->Get(SDDP::TIME_STEPS());
+  return std::vector<double>(t, t + in->Length(SDDP::TIME_STEPS()));
+}
+
+// The time an output request asks for, clamped to [first, last]; the first without one.
+double requestedTime(vtkInformation* out, double first, double last) {
+  using SDDP = vtkStreamingDemandDrivenPipeline;
+  if (!out->Has(SDDP::UPDATE_TIME_STEP())) return first;
+  return std::clamp(out->Get(SDDP::UPDATE_TIME_STEP()), first, last);
+}
+
+vtkMTimeType pipelineTimeOf(vtkAlgorithm* algorithm) {
+  auto* executive = vtkDemandDrivenPipeline::SafeDownCast(algorithm->GetExecutive());
+  return executive ? executive->GetPipelineMTime() : algorithm->GetMTime();
+}
+
+// The steps of the encoder's input, each read when the encoder asks for it: the input's
+// producer is updated at that step's time (as UpdateTimeStep does), so that one step is held at
+// a time.
+class PipelineSeries final : public mfadvr::VolumeSeries {
+ public:
+  PipelineSeries(vtkAlgorithm* producer, int port, std::vector<double> steps, std::string field,
+                 double* loaded)
+      : producer_(producer),
+        port_(port),
+        steps_(std::move(steps)),
+        field_(std::move(field)),
+        loaded_(loaded) {}
+  int size() const override { return static_cast<int>(steps_.size()); }
+  double time(int s) const override { return steps_[static_cast<size_t>(s)]; }
+  std::string stepName(int s) const override {
+    std::ostringstream name;
+    name << "time step " << s << " (t = " << time(s) << ")";
+    return name.str();
+  }
+  std::string source() const override {
+    return std::string("VTK ") + producer_->GetClassName() + " time steps";
+  }
+  mfadvr::StructuredGrid load(int s) const override {
+    using SDDP = vtkStreamingDemandDrivenPipeline;
+    auto* executive = SDDP::SafeDownCast(producer_->GetExecutive());
+    if (!executive) throw mfadvr::Error("the input's producer has no streaming executive");
+    producer_->GetOutputInformation(port_)->Set(SDDP::UPDATE_TIME_STEP(), time(s));
+    if (!executive->Update(port_))
+      throw mfadvr::Error("the input failed to produce " + stepName(s));
+    *loaded_ = time(s);
+    auto* image = vtkImageData::SafeDownCast(producer_->GetOutputDataObject(port_));
+    if (!image)
+      throw mfadvr::Error(
+          "TimeSeries encodes image data; the input's " + stepName(s) + " is " +
+          (producer_->GetOutputDataObject(port_)
+               ? std::string("a ") + producer_->GetOutputDataObject(port_)->GetClassName()
+               : std::string("empty")));
+    return mfadvr::gridFromVtkImage(image, field_, source() + ", " + stepName(s));
+  }
+
+ private:
+  vtkAlgorithm* producer_;
+  int port_;
+  std::vector<double> steps_;
+  std::string field_;
+  double* loaded_;
+};
+
 }  // namespace
 
 int vtkMFAEncoder::RequestUpdateExtent(vtkInformation*, vtkInformationVector** inInfo,
@@ -126,6 +219,13 @@ int vtkMFAEncoder::RequestUpdateExtent(vtkInformation*, vtkInformationVector** i
   vtkInformation* in = inInfo[0]->GetInformationObject(0);
   using SDDP = vtkStreamingDemandDrivenPipeline;
   const int pieces = requestedPieces(out);
+  // A 4-D model that still serves: the input stays at the step it holds (no step is read again
+  // for an instant the model gives).
+  if (this->TimeSeries && this->Series && this->Series->model &&
+      this->Series->pipelineTime == pipelineTimeOf(this) &&
+      this->Series->steps == inputTimeSteps(in)) {
+    in->Set(SDDP::UPDATE_TIME_STEP(), this->Series->loadedTime);
+  }
   if (pieces > 1) {
     const int layers = this->PieceLayers(out);
     int ext[6], whole[6];
@@ -205,6 +305,15 @@ int vtkMFAEncoder::RequestData(vtkInformation*, vtkInformationVector** inInfo,
     if (array->Has(vtkDataObject::FIELD_NAME())) {
       field = array->Get(vtkDataObject::FIELD_NAME());
     }
+  }
+
+  if (this->TimeSeries) {
+    if (inputTimeSteps(inInfo[0]->GetInformationObject(0)).size() >= 2) {
+      return this->RequestSeriesData(inInfo, outInfo);
+    }
+    vtkWarningMacro(
+        "TimeSeries: the input advertises fewer than two time steps; the data set "
+        "is fitted as it is");
   }
 
   mfadvr::EncodeOptions options;
@@ -336,9 +445,99 @@ int vtkMFAEncoder::RequestData(vtkInformation*, vtkInformationVector** inInfo,
                                          << report.stopReason << "); the best model has max error "
                                          << this->LastMaxRelativeError);
     }
+    if (this->ModelFileName && *this->ModelFileName) {
+      mfadvr::saveModel(model, this->ModelFileName);
+    }
     this->SetOutputModel(outInfo, std::make_shared<const mfadvr::Model>(std::move(model)),
                          hasRegion ? region : nullptr, fromImage ? firstIndex : nullptr, values,
                          hasReach ? reach : nullptr);
+  } catch (const std::exception& e) {
+    vtkErrorMacro(<< e.what());
+    return 0;
+  }
+  return 1;
+}
+
+int vtkMFAEncoder::RequestSeriesData(vtkInformationVector** inInfo, vtkInformationVector* outInfo) {
+  vtkInformation* in = inInfo[0]->GetInformationObject(0);
+  vtkInformation* request = outInfo->GetInformationObject(0);
+  const std::vector<double> steps = inputTimeSteps(in);
+  std::string field;
+  if (vtkInformation* array = this->GetInputArrayInformation(0)) {
+    if (array->Has(vtkDataObject::FIELD_NAME())) {
+      field = array->Get(vtkDataObject::FIELD_NAME());
+    }
+  }
+  try {
+    if (requestedPieces(request) > 1) {
+      throw mfadvr::Error(
+          "TimeSeries fits the whole series in one process; this pipeline asks for " +
+          std::to_string(requestedPieces(request)) +
+          " pieces (encode the series with `mfadvr encode` and open the model with the MFA "
+          "reader, which serves every rank)");
+    }
+    const vtkMTimeType pipelineTime = pipelineTimeOf(this);
+    if (!this->Series || !this->Series->model || this->Series->pipelineTime != pipelineTime ||
+        this->Series->steps != steps || this->Series->field != field) {
+      int port = 0;
+      vtkAlgorithm* producer = this->GetInputAlgorithm(0, 0, port);
+      if (!producer) throw mfadvr::Error("TimeSeries needs an input connection, not input data");
+      auto fit = std::make_shared<SeriesFit>();
+      fit->pipelineTime = pipelineTime;
+      fit->steps = steps;
+      fit->field = field;
+      this->Series.reset();
+      const PipelineSeries series(producer, port, steps, field, &fit->loadedTime);
+      mfadvr::EncodeOptions options;
+      options.degree = {this->Degree, this->Degree, this->Degree};
+      for (int a = 0; a < 3; ++a) {
+        options.controlCounts[a] = this->NumberOfControlPoints[a];
+      }
+      options.smoothing = this->ImageSmoothing;
+      if (this->MaxError > 0.0) {
+        mfadvr::AdaptiveOptions adaptive;
+        adaptive.maxRelativeError = this->MaxError;
+        for (int a = 0; a < 3; ++a) {
+          adaptive.maxControlCounts[a] = this->MaxNumberOfControlPoints[a];
+        }
+        adaptive.maxRounds = this->MaxRounds;
+        options.adaptive = adaptive;
+      }
+      options.progress = [this](double fraction, const std::string&) {
+        this->UpdateProgress(fraction);
+      };
+      mfadvr::TimeSeriesOptions time;
+      time.degree = this->TimeDegree;
+      time.controlCount = this->TimeControlPoints;
+      time.zfpForIntegerSamples = true;  // as `mfadvr encode`
+      mfadvr::FitReport report;
+      fit->model = std::make_shared<const mfadvr::TimeVaryingModel>(
+          mfadvr::encodeTimeSeries(series, options, time, &report));
+      const double range =
+          report.valueMax > report.valueMin ? report.valueMax - report.valueMin : 1.0;
+      this->LastMaxRelativeError = report.maxError / range;
+      this->LastRMSRelativeError = report.rmsError / range;
+      this->LastFitSeconds = report.seconds;
+      if (options.adaptive && !report.reachedTarget) {
+        vtkWarningMacro("the error bound "
+                        << this->MaxError << " was not reached (" << report.stopReason
+                        << "); the best model has max error " << this->LastMaxRelativeError);
+      }
+      if (this->ModelFileName && *this->ModelFileName) {
+        mfadvr::saveModel(*fit->model, this->ModelFileName);
+      }
+      this->Series = fit;
+    }
+    SeriesFit& fit = *this->Series;
+    const mfadvr::TimeAxis& axis = fit.model->timeAxis();
+    const double t = requestedTime(request, axis.begin, axis.end);
+    if (!fit.instant || fit.instantTime != t) {
+      fit.instant = std::make_shared<const mfadvr::Model>(fit.model->at(t));
+      fit.instantTime = t;
+    }
+    this->SetOutputModel(outInfo, fit.instant);
+    vtkDataObject* output = request->Get(vtkDataObject::DATA_OBJECT());
+    output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), t);
   } catch (const std::exception& e) {
     vtkErrorMacro(<< e.what());
     return 0;

@@ -20,6 +20,12 @@
  * image carrying the model and its region (vtkMFAModelAlgorithm), which is how ParaView moves
  * it.
  *
+ * With TimeSeries on, image data whose source advertises time steps (a file series in ParaView)
+ * become one 4-D model (docs/time-varying.md): the steps are read from the input one at a time
+ * (the encoder asks its input for each step's time, UpdateTimeStep), fitted, and the output is
+ * the model at the time asked for, any time in the range. The model is kept until a property or
+ * the input changes: playing the animation contracts it, without reading the steps again.
+ *
  * Errors (no scalar field, bad options, a flat box) are reported with vtkErrorMacro and leave
  * the output empty.
  */
@@ -28,6 +34,10 @@
 
 #include "vtkMFAModelAlgorithm.h"
 #include "vtkMFAModule.h"  // for export macro
+
+#ifndef __VTK_WRAP__
+#include <memory>  // for std::shared_ptr
+#endif
 
 class VTKMFA_EXPORT vtkMFAEncoder : public vtkMFAModelAlgorithm {
  public:
@@ -134,6 +144,40 @@ class VTKMFA_EXPORT vtkMFAEncoder : public vtkMFAModelAlgorithm {
 
   //@{
   /**
+   * Image data with time steps: fit every step into one 4-D model and output it at the time
+   * asked for (any time in the input's range, not only its steps), instead of fitting the step
+   * asked for on its own (default off). The options above apply to the 4-D model as to
+   * `mfadvr encode SERIES` (MaxError refines one set of knots for every step). One process only:
+   * a parallel pipeline's pieces are an error in this mode.
+   */
+  vtkSetMacro(TimeSeries, bool);
+  vtkGetMacro(TimeSeries, bool);
+  vtkBooleanMacro(TimeSeries, bool);
+  //@}
+
+  //@{
+  /**
+   * TimeSeries: the degree in time (1..7, default 3; lowered for fewer steps) and the control
+   * points in time (0, the default: one per step, interpolating every step; fewer: a
+   * least-squares fit in time), as `encode --time-degree` and `--time-ctrl`.
+   */
+  vtkSetClampMacro(TimeDegree, int, 1, 7);
+  vtkGetMacro(TimeDegree, int);
+  vtkSetClampMacro(TimeControlPoints, int, 0, 1 << 20);
+  vtkGetMacro(TimeControlPoints, int);
+  //@}
+
+  //@{
+  /**
+   * Write each fitted model (the 4-D model with TimeSeries) to this .mfa file, whole or not at
+   * all (empty, the default: not written). `mfadvr render`, `view` and vtkMFAReader open it.
+   */
+  vtkSetStringMacro(ModelFileName);
+  vtkGetStringMacro(ModelFileName);
+  //@}
+
+  //@{
+  /**
    * Results of the last fit: maximum and RMS error over every input sample, relative to the
    * value range, and the fit's wall time in seconds.
    */
@@ -149,6 +193,8 @@ class VTKMFA_EXPORT vtkMFAEncoder : public vtkMFAModelAlgorithm {
   int FillInputPortInformation(int port, vtkInformation* info) override;
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  // TimeSeries: fits (or reuses) the 4-D model and outputs the instant asked for.
+  int RequestSeriesData(vtkInformationVector** inInfo, vtkInformationVector* outInfo);
   int EffectiveGhostLevels() const;
   // The sample layers a piece asks for beyond its own extent: the ghost levels the output was
   // asked for and EffectiveGhostLevels().
@@ -165,12 +211,21 @@ class VTKMFA_EXPORT vtkMFAEncoder : public vtkMFAModelAlgorithm {
   bool DomainMask = true;
   int MaskResolution = 0;
   bool PassInputValues = false;
+  bool TimeSeries = false;
+  int TimeDegree = 3;
+  int TimeControlPoints = 0;
+  char* ModelFileName = nullptr;
 
   double LastMaxRelativeError = 0.0;
   double LastRMSRelativeError = 0.0;
   double LastFitSeconds = 0.0;
 
  private:
+#ifndef __VTK_WRAP__
+  // The 4-D model of TimeSeries, with what it was fitted from.
+  struct SeriesFit;
+  std::shared_ptr<SeriesFit> Series;
+#endif
   vtkMFAEncoder(const vtkMFAEncoder&) = delete;
   void operator=(const vtkMFAEncoder&) = delete;
 };
