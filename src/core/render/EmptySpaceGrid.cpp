@@ -142,7 +142,7 @@ EmptySpaceFlags buildEmptySpaceFlags(const SplineView& spline, const SpanRanges&
 std::shared_ptr<const EmptySpaceFlags> EmptySpaceCache::flags(const TensorBSpline& spline,
                                                               const TransferFunctionTable& table,
                                                               const ControlEnvelope* envelope) {
-  const std::shared_ptr<const SpanRanges> ranges = spline.spanRanges();
+  const std::shared_ptr<const void> identity = spline.identity();
   const TransferFunctionView v = table.view();
   std::vector<std::uint64_t> key(static_cast<size_t>((v.count + 63) / 64) + 1, 0);
   for (int i = 0; i < v.count; ++i)
@@ -153,27 +153,28 @@ std::shared_ptr<const EmptySpaceFlags> EmptySpaceCache::flags(const TensorBSplin
   key.back() = (std::uint64_t(lo) << 32) | scale;
 
   std::lock_guard lock(mutex_);
-  const bool repeated = ranges == lastSpline_;
-  lastSpline_ = ranges;
-  const bool exactKept = flags_ && ranges == ranges_ && key == key_;
+  const bool repeated = identity == lastSpline_;
+  lastSpline_ = identity;
+  const bool exactKept = flags_ && identity == spline_ && key == key_;
   // An instant of a time-varying model seen for the first time: the envelope's flags (built once
-  // for every instant) rather than a build for this instant alone; an instant rendered again
-  // (the camera moves, the time stays) gets its own, tighter flags.
+  // for every instant) rather than a build for this instant alone (nor its span ranges, which
+  // cost as much as the frame); an instant rendered again (the camera moves, the time stays)
+  // gets its own, tighter flags.
   if (envelope && !repeated && !exactKept) {
-    const std::shared_ptr<const SpanRanges> identity = envelope->lower.spanRanges();
-    if (!envelopeFlags_ || identity != envelopeRanges_ || key != envelopeKey_) {
+    const std::shared_ptr<const void> envelopeIdentity = envelope->lower.identity();
+    if (!envelopeFlags_ || envelopeIdentity != envelopeSpline_ || key != envelopeKey_) {
       const SplineView upper = envelope->upper.view();
       envelopeFlags_ = std::make_shared<const EmptySpaceFlags>(buildEmptySpaceFlags(
           envelope->lower.view(), envelopeRanges(*envelope), table, false, &upper));
-      envelopeRanges_ = identity;
+      envelopeSpline_ = envelopeIdentity;
       envelopeKey_ = key;
     }
     return current_ = envelopeFlags_;
   }
   if (!exactKept) {
     flags_ = std::make_shared<const EmptySpaceFlags>(
-        buildEmptySpaceFlags(spline.view(), *ranges, table));
-    ranges_ = ranges;
+        buildEmptySpaceFlags(spline.view(), *spline.spanRanges(), table));
+    spline_ = identity;
     key_ = std::move(key);
   }
   return current_ = flags_;

@@ -140,11 +140,12 @@ class EmptySpaceCache {
 
  private:
   std::mutex mutex_;
-  std::shared_ptr<const SpanRanges> ranges_;  // identifies the spline (shared by its copies)
-  std::vector<std::uint64_t> key_;            // the table's zero-opacity entries, lo and scale
+  std::shared_ptr<const void> spline_;  // flags_' spline (TensorBSpline::identity)
+  std::vector<std::uint64_t> key_;      // the table's zero-opacity entries, lo and scale
   std::shared_ptr<const EmptySpaceFlags> flags_;
-  std::shared_ptr<const SpanRanges> lastSpline_;      // the spline of the previous flags() call
-  std::shared_ptr<const SpanRanges> envelopeRanges_;  // the envelope's lower end's
+  // The spline of the previous flags() call; an instant seen first is not worth its span ranges.
+  std::shared_ptr<const void> lastSpline_;
+  std::shared_ptr<const void> envelopeSpline_;  // the envelope's lower end's identity
   std::vector<std::uint64_t> envelopeKey_;
   std::shared_ptr<const EmptySpaceFlags> envelopeFlags_;
   std::shared_ptr<const EmptySpaceFlags> current_;

@@ -61,6 +61,9 @@ class TensorBSpline {
   // The control-point range of every knot-span cell (empty-space skipping), computed on first
   // use and kept; safe to call from several threads. Copies of a spline share it.
   std::shared_ptr<const SpanRanges> spanRanges() const;
+  // What this spline and its copies share, to tell one spline from another without computing
+  // anything (caches keyed on a spline hold it: the key stays unique while held).
+  std::shared_ptr<const void> identity() const { return derived_; }
 
   // The same function with one more knot at `u` on `axis` (Boehm's algorithm, in double).
   TensorBSpline withInsertedKnot(int axis, double u) const;
