@@ -23,16 +23,6 @@ struct Coded {
   int exponent = 0;  // zfp tolerance 2^exponent
 };
 
-std::string text(double v, const char* format = "%.4g") {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, format, v);
-  return buf;
-}
-
-std::string tolerancePhrase(int exponent) {
-  return "2^" + std::to_string(exponent) + " = " + text(std::ldexp(1.0, exponent));
-}
-
 // What coding with one tolerance gives, measured on the decoded model.
 struct Measured {
   SampleErrors errors;
@@ -212,7 +202,7 @@ Model codeFittedModel(Model fit, const StructuredGrid& grid, const CodingOptions
     if (options.tolerance > 0.0) {
       k = static_cast<int>(std::floor(std::log2(options.tolerance)));
       note = "zfp tolerance " + tolerancePhrase(k) + " (--coding-tolerance " +
-             text(options.tolerance) + ", rounded down to a power of two)";
+             numberText(options.tolerance) + ", rounded down to a power of two)";
     } else if (maxError > 0.0) {
       // The room the fit left under the bound is a tolerance that surely keeps it (the model
       // moves by at most the tolerance); the B-spline averages the coding errors, so up to 32
@@ -234,7 +224,8 @@ Model codeFittedModel(Model fit, const StructuredGrid& grid, const CodingOptions
         return m;
       }
       note = "zfp tolerance " + tolerancePhrase(k) + ": the largest that keeps the error bound " +
-             text(maxError) + " (the fit alone: " + text(fit.provenance().maxError) + ")";
+             numberText(maxError) + " (the fit alone: " + numberText(fit.provenance().maxError) +
+             ")";
     } else if (integer) {
       // The largest tolerance whose decoded model still rounds to every sample: the B-spline
       // averages the control points' coding errors, so the model moves far less than the
@@ -247,7 +238,7 @@ Model codeFittedModel(Model fit, const StructuredGrid& grid, const CodingOptions
       if (k < floorK) k = floorK;  // the fit itself misses by half a step (a --ctrl model)
       note = "zfp tolerance " + tolerancePhrase(k) +
              ", the default of integer samples: the largest (from " +
-             text(kIntegerDefaultTolerance) +
+             numberText(kIntegerDefaultTolerance) +
              " up) whose decoded model rounds back to every sample it was fitted to";
       const std::int64_t cap = grid.inputBytes;
       if (!countsGiven && cap > 0 && coded.bytes(k) > cap) {
@@ -348,8 +339,8 @@ Model encodeToBudget(const StructuredGrid& grid, const StructuredFitOptions& fit
     if (!k) {
       line << (budget.kind == BudgetKind::kBitsPerSample
                    ? "over the budget at any tolerance"
-                   : "the fit alone misses the target (" + text(psnrOf(range, fitRms), "%.1f") +
-                         " dB)");
+                   : "the fit alone misses the target (" +
+                         numberText(psnrOf(range, fitRms), "%.1f") + " dB)");
       tried += "  " + line.str() + "\n";
       // Fewer control points fit worse still: once a candidate met the error target, the
       // first that cannot ends the search.
@@ -357,8 +348,8 @@ Model encodeToBudget(const StructuredGrid& grid, const StructuredFitOptions& fit
       continue;
     }
     const Measured c{errorsAt(*k), bytesAt(*k)};
-    line << text(8.0 * static_cast<double>(c.controlBytes) / samples, "%.3f") << " bits/sample, "
-         << text(psnrOf(range, c.errors.rms), "%.2f") << " dB"
+    line << numberText(8.0 * static_cast<double>(c.controlBytes) / samples, "%.3f")
+         << " bits/sample, " << numberText(psnrOf(range, c.errors.rms), "%.2f") << " dB"
          << (coder == ControlCoder::kZfp ? ", tolerance " + tolerancePhrase(*k) : std::string());
     tried += "  " + line.str() + "\n";
     const bool better =
@@ -398,10 +389,10 @@ Model encodeToBudget(const StructuredGrid& grid, const StructuredFitOptions& fit
   std::ostringstream note;
   note << (budget.kind == BudgetKind::kBitsPerSample ? "the most accurate of the candidates within "
                                                      : "the smallest of the candidates that meets ")
-       << (budget.kind == BudgetKind::kBitsPerSample ? text(budget.value) + " bits/sample"
-           : budget.kind == BudgetKind::kPsnr        ? text(budget.value) + " dB PSNR"
-                                                     : "an RMS error of " + text(budget.value))
-       << " (fit alone: " << text(psnrOf(range, bestFitRms), "%.2f") << " dB); candidates:\n"
+       << (budget.kind == BudgetKind::kBitsPerSample ? numberText(budget.value) + " bits/sample"
+           : budget.kind == BudgetKind::kPsnr        ? numberText(budget.value) + " dB PSNR"
+                                              : "an RMS error of " + numberText(budget.value))
+       << " (fit alone: " << numberText(psnrOf(range, bestFitRms), "%.2f") << " dB); candidates:\n"
        << tried;
   if (report) {
     report->seconds =

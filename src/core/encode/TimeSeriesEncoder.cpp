@@ -39,16 +39,6 @@ bool sameLayout(const StructuredGrid& a, const StructuredGrid& b) {
   return true;
 }
 
-std::string text(double v, const char* format = "%.4g") {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, format, v);
-  return buf;
-}
-
-std::string tolerancePhrase(int exponent) {
-  return "2^" + std::to_string(exponent) + " = " + text(std::ldexp(1.0, exponent));
-}
-
 // Options that do not combine, known before any step is read.
 void refuseUnsupported(const EncodeOptions& o, int steps, int timeControls) {
   if (o.adaptive) {
@@ -455,38 +445,39 @@ TimeVaryingModel encodeTimeSeries(const VolumeSeries& series, const EncodeOption
       k = smallestPassing(lo, hi, [&](int e) { return bytes(e) <= cap; });
       if (k > hi)
         throw Error("no zfp tolerance codes the " + dimsText(counts) + " x " + std::to_string(nt) +
-                    " model of " + series.source() + " within " + text(budget.value) +
+                    " model of " + series.source() + " within " + numberText(budget.value) +
                     " bits/sample (at " + tolerancePhrase(hi) + ": " +
-                    text(bitsOf(bytes(hi)), "%.3f") +
+                    numberText(bitsOf(bytes(hi)), "%.3f") +
                     "); raise the budget or give fewer control points (--ctrl, --time-ctrl)");
       note << "zfp tolerance " << tolerancePhrase(k) << ": the smallest within "
-           << text(budget.value) << " bits/sample";
+           << numberText(budget.value) << " bits/sample";
     } else {
       const double target = budget.kind == BudgetKind::kPsnr
                                 ? (range > 0.0 ? range / std::pow(10.0, budget.value / 20.0) : 0.0)
                                 : budget.value;
       const SampleErrors fitted = measure(TimeVaryingModel(spatial, axis, slabs), "the fit");
       const std::string wanted = budget.kind == BudgetKind::kPsnr
-                                     ? "--psnr " + text(budget.value) + " dB"
-                                     : "--rms-error " + text(budget.value);
+                                     ? "--psnr " + numberText(budget.value) + " dB"
+                                     : "--rms-error " + numberText(budget.value);
       if (fitted.rms > target)
         throw Error("the " + dimsText(counts) + " x " + std::to_string(nt) + " model of " +
-                    series.source() + " reaches " + text(psnrOf(range, fitted.rms), "%.2f") +
-                    " dB (RMS error " + text(fitted.rms) + ") before any coding, short of " +
+                    series.source() + " reaches " + numberText(psnrOf(range, fitted.rms), "%.2f") +
+                    " dB (RMS error " + numberText(fitted.rms) + ") before any coding, short of " +
                     wanted + ": give more control points (--ctrl, --time-ctrl) or less smoothing");
       k = largestPassing(lo, hi, [&](int e) { return errors(e).rms <= target; });
       if (k < lo)
         throw Error("zfp misses " + wanted + " at every tolerance down to " + tolerancePhrase(lo) +
                     "; --coding lossless keeps the fit's " +
-                    text(psnrOf(range, fitted.rms), "%.2f") + " dB");
+                    numberText(psnrOf(range, fitted.rms), "%.2f") + " dB");
       measured = errorsAt[k];
       note << "zfp tolerance " << tolerancePhrase(k) << ": the largest that meets " << wanted
-           << " (the fit alone: " << text(psnrOf(range, fitted.rms), "%.2f") << " dB)";
+           << " (the fit alone: " << numberText(psnrOf(range, fitted.rms), "%.2f") << " dB)";
     }
     note << "; tried:";
     for (const auto& [e, b] : bytesAt) {
-      note << " 2^" << e << " " << text(bitsOf(b), "%.3f") << " bits/sample";
-      if (errorsAt.count(e)) note << " " << text(psnrOf(range, errorsAt[e].rms), "%.2f") << " dB";
+      note << " 2^" << e << " " << numberText(bitsOf(b), "%.3f") << " bits/sample";
+      if (errorsAt.count(e))
+        note << " " << numberText(psnrOf(range, errorsAt[e].rms), "%.2f") << " dB";
       note << ";";
     }
     note << " (a series' budget searches the tolerance; the control grid is the given one)";
@@ -504,8 +495,9 @@ TimeVaryingModel encodeTimeSeries(const VolumeSeries& series, const EncodeOption
     const double room = bound - deviation - 1e-5 * std::max(vmax - vmin, bound);
     if (room > 0.0) {
       coding.tolerance = std::ldexp(1.0, static_cast<int>(std::floor(std::log2(room))));
-      codingNote = "zfp tolerance " + text(coding.tolerance) + ": the room the fits leave within " +
-                   what + " (they keep " + text(deviation) + ")";
+      codingNote = "zfp tolerance " + numberText(coding.tolerance) +
+                   ": the room the fits leave within " + what + " (they keep " +
+                   numberText(deviation) + ")";
     } else {
       coding.coder = ControlCoder::kLossless;
       codingNote = "lossless: the fits leave no room within " + what + " for zfp";

@@ -5,9 +5,23 @@
 // (CodingChoice.cpp) and the time-series encoder's budgets (TimeSeriesEncoder.cpp).
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <string>
 #include <utility>
 
 namespace mfadvr {
+
+// A number for the coding notes of reports, printf-formatted.
+inline std::string numberText(double v, const char* format = "%.4g") {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, format, v);
+  return buf;
+}
+
+// How reports name the tolerance 2^exponent: "2^-3 = 0.125".
+inline std::string tolerancePhrase(int exponent) {
+  return "2^" + std::to_string(exponent) + " = " + numberText(std::ldexp(1.0, exponent));
+}
 
 // The exponents worth trying for values of this extent: from far below float32 resolution (where
 // coding no longer adds error) to the extent itself (where every block is nearly empty).
