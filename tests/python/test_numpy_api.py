@@ -305,3 +305,14 @@ def test_a_four_dimensional_array_encodes_as_the_series_of_its_steps(tmp_path):
         mfadvr.encode(steps, blocks=2)
     with pytest.raises(ValueError, match=r"\[t, z, y, x\]"):
         mfadvr.encode(steps[0], times=[0.0])
+    # The options that choose the model from the data apply to the 4-D model, as on the CLI.
+    bounded = mfadvr.encode(steps, times=times, max_error=0.02)
+    assert bounded.report["adaptive"]["reached"]
+    assert bounded.report["max_error"] <= 0.02 * 220
+    smooth = mfadvr.encode(steps, times=times, dequantize=True)
+    assert smooth.report["encoder"] == "time-series-dequantize"
+    for s in range(5):
+        np.testing.assert_array_equal(smooth.at(times[s]).decode(), steps[s])
+    assert mfadvr.encode(steps, times=times, psnr=40).report["psnr"] >= 40
+    with pytest.raises(RuntimeError, match="interpolates in time"):
+        mfadvr.encode(steps, times=times, max_error=0.02, time_ctrl=4)
