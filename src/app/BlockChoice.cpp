@@ -75,10 +75,10 @@ void requireBlockOptions(const BlockRequest& request, const EncodeOptions& optio
 void requireBlockCounts(const Index3& blocks, const Index3& dims) {
   for (int a = 0; a < 3; ++a)
     if (blocks[a] < 1 || blocks[a] > dims[a] - 1 + (dims[a] == 1))
-      throw CLI::ValidationError(
-          "--blocks", "each axis needs 1 to (samples - 1) blocks; the grid has " +
-                          std::to_string(dims[0]) + "x" + std::to_string(dims[1]) + "x" +
-                          std::to_string(dims[2]) + " samples");
+      throw CLI::ValidationError("--blocks",
+                                 "each axis needs 1 to (samples - 1) blocks; the grid has " +
+                                     std::to_string(dims[0]) + "x" + std::to_string(dims[1]) + "x" +
+                                     std::to_string(dims[2]) + " samples");
 }
 
 BlockChoice chooseBlocks(const StructuredGrid& layout, const BlockRequest& request,
@@ -105,10 +105,10 @@ BlockChoice chooseBlocks(const StructuredGrid& layout, const BlockRequest& reque
                   "), and out of core it would take " + std::to_string(b[0] * b[1] * b[2]) +
                   " blocks, more than a multi-block model holds (" +
                   std::to_string(kMaxBlockCount) + ")");
-    choice.note = "encoding " + layout.source + " in memory would need about " +
-                  formatBytes(need) + ", more than " + formatBytes(limit) + " (" + limitName +
-                  "): encoding it in " + std::to_string(b[0]) + "x" + std::to_string(b[1]) + "x" +
-                  std::to_string(b[2]) + " blocks (--blocks auto), a multi-block model";
+    choice.note = "encoding " + layout.source + " in memory would need about " + formatBytes(need) +
+                  ", more than " + formatBytes(limit) + " (" + limitName + "): encoding it in " +
+                  std::to_string(b[0]) + "x" + std::to_string(b[1]) + "x" + std::to_string(b[2]) +
+                  " blocks (--blocks auto), a multi-block model";
     choice.blocks = b;
   }
   requireBlockCounts(*choice.blocks, layout.dims);

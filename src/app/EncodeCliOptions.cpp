@@ -68,6 +68,13 @@ void EncodeCliOptions::addTo(CLI::App* sub, const std::string& group) {
                   "2 pi lambda^(1/4) knot spans. Grids: default 0 (no smoothing; "
                   "docs/denoise.md); scattered data: default 1e-2 (docs/encoding.md)")
       ->group(group);
+  sub->add_option(
+         "--knot-density", knotDensity,
+         "Scattered data: how far the knots follow the points' density along each axis, "
+         "0 (uniform) .. < 1 (spans holding equal shares of the points). Default: 0.75 for "
+         "meshes (control points gather where the mesh is refined), 0 for point clouds "
+         "(docs/encoding.md)")
+      ->group(group);
   sub->add_option("--mask-res", maskRes,
                   "Scattered data: domain-mask nodes N (longest axis) or NX,NY,NZ (default: 128 "
                   "along the longest axis for meshes, from the point count for point clouds)")
@@ -122,6 +129,12 @@ EncodeOptions EncodeCliOptions::parse() const {
     o.adaptive = a;
   } else if (!maxCtrl.empty()) {
     throw CLI::ValidationError("--max-ctrl", "limits adaptive encoding; give --max-error too");
+  }
+  if (!knotDensity.empty()) {
+    const double w = parseNumberList("--knot-density", knotDensity, 1, 1)[0];
+    if (!(w >= 0.0 && w < 1.0))
+      throw CLI::ValidationError("--knot-density", "must lie in [0, 1), got '" + knotDensity + "'");
+    o.knotDensity = w;
   }
   if (!maskRes.empty()) {
     const auto n = parseIntTriple("--mask-res", maskRes);

@@ -11,7 +11,7 @@ namespace mfadvr::app {
 
 class EncodeCliOptions {
  public:
-  std::string degree = "3", ctrl, smooth, maxError, maxCtrl, maskRes, dequantize;
+  std::string degree = "3", ctrl, smooth, maxError, maxCtrl, maskRes, dequantize, knotDensity;
   int maxRounds = 30;
   bool noMask = false;
   bool noBoundary = false;
@@ -23,6 +23,11 @@ class EncodeCliOptions {
   // Whether --degree was given (else the default 3, which a grid axis of fewer than 4 samples
   // cannot carry: fitDefaultDegreeToGrid lowers it there).
   bool degreeGiven() const { return degreeOption_ && degreeOption_->count() > 0; }
+  // Whether one of the options of scattered inputs only was given (--mask-res, --no-mask,
+  // --no-boundary, --knot-density).
+  bool scatteredOnlyGiven() const {
+    return !maskRes.empty() || noMask || noBoundary || !knotDensity.empty();
+  }
   // Without --degree: the degree of each axis of a `dims` grid at most its samples - 1 (a
   // degree-p axis needs p + 1 samples), so that small grids (AMR patches, thin slabs) encode
   // with the defaults. Returns a note per lowered axis; with --degree, nothing changes (the

@@ -297,8 +297,8 @@ Command addEncodeCommand(CLI::App& app) {
       if (o->strict && !options.adaptive)
         throw CLI::ValidationError("--strict",
                                    "applies to adaptive encoding; give --max-error too");
-      if (!o->encode.maskRes.empty() || o->encode.noMask || o->encode.noBoundary)
-        throw CLI::ValidationError("--mask-res/--no-mask/--no-boundary",
+      if (o->encode.scatteredOnlyGiven())
+        throw CLI::ValidationError("--mask-res/--no-mask/--no-boundary/--knot-density",
                                    "apply to meshes and point clouds");
       const bool progress = wantProgress(o->quiet || o->json);
       if (progress) {
@@ -322,9 +322,9 @@ Command addEncodeCommand(CLI::App& app) {
       throw CLI::ValidationError("--smooth",
                                  "'auto' is for regular grids; give meshes and point clouds a "
                                  "weight (default 1e-2)");
-    if (!scattered && (!o->encode.maskRes.empty() || o->encode.noMask || o->encode.noBoundary))
+    if (!scattered && o->encode.scatteredOnlyGiven())
       throw CLI::ValidationError(
-          "--mask-res/--no-mask/--no-boundary",
+          "--mask-res/--no-mask/--no-boundary/--knot-density",
           "apply to meshes and point clouds; " + o->input + " is a regular grid");
     const BlockRequest blockRequest{o->blocks, o->ghost, o->memoryLimit};
     if (!o->blocks.empty() && scattered)

@@ -340,8 +340,9 @@ PyModel encodeArraySeries(const py::array& array, const py::object& spacing,
   const ArraySeries series(array, std::move(times), spacing, origin);
   return translated([&] {
     EncodeOptions options = keywords.options();
-    if (!keywords.encode.maskRes.empty() || keywords.encode.noMask)
-      throw CLI::ValidationError("mask_res/no_mask", "apply to meshes and point clouds");
+    if (keywords.encode.scatteredOnlyGiven())
+      throw CLI::ValidationError("mask_res/no_mask/no_boundary/knot_density",
+                                 "apply to meshes and point clouds");
     FitReport report;
     std::vector<std::string> notes;
     auto model = std::make_shared<const TimeVaryingModel>([&] {
@@ -368,8 +369,9 @@ PyModel encodeArray(const py::array& array, const py::object& spacing, const py:
   StructuredGrid grid = gridOf(array, spacing, origin);
   return translated([&] {
     EncodeOptions options = keywords.options();
-    if (!encode.maskRes.empty() || encode.noMask)
-      throw CLI::ValidationError("mask_res/no_mask", "apply to meshes and point clouds");
+    if (encode.scatteredOnlyGiven())
+      throw CLI::ValidationError("mask_res/no_mask/no_boundary/knot_density",
+                                 "apply to meshes and point clouds");
     app::requireBlockOptions(keywords.blocks, options, false);
     for (const std::string& note : encode.fitDefaultDegreeToGrid(options, grid.dims))
       PyErr_WarnEx(PyExc_UserWarning, note.c_str(), 1);

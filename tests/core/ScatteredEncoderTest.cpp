@@ -2,11 +2,13 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
 #include "TestSupport.h"
 #include "core/analytic/BuiltinFunction.h"
+#include "core/encode/KnotPlacement.h"
 #include "core/model/ModelFile.h"
 
 namespace mfadvr {
@@ -113,6 +115,53 @@ TEST(ScatteredEncoder, SmoothingKeepsEmptyRegionsBounded) {
     EXPECT_GE(v, lo);
     EXPECT_LE(v, hi);
   }
+}
+
+// Knots that follow the points' density: uniform at weight 0; towards 1 the spans hold equal
+// shares of the points, never narrower than the uniform share allows.
+TEST(ScatteredEncoder, KnotsFollowThePointsDensity) {
+  std::vector<double> u;
+  for (int i = 0; i < 900; ++i) u.push_back(0.1 * i / 899.0);  // 90 % of the points in [0, 0.1]
+  for (int i = 0; i < 100; ++i) u.push_back(0.1 + 0.9 * (i + 1) / 100.0);
+  std::sort(u.begin(), u.end());
+  const KnotVector uniform = knotsFollowingDensity(3, 13, u, 0.0);
+  const KnotVector reference = KnotVector::clampedUniform(3, 13);
+  ASSERT_EQ(uniform.knots().size(), reference.knots().size());
+  for (size_t i = 0; i < uniform.knots().size(); ++i)
+    EXPECT_NEAR(uniform.knots()[i], reference.knots()[i], 1e-12);
+  const KnotVector dense = knotsFollowingDensity(3, 13, u, 0.75);
+  const auto& k = dense.knots();
+  int below = 0;
+  for (size_t i = 4; i + 4 < k.size(); ++i) {
+    below += k[i] < 0.35;
+    EXPECT_GE(k[i] - k[i - 1], 0.25 / 10 - 1e-12);  // (1 - weight) / spans
+  }
+  EXPECT_GE(below, 7);  // of the 9 interior knots (uniform: 3)
+  EXPECT_THROW(knotsFollowingDensity(3, 13, u, 1.0), Error);
+  EXPECT_THROW(knotsFollowingDensity(3, 13, {}, 0.5), Error);
+}
+
+// Where the points gather around a sharp feature (as a mesh is refined where its field varies),
+// knots that follow them fit it better than uniform ones with the same control points.
+TEST(ScatteredEncoder, DensityKnotsFitARefinedFeatureBetter) {
+  std::mt19937 rng(21);
+  std::normal_distribution<double> near(0.0, 0.12);
+  std::vector<Vec3d> pts = randomPoints(3000, -1, 1, 22);
+  for (int i = 0; i < 9000; ++i) {
+    const Vec3d p(std::clamp(near(rng), -1.0, 1.0), std::clamp(near(rng), -1.0, 1.0),
+                  std::clamp(near(rng), -1.0, 1.0));
+    pts.push_back(p);
+  }
+  const ScatteredData d = sample(pts, [](const Vec3d& x) {
+    return std::tanh(12.0 * (x.norm() - 0.15));  // a sharp shell inside the dense region
+  });
+  ScatteredFitOptions o = options(3, 14, 1e-4);
+  FitReport uniform, dense;
+  fitScattered(d, o, &uniform);
+  o.knotDensity = 0.75;
+  fitScattered(d, o, &dense);
+  EXPECT_LT(dense.rmsError, 0.8 * uniform.rmsError)
+      << "uniform " << uniform.rmsError << ", density " << dense.rmsError;
 }
 
 // The coarse-to-fine cascade and one direct solve agree: the cascade only speeds up the solve.

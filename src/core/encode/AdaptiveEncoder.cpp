@@ -301,12 +301,15 @@ Model fitScatteredAdaptive(const ScatteredData& data, const ScatteredFitOptions&
   const Index3 n = resolveScatteredControlCounts(data, start);
   Index3 caps{};
   std::array<KnotVector, 3> knots;
+  // The first round's knots follow the points' density as a fixed fit's do.
+  const std::array<std::vector<double>, 3> sorted = sortedAxisParameters(data);
   AxisRules rules;
   auto& split = rules.split;
   for (int a = 0; a < 3; ++a) {
     caps[a] =
         std::max(adaptive.maxControlCounts[a] == 0 ? 256 : adaptive.maxControlCounts[a], n[a]);
-    knots[a] = KnotVector::clampedUniform(fit.degree[a], static_cast<int>(n[a]));
+    knots[a] =
+        knotsFollowingDensity(fit.degree[a], static_cast<int>(n[a]), sorted[a], fit.knotDensity);
     split[a] = [](const KnotVector& kv, int s) -> std::optional<double> {
       const double lo = kv.knots()[static_cast<size_t>(s)],
                    hi = kv.knots()[static_cast<size_t>(s + 1)];

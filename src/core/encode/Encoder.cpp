@@ -217,6 +217,7 @@ Model encodeScattered(const ScatteredData& data, const EncodeOptions& options, F
   if (options.dequantizeStep)
     throw Error("--dequantize is for regular grids of quantized samples, not meshes or points");
   fit.smoothing = options.smoothing.value_or(kDefaultSmoothing);
+  fit.knotDensity = options.knotDensity.value_or(data.hasCells() ? kDefaultMeshKnotDensity : 0.0);
   fit.progress = options.progress;
   if (options.coding.budget.kind != BudgetKind::kNone ||
       (options.coding.coder && *options.coding.coder == ControlCoder::kZfp))

@@ -46,6 +46,9 @@ struct EncodeOptions {
   // (core/encode/Dequantizer.h), with this step; 0: 1, for integer samples.
   std::optional<double> dequantizeStep;
   std::optional<AdaptiveOptions> adaptive;
+  // Scattered inputs: how far the knots follow the points' density (ScatteredFitOptions);
+  // unset: kDefaultMeshKnotDensity for meshes, 0 (uniform) for point clouds.
+  std::optional<double> knotDensity;
   MaskOptions mask;
   CodingOptions coding;  // grids; scattered inputs take a given float32 or lossless coder
   std::function<void(double fraction, const std::string& stage)> progress;

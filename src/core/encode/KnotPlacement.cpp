@@ -51,4 +51,24 @@ KnotVector knotsForParameters(int degree, int controlCount, std::span<const doub
   return KnotVector::fromKnots(p, std::move(knots));
 }
 
+KnotVector knotsFollowingDensity(int degree, int controlCount, std::span<const double> sorted,
+                                 double weight) {
+  if (!(weight >= 0.0 && weight < 1.0))
+    throw Error("the knot density weight must lie in [0, 1), got " + std::to_string(weight));
+  if (sorted.empty()) throw Error("knots following the points' density need points");
+  const int spans = controlCount - degree;
+  if (degree < 1 || spans < 1)
+    throw Error(std::to_string(controlCount) + " control points cannot carry degree " +
+                std::to_string(degree));
+  std::vector<double> u(static_cast<size_t>(degree + 1), 0.0);
+  const double last = static_cast<double>(sorted.size() - 1);
+  for (int j = 1; j < spans; ++j) {
+    const double share = static_cast<double>(j) / spans;
+    const double q = std::clamp(sorted[static_cast<size_t>(std::llround(share * last))], 0.0, 1.0);
+    u.push_back((1.0 - weight) * share + weight * q);
+  }
+  u.insert(u.end(), static_cast<size_t>(degree + 1), 1.0);
+  return KnotVector::fromKnots(degree, std::move(u));
+}
+
 }  // namespace mfadvr

@@ -24,4 +24,15 @@ KnotVector knotsForSamples(int degree, int controlCount, std::int64_t sampleCoun
 // are not a valid vector (samples too close together for the degree).
 KnotVector knotsForParameters(int degree, int controlCount, std::span<const double> parameters);
 
+// Knots of scattered points: each interior knot j of the controlCount - degree spans is
+// (1 - weight) j / spans + weight q_j, where q_j is the j / spans quantile of the points'
+// parameters along the axis (`sorted`: non-decreasing, in [0, 1]). Weight 0 gives uniform knots;
+// towards 1 the spans hold equal shares of the points, so that control points gather where a mesh
+// is refined (where its simulation needed resolution). The uniform share keeps every span at
+// least (1 - weight) / spans wide; a region without points may get one wide span (meshes hide it
+// with their domain; point clouds default to uniform knots). Throws mfadvr::Error for a weight
+// outside [0, 1) or no points.
+KnotVector knotsFollowingDensity(int degree, int controlCount, std::span<const double> sorted,
+                                 double weight);
+
 }  // namespace mfadvr

@@ -14,6 +14,7 @@
 #include <optional>
 #include <sstream>
 
+#include "core/encode/KnotPlacement.h"
 #include "core/model/ModelFile.h"
 #include "core/spline/BasisFunctions.h"
 #include "core/spline/DerivativePenalty.h"
@@ -294,6 +295,18 @@ void validateOptions(const ScatteredFitOptions& o) {
 
 }  // namespace
 
+std::array<std::vector<double>, 3> sortedAxisParameters(const ScatteredData& data) {
+  const DomainBox box{data.boxMin(), data.boxMax()};
+  std::array<std::vector<double>, 3> u;
+  for (int a = 0; a < 3; ++a) u[a].resize(data.points.size());
+  tbb::parallel_for(std::size_t(0), data.points.size(), [&](std::size_t i) {
+    const Vec3d t = box.toParameter(data.points[i]);
+    for (int a = 0; a < 3; ++a) u[a][i] = t[a];
+  });
+  tbb::parallel_for(0, 3, [&](int a) { std::sort(u[a].begin(), u[a].end()); });
+  return u;
+}
+
 Index3 defaultScatteredControlCounts(const ScatteredData& data, const Degree3& degree) {
   const Vec3d extent = data.boxMax() - data.boxMin();
   double volume = 0.0;
@@ -503,6 +516,8 @@ Model fitScattered(const ScatteredData& data, const ScatteredFitOptions& options
       "fitting " + std::to_string(data.points.size()) + " points with " + std::to_string(n[0]) +
           "x" + std::to_string(n[1]) + "x" + std::to_string(n[2]) +
           " control points (fewer control points, --ctrl, need less)");
+  // Every level's knots follow the points' density along each axis (knotsFollowingDensity).
+  const std::array<std::vector<double>, 3> sorted = sortedAxisParameters(data);
   // Levels: halve the number of spans per axis until every axis has at most 4 spans.
   std::vector<Index3> levels{n};
   for (;;) {
@@ -524,7 +539,8 @@ Model fitScattered(const ScatteredData& data, const ScatteredFitOptions& options
   for (size_t l = 0; l < levels.size(); ++l) {
     std::array<KnotVector, 3> knots;
     for (int a = 0; a < 3; ++a)
-      knots[a] = KnotVector::clampedUniform(options.degree[a], static_cast<int>(levels[l][a]));
+      knots[a] = knotsFollowingDensity(options.degree[a], static_cast<int>(levels[l][a]), sorted[a],
+                                       options.knotDensity);
     ScatteredFitOptions levelOptions = options;
     const std::string name = "level " + std::to_string(l + 1) + "/" +
                              std::to_string(levels.size()) + " (" + std::to_string(levels[l][0]) +

@@ -32,6 +32,8 @@
 namespace mfadvr {
 
 inline constexpr double kDefaultSmoothing = 1e-2;
+// The knot density weight of meshes by default (point clouds: 0, uniform knots).
+inline constexpr double kDefaultMeshKnotDensity = 0.75;
 // Second derivatives (core/spline/DerivativePenalty.h): regions without points get the
 // smoothest, nearly linear continuation of their surroundings. Grids penalize order p + 1.
 inline constexpr int kScatteredPenaltyOrder = 2;
@@ -40,8 +42,13 @@ struct ScatteredFitOptions {
   Degree3 degree{3, 3, 3};
   Index3 controlCounts{0, 0, 0};         // 0 on an axis: defaultScatteredControlCount
   double smoothing = kDefaultSmoothing;  // lambda, >= 0 (0 only when every span has points)
-  double tolerance = 1e-6;               // relative residual |b - Ax| / |b| of each solve
-  int maxIterations = 4000;              // conjugate-gradient iterations per level
+  // How far the knots follow the points' density along each axis (knotsFollowingDensity):
+  // 0 uniform, up to < 1. encodeScattered gives meshes kDefaultMeshKnotDensity (measured on the
+  // blunt-fin mesh, docs/encoding.md: the image closest to VTK's tetrahedral ray caster, at 3.7x
+  // the fit time of uniform knots).
+  double knotDensity = 0.0;
+  double tolerance = 1e-6;   // relative residual |b - Ax| / |b| of each solve
+  int maxIterations = 4000;  // conjugate-gradient iterations per level
   // Called on the calling thread with the fraction done and the stage name.
   std::function<void(double fraction, const std::string& stage)> progress;
 };
@@ -61,6 +68,9 @@ Index3 defaultScatteredControlCounts(const ScatteredData& data, const Degree3& d
 // need about 6 GB whatever the number of points.
 std::int64_t scatteredFitPeakBytes(std::int64_t points, const Index3& counts,
                                    const Degree3& degree);
+
+// The points' parameters in their box along each axis, sorted (for knotsFollowingDensity).
+std::array<std::vector<double>, 3> sortedAxisParameters(const ScatteredData& data);
 
 // Resolves 0 entries of options.controlCounts and validates degrees, counts and smoothing.
 Index3 resolveScatteredControlCounts(const ScatteredData& data, const ScatteredFitOptions& options);

@@ -72,6 +72,7 @@ void vtkMFAEncoder::PrintSelf(ostream& os, vtkIndent indent) {
   os << indent << "MaxRounds: " << this->MaxRounds << "\n";
   os << indent << "Smoothing: " << this->Smoothing << "\n";
   os << indent << "ImageSmoothing: " << this->ImageSmoothing << "\n";
+  os << indent << "KnotDensity: " << this->KnotDensity << "\n";
   os << indent << "DomainMask: " << this->DomainMask << "\n";
   os << indent << "MaskResolution: " << this->MaskResolution << "\n";
   os << indent << "GhostLevels: " << this->GhostLevels << "\n";
@@ -322,6 +323,9 @@ int vtkMFAEncoder::RequestData(vtkInformation*, vtkInformationVector** inInfo,
     options.controlCounts[a] = this->NumberOfControlPoints[a];
   }
   options.smoothing = this->Smoothing;
+  if (this->KnotDensity >= 0.0) {
+    options.knotDensity = this->KnotDensity;
+  }
   if (this->MaxError > 0.0) {
     mfadvr::AdaptiveOptions adaptive;
     adaptive.maxRelativeError = this->MaxError;

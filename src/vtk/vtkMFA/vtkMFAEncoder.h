@@ -97,6 +97,16 @@ class VTKMFA_EXPORT vtkMFAEncoder : public vtkMFAModelAlgorithm {
 
   //@{
   /**
+   * Scattered inputs: how far the knots follow the points' density along each axis, 0 (uniform)
+   * to 0.99, as `encode --knot-density`; -1 (the default): 0.75 for meshes (control points
+   * gather where the mesh is refined), 0 for point clouds.
+   */
+  vtkSetClampMacro(KnotDensity, double, -1.0, 0.99);
+  vtkGetMacro(KnotDensity, double);
+  //@}
+
+  //@{
+  /**
    * Image data: weight lambda of the roughness penalty, a smoothing fit for noisy or quantized
    * samples (default 0: none; at most 1e4; docs/denoise.md). The same lambda for every piece, so
    * that pieces agree; `mfadvr encode --smooth auto` chooses one from the data.
@@ -207,6 +217,7 @@ class VTKMFA_EXPORT vtkMFAEncoder : public vtkMFAModelAlgorithm {
   int MaxNumberOfControlPoints[3] = {0, 0, 0};
   int MaxRounds = 30;
   double Smoothing = 1e-2;
+  double KnotDensity = -1.0;
   double ImageSmoothing = 0.0;
   bool DomainMask = true;
   int MaskResolution = 0;
