@@ -308,15 +308,6 @@ int vtkMFAEncoder::RequestData(vtkInformation*, vtkInformationVector** inInfo,
     }
   }
 
-  if (this->TimeSeries) {
-    if (inputTimeSteps(inInfo[0]->GetInformationObject(0)).size() >= 2) {
-      return this->RequestSeriesData(inInfo, outInfo);
-    }
-    vtkWarningMacro(
-        "TimeSeries: the input advertises fewer than two time steps; the data set "
-        "is fitted as it is");
-  }
-
   mfadvr::EncodeOptions options;
   options.degree = {this->Degree, this->Degree, this->Degree};
   for (int a = 0; a < 3; ++a) {
@@ -340,6 +331,15 @@ int vtkMFAEncoder::RequestData(vtkInformation*, vtkInformationVector** inInfo,
   options.progress = [this](double fraction, const std::string&) {
     this->UpdateProgress(fraction);
   };
+
+  if (this->TimeSeries) {
+    if (inputTimeSteps(inInfo[0]->GetInformationObject(0)).size() >= 2) {
+      return this->RequestSeriesData(inInfo, outInfo, field, options);
+    }
+    vtkWarningMacro(
+        "TimeSeries: the input advertises fewer than two time steps; the data set "
+        "is fitted as it is");
+  }
 
   const std::string source = std::string("VTK ") + input->GetClassName();
   vtkInformation* in = inInfo[0]->GetInformationObject(0);
@@ -439,19 +439,7 @@ int vtkMFAEncoder::RequestData(vtkInformation*, vtkInformationVector** inInfo,
       model = mfadvr::encodeScattered(mfadvr::scatteredFromVtkDataSet(input, field, source),
                                       options, &report);
     }
-    const double range =
-        report.valueMax > report.valueMin ? report.valueMax - report.valueMin : 1.0;
-    this->LastMaxRelativeError = report.maxError / range;
-    this->LastRMSRelativeError = report.rmsError / range;
-    this->LastFitSeconds = report.seconds;
-    if (options.adaptive && !report.reachedTarget) {
-      vtkWarningMacro("the error bound " << this->MaxError << " was not reached ("
-                                         << report.stopReason << "); the best model has max error "
-                                         << this->LastMaxRelativeError);
-    }
-    if (this->ModelFileName && *this->ModelFileName) {
-      mfadvr::saveModel(model, this->ModelFileName);
-    }
+    this->TakeFit(report, model, options.adaptive.has_value());
     this->SetOutputModel(outInfo, std::make_shared<const mfadvr::Model>(std::move(model)),
                          hasRegion ? region : nullptr, fromImage ? firstIndex : nullptr, values,
                          hasReach ? reach : nullptr);
@@ -462,16 +450,12 @@ int vtkMFAEncoder::RequestData(vtkInformation*, vtkInformationVector** inInfo,
   return 1;
 }
 
-int vtkMFAEncoder::RequestSeriesData(vtkInformationVector** inInfo, vtkInformationVector* outInfo) {
+int vtkMFAEncoder::RequestSeriesData(vtkInformationVector** inInfo, vtkInformationVector* outInfo,
+                                     const std::string& field,
+                                     const mfadvr::EncodeOptions& properties) {
   vtkInformation* in = inInfo[0]->GetInformationObject(0);
   vtkInformation* request = outInfo->GetInformationObject(0);
   const std::vector<double> steps = inputTimeSteps(in);
-  std::string field;
-  if (vtkInformation* array = this->GetInputArrayInformation(0)) {
-    if (array->Has(vtkDataObject::FIELD_NAME())) {
-      field = array->Get(vtkDataObject::FIELD_NAME());
-    }
-  }
   try {
     if (requestedPieces(request) > 1) {
       throw mfadvr::Error(
@@ -492,24 +476,8 @@ int vtkMFAEncoder::RequestSeriesData(vtkInformationVector** inInfo, vtkInformati
       fit->field = field;
       this->Series.reset();
       const PipelineSeries series(producer, port, steps, field, &fit->loadedTime);
-      mfadvr::EncodeOptions options;
-      options.degree = {this->Degree, this->Degree, this->Degree};
-      for (int a = 0; a < 3; ++a) {
-        options.controlCounts[a] = this->NumberOfControlPoints[a];
-      }
-      options.smoothing = this->ImageSmoothing;
-      if (this->MaxError > 0.0) {
-        mfadvr::AdaptiveOptions adaptive;
-        adaptive.maxRelativeError = this->MaxError;
-        for (int a = 0; a < 3; ++a) {
-          adaptive.maxControlCounts[a] = this->MaxNumberOfControlPoints[a];
-        }
-        adaptive.maxRounds = this->MaxRounds;
-        options.adaptive = adaptive;
-      }
-      options.progress = [this](double fraction, const std::string&) {
-        this->UpdateProgress(fraction);
-      };
+      mfadvr::EncodeOptions options = properties;
+      options.smoothing = this->ImageSmoothing;  // image data
       mfadvr::TimeSeriesOptions time;
       time.degree = this->TimeDegree;
       time.controlCount = this->TimeControlPoints;
@@ -517,19 +485,7 @@ int vtkMFAEncoder::RequestSeriesData(vtkInformationVector** inInfo, vtkInformati
       mfadvr::FitReport report;
       fit->model = std::make_shared<const mfadvr::TimeVaryingModel>(
           mfadvr::encodeTimeSeries(series, options, time, &report));
-      const double range =
-          report.valueMax > report.valueMin ? report.valueMax - report.valueMin : 1.0;
-      this->LastMaxRelativeError = report.maxError / range;
-      this->LastRMSRelativeError = report.rmsError / range;
-      this->LastFitSeconds = report.seconds;
-      if (options.adaptive && !report.reachedTarget) {
-        vtkWarningMacro("the error bound "
-                        << this->MaxError << " was not reached (" << report.stopReason
-                        << "); the best model has max error " << this->LastMaxRelativeError);
-      }
-      if (this->ModelFileName && *this->ModelFileName) {
-        mfadvr::saveModel(*fit->model, this->ModelFileName);
-      }
+      this->TakeFit(report, *fit->model, options.adaptive.has_value());
       this->Series = fit;
     }
     SeriesFit& fit = *this->Series;
@@ -547,4 +503,20 @@ int vtkMFAEncoder::RequestSeriesData(vtkInformationVector** inInfo, vtkInformati
     return 0;
   }
   return 1;
+}
+
+template <class M>
+void vtkMFAEncoder::TakeFit(const mfadvr::FitReport& report, const M& model, bool adaptive) {
+  const double range = report.valueMax > report.valueMin ? report.valueMax - report.valueMin : 1.0;
+  this->LastMaxRelativeError = report.maxError / range;
+  this->LastRMSRelativeError = report.rmsError / range;
+  this->LastFitSeconds = report.seconds;
+  if (adaptive && !report.reachedTarget) {
+    vtkWarningMacro("the error bound " << this->MaxError << " was not reached ("
+                                       << report.stopReason << "); the best model has max error "
+                                       << this->LastMaxRelativeError);
+  }
+  if (this->ModelFileName && *this->ModelFileName) {
+    mfadvr::saveModel(model, this->ModelFileName);
+  }
 }

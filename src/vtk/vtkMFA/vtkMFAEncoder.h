@@ -37,6 +37,12 @@
 
 #ifndef __VTK_WRAP__
 #include <memory>  // for std::shared_ptr
+#include <string>  // for the field name
+
+namespace mfadvr {
+struct EncodeOptions;
+struct FitReport;
+}  // namespace mfadvr
 #endif
 
 class VTKMFA_EXPORT vtkMFAEncoder : public vtkMFAModelAlgorithm {
@@ -203,8 +209,7 @@ class VTKMFA_EXPORT vtkMFAEncoder : public vtkMFAModelAlgorithm {
   int FillInputPortInformation(int port, vtkInformation* info) override;
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
-  // TimeSeries: fits (or reuses) the 4-D model and outputs the instant asked for.
-  int RequestSeriesData(vtkInformationVector** inInfo, vtkInformationVector* outInfo);
+
   int EffectiveGhostLevels() const;
   // The sample layers a piece asks for beyond its own extent: the ghost levels the output was
   // asked for and EffectiveGhostLevels().
@@ -236,6 +241,13 @@ class VTKMFA_EXPORT vtkMFAEncoder : public vtkMFAModelAlgorithm {
   // The 4-D model of TimeSeries, with what it was fitted from.
   struct SeriesFit;
   std::shared_ptr<SeriesFit> Series;
+  // TimeSeries: fits (or reuses) the 4-D model and outputs the instant asked for; `options`
+  // are the properties' (their smoothing the scattered one).
+  int RequestSeriesData(vtkInformationVector** inInfo, vtkInformationVector* outInfo,
+                        const std::string& field, const mfadvr::EncodeOptions& properties);
+  // The Last* results of a fit, the warning of a bound not reached, and the model file.
+  template <class M>
+  void TakeFit(const mfadvr::FitReport& report, const M& model, bool adaptive);
 #endif
   vtkMFAEncoder(const vtkMFAEncoder&) = delete;
   void operator=(const vtkMFAEncoder&) = delete;
