@@ -84,14 +84,7 @@ Model encodeStructuredFit(const StructuredGrid& grid, const EncodeOptions& optio
 // to them, coded and judged against the samples themselves (within half a step).
 Model encodeDequantized(const StructuredGrid& grid, const EncodeOptions& options,
                         FitReport* report) {
-  if (options.adaptive)
-    throw Error("--dequantize does not combine with --max-error (its bound is half a step)");
-  if (options.coding.budget.kind != BudgetKind::kNone)
-    throw Error("--dequantize does not combine with a size or quality budget yet");
-  if (options.autoSmoothing)
-    throw Error(
-        "--dequantize chooses the smoothest model within the quantization; --smooth auto does "
-        "not combine with it (--smooth LAMBDA sets the smoother whose roughness it minimizes)");
+  refuseWithDequantize(options);
   double step = *options.dequantizeStep;
   if (step == 0.0) {
     if (!isIntegerSampleType(grid.sampleType))
@@ -141,6 +134,18 @@ Model encodeDequantized(const StructuredGrid& grid, const EncodeOptions& options
 }
 
 }  // namespace
+
+void refuseWithDequantize(const EncodeOptions& options) {
+  if (!options.dequantizeStep) return;
+  if (options.adaptive)
+    throw Error("--dequantize does not combine with --max-error (its bound is half a step)");
+  if (options.coding.budget.kind != BudgetKind::kNone)
+    throw Error("--dequantize does not combine with a size or quality budget yet");
+  if (options.autoSmoothing)
+    throw Error(
+        "--dequantize chooses the smoothest model within the quantization; --smooth auto does "
+        "not combine with it (--smooth LAMBDA sets the smoother whose roughness it minimizes)");
+}
 
 EncodeOptions withChosenSmoothing(const StructuredGrid& grid, const EncodeOptions& options,
                                   SmoothingChoice* choice) {

@@ -68,6 +68,10 @@ Model encodeStructured(const StructuredGrid& grid, const EncodeOptions& options,
 Model encodeStructured(const StructuredGrid& layout, const GridSamples& samples,
                        const EncodeOptions& options, FitReport* report = nullptr);
 
+// Throws mfadvr::Error when options.dequantizeStep comes with an option it does not combine with
+// (--max-error, a budget, --smooth auto).
+void refuseWithDequantize(const EncodeOptions& options);
+
 // options with autoSmoothing replaced by the lambda chosen for `grid` (for fitting pieces of one
 // grid with one lambda); `choice` receives the choice when made.
 EncodeOptions withChosenSmoothing(const StructuredGrid& grid, const EncodeOptions& options,

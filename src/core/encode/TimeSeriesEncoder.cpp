@@ -41,9 +41,8 @@ bool sameLayout(const StructuredGrid& a, const StructuredGrid& b) {
 
 // Options that do not combine, known before any step is read.
 void refuseUnsupported(const EncodeOptions& o, int steps, int timeControls) {
+  refuseWithDequantize(o);
   if (o.adaptive) {
-    if (o.dequantizeStep)
-      throw Error("--dequantize does not combine with --max-error (its bound is half a step)");
     if (o.coding.budget.kind != BudgetKind::kNone)
       throw Error("a size or quality budget does not combine with an error bound (--max-error)");
     if (timeControls != steps)
@@ -55,12 +54,6 @@ void refuseUnsupported(const EncodeOptions& o, int steps, int timeControls) {
   if (o.autoSmoothing && o.smoothing)
     throw Error("give either a smoothing weight or automatic smoothing, not both");
   if (o.dequantizeStep) {
-    if (o.coding.budget.kind != BudgetKind::kNone)
-      throw Error("--dequantize does not combine with a size or quality budget yet");
-    if (o.autoSmoothing)
-      throw Error(
-          "--dequantize chooses the smoothest model within the quantization; --smooth auto does "
-          "not combine with it (--smooth LAMBDA sets the smoother whose roughness it minimizes)");
     if (timeControls != steps)
       throw Error(
           "--dequantize keeps every sample of every step within half a quantization step only "
