@@ -64,7 +64,8 @@ void EncodeCliOptions::addTo(CLI::App* sub, const std::string& group) {
           ->group(group);
   sub->add_option("--smooth", smooth,
                   "Smoothing weight lambda >= 0 of the roughness penalty, or 'auto' (grids: "
-                  "chosen by generalized cross-validation). Damps wavelengths below about "
+                  "chosen by generalized cross-validation; meshes and point clouds: by "
+                  "hold-out cross-validation on 1/8 of the points). Damps wavelengths below about "
                   "2 pi lambda^(1/4) knot spans. Grids: default 0 (no smoothing; "
                   "docs/denoise.md); scattered data: default 1e-2 (docs/encoding.md)")
       ->group(group);

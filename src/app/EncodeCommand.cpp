@@ -318,10 +318,6 @@ Command addEncodeCommand(CLI::App& app) {
     const bool scattered = isScatteredInput(o->input);
     if (o->strict && !options.adaptive)
       throw CLI::ValidationError("--strict", "applies to adaptive encoding; give --max-error too");
-    if (scattered && options.autoSmoothing)
-      throw CLI::ValidationError("--smooth",
-                                 "'auto' is for regular grids; give meshes and point clouds a "
-                                 "weight (default 1e-2)");
     if (!scattered && o->encode.scatteredOnlyGiven())
       throw CLI::ValidationError(
           "--mask-res/--no-mask/--no-boundary/--knot-density",

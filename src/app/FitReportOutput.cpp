@@ -45,7 +45,8 @@ std::string formatFitReport(const FitReport& r, const std::string& modelPath) {
     << r.controlCounts[2] << "\n";
   if (r.points > 0)
     o << "smoothing       " << fmt("%g", r.smoothing) << "  (solver: " << r.solverIterations
-      << " CG iterations, residual " << fmt("%.2e", r.solverResidual) << ")\n";
+      << " CG iterations, residual " << fmt("%.2e", r.solverResidual) << ")"
+      << (r.smoothingNote.empty() ? "" : "\n                " + r.smoothingNote) << "\n";
   else if (r.smoothing > 0.0 || !r.smoothingNote.empty())
     o << "smoothing       "
       << (r.smoothingNote.empty() ? "lambda " + fmt("%g", r.smoothing) : r.smoothingNote) << "\n";
@@ -148,7 +149,7 @@ nlohmann::json fitReportJson(const FitReport& r, const std::string& modelPath) {
                              : nlohmann::json(nullptr);
   j["smoothing"] = {{"lambda", r.smoothing},
                     {"automatic", !r.smoothingNote.empty()},
-                    {"noise_estimate", r.smoothingNote.empty() ? nlohmann::json(nullptr)
+                    {"noise_estimate", r.smoothingNote.empty() || r.points > 0 ? nlohmann::json(nullptr)
                                                                : nlohmann::json(r.noiseEstimate)},
                     {"note", r.smoothingNote}};
   j["dequantize"] = r.dequantizeStep > 0.0

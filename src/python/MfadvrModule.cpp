@@ -421,8 +421,6 @@ PyModel encodePoints(const py::array& xyz, const py::array& values, const py::kw
   data.inputBytes = static_cast<std::int64_t>(values.nbytes());
   return translated([&] {
     const EncodeOptions options = keywords.options();
-    if (options.autoSmoothing)
-      throw CLI::ValidationError("smooth", "'auto' is for regular grids; give points a weight");
     return fitted([&](FitReport& report) { return encodeScattered(data, options, &report); });
   });
 }

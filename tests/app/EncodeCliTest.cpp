@@ -88,11 +88,32 @@ TEST(EncodeCli, RejectsContradictoryOptions) {
   }
   const auto dir = test::scratchDir();
   const std::string cloud = writeBallCloud(dir, 200);
-  for (const std::string args : {" --smooth -1", " --smooth auto", " --mask-res 1",
+  for (const std::string args : {" --smooth -1", " --mask-res 1",
                                  " --no-mask --mask-res 16", " --spacing 2"}) {
     const auto r = runMfadvr("encode " + cloud + args);
     EXPECT_EQ(r.status, 2) << args << "\n" << r.err;
   }
+}
+
+// Point clouds (and meshes) take --smooth auto too: lambda by hold-out cross-validation, said
+// in the report and in --json, and the model holds it.
+TEST(EncodeCli, ScatteredDataChooseTheirSmoothing) {
+  const auto dir = test::scratchDir();
+  const std::string cloud = writeBallCloud(dir, 2000);
+  const std::string model = (dir / "auto.mfa").string();
+  const auto r = runMfadvr("encode " + cloud + " --smooth auto --ctrl 8 --json -q -o " + model);
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_TRUE(j["smoothing"]["automatic"].get<bool>());
+  EXPECT_TRUE(j["smoothing"]["noise_estimate"].is_null());
+  EXPECT_NE(j["smoothing"]["note"].get<std::string>().find("hold-out cross-validation"),
+            std::string::npos);
+  const double lambda = j["smoothing"]["lambda"].get<double>();
+  EXPECT_GT(lambda, 0.0);
+  EXPECT_DOUBLE_EQ(j["solver"]["smoothing"].get<double>(), lambda);
+  const auto text = runMfadvr("encode " + cloud + " --smooth auto --ctrl 8 -o " + model);
+  ASSERT_EQ(text.status, 0) << text.err;
+  EXPECT_NE(text.out.find("by hold-out cross-validation"), std::string::npos) << text.out;
 }
 
 // Grids take --smooth L and --smooth auto; the report and the model say what was chosen.

@@ -126,6 +126,12 @@ def test_points_encode():
     m = mfadvr.encode_points(xyz, values, ctrl=(6, 6, 6))
     probe = np.array([[0.5, 0.5, 0.5]])
     assert abs(m.query(probe)[0] - 1.5) < 0.05
+    # smooth="auto": lambda by hold-out cross-validation, as `encode --smooth auto` on a mesh.
+    noisy = values + rng.normal(0, 0.05, len(values))
+    a = mfadvr.encode_points(xyz, noisy, ctrl=(6, 6, 6), smooth="auto")
+    assert a.report["smoothing"]["automatic"]
+    assert "hold-out" in a.report["smoothing"]["note"]
+    assert abs(a.query(probe)[0] - 1.5) < 0.05
 
 
 def test_bad_input_raises_the_command_line_s_message():

@@ -6,6 +6,7 @@
 
 #include "core/encode/CodingChoice.h"
 #include "core/encode/Dequantizer.h"
+#include "core/encode/ScatteredSmoothingChoice.h"
 #include "core/mask/DomainBoundary.h"
 #include "core/mask/MaskVoxelizer.h"
 #include "core/model/ModelFile.h"
@@ -215,15 +216,26 @@ Model encodeScattered(const ScatteredData& data, const EncodeOptions& options, F
   ScatteredFitOptions fit;
   fit.degree = options.degree;
   fit.controlCounts = options.controlCounts;
-  if (options.autoSmoothing)
-    throw Error(
-        "automatic smoothing (--smooth auto) is for regular grids; give meshes and "
-        "point clouds a weight (--smooth L; default 1e-2)");
   if (options.dequantizeStep)
     throw Error("--dequantize is for regular grids of quantized samples, not meshes or points");
   fit.smoothing = options.smoothing.value_or(kDefaultSmoothing);
   fit.knotDensity = options.knotDensity.value_or(data.hasCells() ? kDefaultMeshKnotDensity : 0.0);
-  fit.progress = options.progress;
+  std::string smoothingNote;
+  if (options.autoSmoothing) {
+    // The choice takes most of the time: several fits of 7/8 of the points.
+    ScatteredFitOptions choose = fit;
+    if (options.progress)
+      choose.progress = [&](double f, const std::string& stage) { options.progress(0.7 * f, stage); };
+    const ScatteredSmoothingChoice choice = chooseScatteredSmoothing(data, choose);
+    fit.smoothing = choice.lambda;
+    smoothingNote = choice.note;
+    if (options.progress)
+      fit.progress = [&](double f, const std::string& stage) {
+        options.progress(0.7 + 0.3 * f, stage);
+      };
+  } else {
+    fit.progress = options.progress;
+  }
   if (options.coding.budget.kind != BudgetKind::kNone ||
       (options.coding.coder && *options.coding.coder == ControlCoder::kZfp))
     throw Error(
@@ -233,6 +245,7 @@ Model encodeScattered(const ScatteredData& data, const EncodeOptions& options, F
   FitReport& r = report ? *report : local;
   Model model = options.adaptive ? fitScatteredAdaptive(data, fit, *options.adaptive, &r)
                                  : fitScattered(data, fit, &r);
+  r.smoothingNote = smoothingNote;
   if (options.mask.enabled) {
     const Index3 dims = maskDimsFor(data, options.mask);
     DomainMask mask = data.hasCells()
