@@ -147,11 +147,12 @@ nlohmann::json fitReportJson(const FitReport& r, const std::string& modelPath) {
                                               {"iterations", r.solverIterations},
                                               {"residual", r.solverResidual}}
                              : nlohmann::json(nullptr);
-  j["smoothing"] = {{"lambda", r.smoothing},
-                    {"automatic", !r.smoothingNote.empty()},
-                    {"noise_estimate", r.smoothingNote.empty() || r.points > 0 ? nlohmann::json(nullptr)
-                                                               : nlohmann::json(r.noiseEstimate)},
-                    {"note", r.smoothingNote}};
+  j["smoothing"] = {
+      {"lambda", r.smoothing},
+      {"automatic", !r.smoothingNote.empty()},
+      {"noise_estimate", r.smoothingNote.empty() || r.points > 0 ? nlohmann::json(nullptr)
+                                                                 : nlohmann::json(r.noiseEstimate)},
+      {"note", r.smoothingNote}};
   j["dequantize"] = r.dequantizeStep > 0.0
                         ? nlohmann::json{{"step", r.dequantizeStep},
                                          {"lambda", r.dequantizeLambda},

@@ -88,8 +88,8 @@ TEST(EncodeCli, RejectsContradictoryOptions) {
   }
   const auto dir = test::scratchDir();
   const std::string cloud = writeBallCloud(dir, 200);
-  for (const std::string args : {" --smooth -1", " --mask-res 1",
-                                 " --no-mask --mask-res 16", " --spacing 2"}) {
+  for (const std::string args :
+       {" --smooth -1", " --mask-res 1", " --no-mask --mask-res 16", " --spacing 2"}) {
     const auto r = runMfadvr("encode " + cloud + args);
     EXPECT_EQ(r.status, 2) << args << "\n" << r.err;
   }

@@ -75,9 +75,8 @@ TEST(ScatteredSmoothingChoice, ReportsTheCurveItChoseFrom) {
   const ScatteredData d = beamAt(randomPoints(4000, 3), 0.01, 4);
   const ScatteredSmoothingChoice c = chooseScatteredSmoothing(d, cubic(10));
   ASSERT_GE(c.curve.size(), 3u);
-  const auto best = std::min_element(c.curve.begin(), c.curve.end(), [](auto& a, auto& b) {
-    return a.heldOutRms < b.heldOutRms;
-  });
+  const auto best = std::min_element(c.curve.begin(), c.curve.end(),
+                                     [](auto& a, auto& b) { return a.heldOutRms < b.heldOutRms; });
   EXPECT_DOUBLE_EQ(c.lambda, best->lambda);
   EXPECT_DOUBLE_EQ(c.heldOutRms, best->heldOutRms);
   EXPECT_GT(c.heldOutPoints, 4000 / 8 - 100);

@@ -225,7 +225,9 @@ Model encodeScattered(const ScatteredData& data, const EncodeOptions& options, F
     // The choice takes most of the time: several fits of 7/8 of the points.
     ScatteredFitOptions choose = fit;
     if (options.progress)
-      choose.progress = [&](double f, const std::string& stage) { options.progress(0.7 * f, stage); };
+      choose.progress = [&](double f, const std::string& stage) {
+        options.progress(0.7 * f, stage);
+      };
     const ScatteredSmoothingChoice choice = chooseScatteredSmoothing(data, choose);
     fit.smoothing = choice.lambda;
     smoothingNote = choice.note;

@@ -41,8 +41,9 @@ ScatteredSmoothingChoice chooseScatteredSmoothing(const ScatteredData& data,
   // The points that span the box stay in the training set.
   std::vector<char> extreme(data.points.size(), 0);
   for (int a = 0; a < 3; ++a) {
-    auto [lo, hi] = std::minmax_element(data.points.begin(), data.points.end(),
-                                        [a](const Vec3d& p, const Vec3d& q) { return p[a] < q[a]; });
+    auto [lo, hi] =
+        std::minmax_element(data.points.begin(), data.points.end(),
+                            [a](const Vec3d& p, const Vec3d& q) { return p[a] < q[a]; });
     extreme[static_cast<size_t>(lo - data.points.begin())] = 1;
     extreme[static_cast<size_t>(hi - data.points.begin())] = 1;
   }

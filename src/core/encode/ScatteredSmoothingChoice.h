@@ -22,8 +22,8 @@ namespace mfadvr {
 
 struct ScatteredSmoothingChoice {
   double lambda = 0.0;
-  double heldOutRms = 0.0;          // RMS error at the held-out points with lambda
-  std::int64_t heldOutPoints = 0;   // the points judged
+  double heldOutRms = 0.0;         // RMS error at the held-out points with lambda
+  std::int64_t heldOutPoints = 0;  // the points judged
   struct Point {
     double lambda, heldOutRms;
   };
