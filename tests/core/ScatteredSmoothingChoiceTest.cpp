@@ -42,9 +42,9 @@ ScatteredFitOptions cubic(std::int64_t n, double lambda = kDefaultSmoothing) {
 // RMS distance of the fit of `d` with `lambda` from the noise-free beam at other points.
 double errorAgainstTruth(const ScatteredData& d, double lambda) {
   const auto beam = makeBuiltin("gaussian-beam");
-  const Model m = fitScattered(d, cubic(14, lambda));
+  const Model m = fitScattered(d, cubic(10, lambda));
   double sumSq = 0.0;
-  const std::vector<Vec3d> probes = randomPoints(3000, 99);
+  const std::vector<Vec3d> probes = randomPoints(2000, 99);
   for (const Vec3d& x : probes) {
     const double e = m.value(x) - beam->value(x);
     sumSq += e * e;
@@ -56,13 +56,13 @@ double errorAgainstTruth(const ScatteredData& d, double lambda) {
 // much more, and the chosen weight predicts the noise-free function better than both ends of
 // the search (almost no smoothing follows the noise, lambda 1 flattens the beam).
 TEST(ScatteredSmoothingChoice, SmoothsNoisySamplesMoreAndPredictsTheTruthBetter) {
-  const std::vector<Vec3d> pts = randomPoints(8000, 1);
+  const std::vector<Vec3d> pts = randomPoints(4000, 1);
   const ScatteredData clean = beamAt(pts, 0.0, 2);
-  const ScatteredSmoothingChoice c = chooseScatteredSmoothing(clean, cubic(14));
+  const ScatteredSmoothingChoice c = chooseScatteredSmoothing(clean, cubic(10));
   double lo = clean.values[0], hi = lo;
   for (double v : clean.values) lo = std::min(lo, v), hi = std::max(hi, v);
   const ScatteredData noisy = beamAt(pts, 0.05 * (hi - lo), 2);
-  const ScatteredSmoothingChoice n = chooseScatteredSmoothing(noisy, cubic(14));
+  const ScatteredSmoothingChoice n = chooseScatteredSmoothing(noisy, cubic(10));
   EXPECT_GE(n.lambda, 30.0 * c.lambda) << c.note << " / " << n.note;
   const double chosen = errorAgainstTruth(noisy, n.lambda);
   EXPECT_LT(chosen, 0.8 * errorAgainstTruth(noisy, 1e-6)) << n.note;
