@@ -25,6 +25,18 @@ blocks.UpdatePipeline()
 if [round(b, 6) for b in blocks.GetDataInformation().GetBounds()] != [-1, 1, -1, 1, -1, 1]:
     sys.exit("blocks.mfa: unexpected bounds")
 
+# MFA Encode of a point cloud with Auto Smoothing: the weight is chosen (and shown nowhere but in
+# the fit); the encode succeeds and the model spans the points.
+points = pvs.MaskPoints(Input=pvs.Wavelet(WholeExtent=[0, 15, 0, 15, 0, 15]), OnRatio=3,
+                        GenerateVertices=1, MaximumNumberofPoints=100000)
+encode = pvs.MFAEncode(Input=points)
+if encode.GetProperty("AutoSmoothing") is None:
+    sys.exit("MFAEncode has no AutoSmoothing property")
+encode.AutoSmoothing = 1
+encode.UpdatePipeline()
+if encode.GetDataInformation().GetNumberOfPoints() == 0:
+    sys.exit("MFA Encode with AutoSmoothing gave an empty model")
+
 view = pvs.CreateRenderView()
 display = pvs.Show(reader, view)
 types = display.GetProperty("Representation").Available

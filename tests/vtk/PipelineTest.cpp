@@ -38,6 +38,7 @@
 #include "VtkSceneFixture.h"
 #include "core/analytic/BuiltinSeries.h"
 #include "core/encode/PieceEncoder.h"
+#include "core/encode/ScatteredSmoothingChoice.h"
 #include "core/encode/StructuredEncoder.h"
 #include "core/encode/TimeSeriesEncoder.h"
 #include "core/model/BlockModelFile.h"
@@ -583,6 +584,43 @@ TEST(MFAEncoder, FitsAPointCloud) {
   EXPECT_TRUE(out->IsInside(0, 0, 0));
   EXPECT_FALSE(out->IsInside(b[0], b[2], b[4]));
   EXPECT_NEAR(out->EvaluateValue(0.3, 0.2, -0.4), 0.3 + 2.0 * 0.2 * -0.4, 0.02);
+}
+
+// AutoSmoothing chooses the weight as `encode --smooth auto` does: noisy values get more
+// smoothing than the default, the same weight as the library's choice on the same points.
+TEST(MFAEncoder, AutoSmoothingChoosesTheWeightOfScatteredData) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::normal_distribution<double> noise(0.0, 0.2);
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkDoubleArray> values;
+  values->SetName("f");
+  mfadvr::ScatteredData data;
+  while (points->GetNumberOfPoints() < 3000) {
+    const Vec3d p(u(rng), u(rng), u(rng));
+    const double v = std::sin(2.0 * p[0]) + p[1] * p[2] + noise(rng);
+    points->InsertNextPoint(p.data());
+    values->InsertNextValue(v);
+    data.points.push_back(p);
+    data.values.push_back(v);
+  }
+  vtkNew<vtkPolyData> cloud;
+  cloud->SetPoints(points);
+  cloud->GetPointData()->SetScalars(values);
+  vtkNew<vtkMFAEncoder> encoder;
+  encoder->SetInputData(cloud);
+  encoder->SetNumberOfControlPoints(14, 14, 14);
+  encoder->Update();
+  EXPECT_DOUBLE_EQ(encoder->GetLastSmoothing(), 1e-2);
+  encoder->AutoSmoothingOn();
+  encoder->Update();
+  const double chosen = encoder->GetLastSmoothing();
+  EXPECT_GT(chosen, 1e-2);
+  data.source = "points";
+  data.kind = "point cloud";
+  mfadvr::ScatteredFitOptions o;
+  o.controlCounts = {14, 14, 14};
+  EXPECT_DOUBLE_EQ(chosen, mfadvr::chooseScatteredSmoothing(data, o).lambda);
 }
 
 TEST(MFAEncoder, ReportsInputsItCannotFit) {

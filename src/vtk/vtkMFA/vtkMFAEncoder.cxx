@@ -71,6 +71,7 @@ void vtkMFAEncoder::PrintSelf(ostream& os, vtkIndent indent) {
      << this->MaxNumberOfControlPoints[1] << " " << this->MaxNumberOfControlPoints[2] << "\n";
   os << indent << "MaxRounds: " << this->MaxRounds << "\n";
   os << indent << "Smoothing: " << this->Smoothing << "\n";
+  os << indent << "AutoSmoothing: " << this->AutoSmoothing << "\n";
   os << indent << "ImageSmoothing: " << this->ImageSmoothing << "\n";
   os << indent << "KnotDensity: " << this->KnotDensity << "\n";
   os << indent << "DomainMask: " << this->DomainMask << "\n";
@@ -436,6 +437,7 @@ int vtkMFAEncoder::RequestData(vtkInformation*, vtkInformationVector** inInfo,
         model = mfadvr::encodeStructured(grid, fitSamples, options, &report);
       }
     } else {
+      options.autoSmoothing = this->AutoSmoothing;
       model = mfadvr::encodeScattered(mfadvr::scatteredFromVtkDataSet(input, field, source),
                                       options, &report);
     }
@@ -511,6 +513,7 @@ void vtkMFAEncoder::TakeFit(const mfadvr::FitReport& report, const M& model, boo
   this->LastMaxRelativeError = report.maxError / range;
   this->LastRMSRelativeError = report.rmsError / range;
   this->LastFitSeconds = report.seconds;
+  this->LastSmoothing = report.smoothing;
   if (adaptive && !report.reachedTarget) {
     vtkWarningMacro("the error bound " << this->MaxError << " was not reached ("
                                        << report.stopReason << "); the best model has max error "

@@ -103,6 +103,18 @@ class VTKMFA_EXPORT vtkMFAEncoder : public vtkMFAModelAlgorithm {
 
   //@{
   /**
+   * Scattered inputs: choose the Smoothing weight from the data by hold-out cross-validation,
+   * as `mfadvr encode --smooth auto` (one point in eight held out; several fits, so an encode
+   * takes several times longer; docs/encoding.md). Off by default. Each piece chooses its own
+   * (pieces of a mesh are fitted apart). GetLastSmoothing() gives the weight the fit used.
+   */
+  vtkSetMacro(AutoSmoothing, bool);
+  vtkGetMacro(AutoSmoothing, bool);
+  vtkBooleanMacro(AutoSmoothing, bool);
+  //@}
+
+  //@{
+  /**
    * Scattered inputs: how far the knots follow the points' density along each axis, 0 (uniform)
    * to 0.99, as `encode --knot-density`; -1 (the default): 0.75 for meshes (control points
    * gather where the mesh is refined), 0 for point clouds.
@@ -200,6 +212,8 @@ class VTKMFA_EXPORT vtkMFAEncoder : public vtkMFAModelAlgorithm {
   vtkGetMacro(LastMaxRelativeError, double);
   vtkGetMacro(LastRMSRelativeError, double);
   vtkGetMacro(LastFitSeconds, double);
+  // The smoothing weight of the last fit (the chosen one with AutoSmoothing).
+  vtkGetMacro(LastSmoothing, double);
   //@}
 
  protected:
@@ -222,6 +236,7 @@ class VTKMFA_EXPORT vtkMFAEncoder : public vtkMFAModelAlgorithm {
   int MaxNumberOfControlPoints[3] = {0, 0, 0};
   int MaxRounds = 30;
   double Smoothing = 1e-2;
+  bool AutoSmoothing = false;
   double KnotDensity = -1.0;
   double ImageSmoothing = 0.0;
   bool DomainMask = true;
@@ -235,6 +250,7 @@ class VTKMFA_EXPORT vtkMFAEncoder : public vtkMFAModelAlgorithm {
   double LastMaxRelativeError = 0.0;
   double LastRMSRelativeError = 0.0;
   double LastFitSeconds = 0.0;
+  double LastSmoothing = 0.0;
 
  private:
 #ifndef __VTK_WRAP__
