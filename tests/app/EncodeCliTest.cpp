@@ -103,7 +103,7 @@ TEST(EncodeCli, ScatteredDataChooseTheirSmoothing) {
   const std::string model = (dir / "auto.mfa").string();
   const auto r = runMfadvr("encode " + cloud + " --smooth auto --ctrl 8 --json -q -o " + model);
   ASSERT_EQ(r.status, 0) << r.err;
-  const auto j = nlohmann::json::parse(r.out);
+  const auto j = parseJson(r);
   EXPECT_TRUE(j["smoothing"]["automatic"].get<bool>());
   EXPECT_TRUE(j["smoothing"]["noise_estimate"].is_null());
   EXPECT_NE(j["smoothing"]["note"].get<std::string>().find("hold-out cross-validation"),
