@@ -19,12 +19,14 @@
 #include <random>
 
 #include "core/analytic/BuiltinFunction.h"
+#include "core/encode/CodingChoice.h"
 #include "core/encode/Encoder.h"
 #include "core/image/BitmapFont.h"
 #include "core/image/Montage.h"
 #include "eval/CsvTable.h"
 #include "eval/EvalRendering.h"
 #include "eval/Experiment.h"
+#include "eval/QuantizationStudy.h"
 #include "io/VolumeLoader.h"
 
 namespace mfadvr::eval {
@@ -325,9 +327,15 @@ ExperimentReport runDenoiseStudy(const EvalContext& ctx) {
         std::to_string(goals.size()) + " configurations (largest gap " + fixed(worstGap, 2) +
         " dB).\n\n";
 
-  // Real scans: no truth; the pictures with and without smoothing.
+  appendQuantizationStudy(ctx, report);
+
+  // Real scans: no truth; the pictures with and without smoothing, whole and zoomed.
+  md += "### Real scans\n\n";
   std::vector<std::string> scans = {"neghip_64x64x64_uint8.raw"};
-  if (!quick) scans.push_back("bonsai.nrrd");
+  if (!quick) {
+    scans.push_back("fuel_64x64x64_uint8.raw");
+    scans.push_back("bonsai.nrrd");
+  }
   std::vector<std::string> missing;
   std::vector<std::filesystem::path> scanPaths;
   for (const std::string& name : scans) {
@@ -349,10 +357,29 @@ ExperimentReport runDenoiseStudy(const EvalContext& ctx) {
     }
     ctx.log("denoise: " + name + ": fitting");
     EncodeOptions o;
-    const Model interpolating = encodeStructured(grid, o);
+    if (isIntegerSampleType(grid.sampleType)) o.coding.coder = ControlCoder::kZfp;  // as encode
+    // Wall time of each encode (the report's fit time leaves out the dequantize iterations).
+    double seconds[3] = {0.0, 0.0, 0.0};
+    auto timed = [&](int k, const EncodeOptions& options, FitReport* fit) {
+      const double start = ctx.elapsedSeconds();
+      Model m = encodeStructured(grid, options, fit);
+      seconds[k] = ctx.elapsedSeconds() - start;
+      return m;
+    };
+    FitReport plainReport;
+    const Model interpolating = timed(0, o, &plainReport);
     o.autoSmoothing = true;
     FitReport r;
-    const Model smooth = encodeStructured(grid, o, &r);
+    const Model smooth = timed(1, o, &r);
+    std::optional<Model> dequantized;
+    FitReport dr;
+    if (isIntegerSampleType(grid.sampleType)) {
+      EncodeOptions d = o;
+      d.autoSmoothing = false;
+      d.dequantizeStep = 0.0;
+      ctx.log("denoise: " + name + ": --dequantize");
+      dequantized = timed(2, d, &dr);
+    }
     const auto [lo, hi] = std::minmax_element(grid.values.begin(), grid.values.end());
     RenderSettings s =
         sceneSettings(image, image, grid.boxMin(), grid.boxMax(), 30.0, 20.0, "step:0.25", "white",
@@ -360,24 +387,48 @@ ExperimentReport runDenoiseStudy(const EvalContext& ctx) {
     s.shade = true;
     SceneData scene;
     scene.grid = &grid;
-    std::vector<Image8> cells;
-    MethodSpec tri;
-    tri.method = ReconstructionMethod::Trilinear;
+    // Whole, and zoomed 3x on the centre (the terraces of a surface show there).
+    std::vector<std::vector<Image8>> rowsOfCells;
     ctx.log("denoise: " + name + ": rendering");
-    cells.push_back(withCaption(renderOurs(scene, tri, s).image, {"trilinear"}, 2));
-    MethodSpec mfa;
-    mfa.method = ReconstructionMethod::Mfa;
-    scene.model = &interpolating;
-    cells.push_back(withCaption(renderOurs(scene, mfa, s).image, {"mfa (interpolating)"}, 2));
-    scene.model = &smooth;
-    cells.push_back(withCaption(renderOurs(scene, mfa, s).image,
-                                {"mfa --smooth auto", "lambda " + lambdaText(r.smoothing)}, 2));
+    for (const double zoom : {1.0, 3.0}) {
+      RenderSettings z = s;
+      z.camera.zoom(zoom);
+      std::vector<Image8> cells;
+      MethodSpec tri;
+      tri.method = ReconstructionMethod::Trilinear;
+      const std::string zoomText = zoom > 1.0 ? "zoom 3" : "";
+      cells.push_back(withCaption(renderOurs(scene, tri, z).image, {"trilinear", zoomText}, 2));
+      MethodSpec mfa;
+      mfa.method = ReconstructionMethod::Mfa;
+      scene.model = &interpolating;
+      cells.push_back(
+          withCaption(renderOurs(scene, mfa, z).image, {"mfa (interpolating)", zoomText}, 2));
+      scene.model = &smooth;
+      cells.push_back(withCaption(renderOurs(scene, mfa, z).image,
+                                  {"mfa --smooth auto", "lambda " + lambdaText(r.smoothing)}, 2));
+      if (dequantized) {
+        scene.model = &*dequantized;
+        cells.push_back(
+            withCaption(renderOurs(scene, mfa, z).image, {"mfa --dequantize", zoomText}, 2));
+      }
+      rowsOfCells.push_back(std::move(cells));
+    }
     const std::string stem = std::filesystem::path(name).stem().string();
     report.files.push_back(
-        ctx.writeImage("denoise/scan_" + stem + ".png", montageHorizontal(cells)));
+        ctx.writeImage("denoise/scan_" + stem + ".png", montageGrid(rowsOfCells)));
     md += "- `" + name + "`: " + r.smoothingNote + "; `denoise/scan_" + stem +
-          ".png` (trilinear, interpolating MFA, smoothed MFA; opacity step at 0.25 of the range, "
-          "shaded).\n";
+          ".png` (trilinear, interpolating MFA, smoothed MFA" +
+          std::string(dequantized ? ", dequantized MFA" : "") +
+          "; opacity step at 0.25 of the range, shaded; below: zoomed 3x). Bits/sample: "
+          "interpolating " +
+          fixed(plainReport.bitsPerSample(), 2) + ", smoothed " + fixed(r.bitsPerSample(), 2);
+    if (dequantized)
+      md += ", dequantized " + fixed(dr.bitsPerSample(), 2) + " (" +
+            std::to_string(dr.dequantizeIterations) + " iterations" +
+            (dr.dequantizeConverged ? "" : ", not converged") + ", max |model - sample| " +
+            fixed(dr.maxError, 3) + "); encode " + fixed(seconds[0], 2) + " s / " +
+            fixed(seconds[1], 2) + " s / " + fixed(seconds[2], 2) + " s";
+    md += ".\n";
   }
   md += ctx.missingDataNote(missing);
   md +=

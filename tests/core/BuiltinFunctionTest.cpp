@@ -45,6 +45,13 @@ TEST(BuiltinFunction, KnownValues) {
   const auto beams = makeBuiltin("gaussian-beams");
   EXPECT_NEAR(beams->value(Vec3d(-0.5, -0.5, 0)), 255.0, 0.5);      // largest beam
   EXPECT_NEAR(beams->value(Vec3d(0.8125, 0.8125, 0)), 255.0, 0.5);  // smallest beam
+  // soft-and-sharp: inside the ball 30 + 180 (the blob is 0.85 away: exp(-7.5) of 12), on the
+  // blob's centre 30 + 12 (the ball's edge is 0.5 away: H ~ exp(-33)), background 30 + 4 sin.
+  const auto scan = makeBuiltin("soft-and-sharp");
+  EXPECT_NEAR(scan->value(Vec3d(-0.35, 0, 0)), 210.0, 0.01);
+  EXPECT_NEAR(scan->value(Vec3d(0.5, 0, 0.05)), 42.0, 1e-9);
+  EXPECT_NEAR(scan->value(Vec3d(0.5, 1.0, 0.05)),
+              30.0 + 12.0 * std::exp(-1.0 / (2 * 0.22 * 0.22)) + 4.0 * std::sin(5.6), 1e-9);
 }
 
 TEST(BuiltinFunction, SpecParsing) {

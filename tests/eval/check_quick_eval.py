@@ -151,6 +151,20 @@ def main():
            float(noisy["mfa-auto"]["samples_psnr"]) > float(noisy["mfa"]["samples_psnr"]) + 2,
            "denoise: --smooth auto does not reduce 3%% noise: %s" % noisy["mfa-auto"])
 
+    # Quantized samples: soft-and-sharp 33^3 at 8 bits, 5 methods. Every model rounds back to
+    # the samples; the dequantized one's picture and soft surfaces are nearer the truth's.
+    quantized = {r["method"]: r for r in read(out, "denoise_quantized.csv")}
+    expect(sorted(quantized) == sorted(["trilinear", "tricubic", "mfa", "mfa-auto",
+                                        "mfa-dequantize"]), "quantized: %s" % sorted(quantized))
+    for name in ("mfa", "mfa-dequantize"):
+        expect(float(quantized[name]["max_sample_error_levels"]) <= 0.5,
+               "quantized: %s does not round back: %s" % (name, quantized[name]))
+    expect(float(quantized["mfa-dequantize"]["psnr"]) > float(quantized["mfa"]["psnr"]),
+           "quantized: the --dequantize image is not nearer the truth: %s" % quantized)
+    expect(float(quantized["mfa-dequantize"]["soft_angle_deg"]) <
+           float(quantized["mfa"]["soft_angle_deg"]),
+           "quantized: --dequantize gradients not nearer the truth: %s" % quantized)
+
     # Time series: 8 and 16 steps; at 16 (a blob moves its half width per step) the 4-D model is
     # above linear interpolation halfway between steps, at 8 neither recovers the motion.
     halfway = {int(r["steps"]): r for r in read(out, "time/halfway_values.csv")}

@@ -204,6 +204,38 @@ class CtHead final : public BuiltinFunction {
   }
 };
 
+// A scan-like field for quantization studies: a sharp, high-contrast ball (bone beside soft
+// tissue) and a soft, low-contrast Gaussian blob on a gently varying background. At 8 bits the
+// blob spans about 15 levels and the background 10: quantization terraces show on their
+// isosurfaces, while the ball's edge (180 units over 4 w) needs little or no smoothing.
+// F = 30 + 180 H + 12 B + 4 sin(kWave y), H = 1 / (1 + exp((|x - c1| - r) / w)),
+// B = exp(-|x - c2|^2 / (2 sigma^2)).
+class SoftAndSharp final : public BuiltinFunction {
+ public:
+  std::string name() const override { return "soft-and-sharp"; }
+  Index3 defaultDims() const override { return {64, 64, 64}; }
+  double value(const Vec3d& x) const override {
+    Vec3d g;
+    return valueGradient(x, g);
+  }
+  double valueGradient(const Vec3d& x, Vec3d& g) const override {
+    const Vec3d d1 = x - Vec3d(-0.35, 0.0, 0.0), d2 = x - Vec3d(0.5, 0.0, 0.05);
+    const double r1 = d1.norm();
+    const double h = 1.0 / (1.0 + std::exp((r1 - kBallRadius) / kBallWidth));
+    const double b = std::exp(-d2.squaredNorm() / (2.0 * kBlobSigma * kBlobSigma));
+    // dH/dx = -H (1 - H) / w * d1 / |d1| (zero at the centre, where H is flat).
+    const Vec3d gBall = r1 > 1e-12 ? Vec3d(-h * (1.0 - h) / kBallWidth / r1 * d1) : Vec3d::Zero();
+    const Vec3d gBlob = -b / (kBlobSigma * kBlobSigma) * d2;
+    g = kBall * gBall + kBlob * gBlob +
+        Vec3d(0.0, kWave * kWaveAmplitude * std::cos(kWave * x[1]), 0.0);
+    return kBackground + kBall * h + kBlob * b + kWaveAmplitude * std::sin(kWave * x[1]);
+  }
+
+ private:
+  static constexpr double kBackground = 30.0, kBall = 180.0, kBlob = 12.0, kWaveAmplitude = 4.0;
+  static constexpr double kBallRadius = 0.35, kBallWidth = 0.015, kBlobSigma = 0.22, kWave = 5.6;
+};
+
 }  // namespace
 
 BeamBox gaussianBeamsBox(int k) {
@@ -218,7 +250,7 @@ BeamBox gaussianBeamsBox(int k) {
 }
 
 std::vector<std::string> builtinNames() {
-  return {"marschner-lobb", "gaussian-beam", "gaussian-beams", "ct-head"};
+  return {"marschner-lobb", "gaussian-beam", "gaussian-beams", "ct-head", "soft-and-sharp"};
 }
 
 std::unique_ptr<BuiltinFunction> makeBuiltin(const std::string& name) {
@@ -226,6 +258,7 @@ std::unique_ptr<BuiltinFunction> makeBuiltin(const std::string& name) {
   if (name == "gaussian-beam") return std::make_unique<GaussianBeam>();
   if (name == "gaussian-beams") return std::make_unique<GaussianBeams>();
   if (name == "ct-head") return std::make_unique<CtHead>();
+  if (name == "soft-and-sharp") return std::make_unique<SoftAndSharp>();
   std::string known;
   for (const auto& n : builtinNames()) known += (known.empty() ? "" : ", ") + n;
   throw Error("unknown built-in function '" + name + "' (known: " + known + ")");

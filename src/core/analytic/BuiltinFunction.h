@@ -6,7 +6,9 @@
 // Names: marschner-lobb (default 41^3), gaussian-beam (default 64^3),
 // gaussian-beams (default 128^3; a diagonal row of four beams whose boxes hold 64^3, 32^3,
 // 16^3 and 8^3 samples of that default grid), ct-head (default 128^3; a head phantom in
-// Hounsfield units for the CT transfer-function presets). docs/builtins.md states the formulas.
+// Hounsfield units for the CT transfer-function presets), soft-and-sharp (default 64^3; a sharp
+// high-contrast ball beside a soft low-contrast blob, for quantization studies). docs/builtins.md
+// states the formulas.
 #include <memory>
 #include <string>
 #include <vector>

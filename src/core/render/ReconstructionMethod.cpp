@@ -3,6 +3,8 @@
 #include <chrono>
 #include <optional>
 
+#include <tbb/parallel_for.h>
+
 #include "core/field/AnalyticField.h"
 #include "core/field/DerivedFields.h"
 #include "core/field/GridField.h"
@@ -187,6 +189,18 @@ Image renderMethod(const SceneData& scene, const MethodSpec& spec, const RenderS
       render(GradientFromField(truth, gradientField));
   });
   return image;
+}
+
+std::vector<ValueGradient> sampleMethod(const SceneData& scene, ReconstructionMethod method,
+                                        const std::vector<Vec3d>& points) {
+  std::vector<ValueGradient> out(points.size());
+  withField(scene, method, [&](const auto& field) {
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, points.size(), 1024), [&](const auto& r) {
+      auto sampler = field.sampler();
+      for (size_t i = r.begin(); i != r.end(); ++i) out[i] = sampler.valueGradient(points[i]);
+    });
+  });
+  return out;
 }
 
 }  // namespace mfadvr

@@ -76,4 +76,10 @@ std::string whyNotOnDevice(const MethodSpec& spec);
 Image renderMethod(const SceneData& scene, const MethodSpec& spec, const RenderSettings& settings,
                    MethodRenderStats* stats = nullptr);
 
+// The value and gradient of `method` at each point (physical coordinates), as the ray caster
+// samples them (the model's single-block field for mfa); in parallel. For measurements at points
+// (the evaluation's value and gradient errors). Throws mfadvr::Error as renderMethod does.
+std::vector<ValueGradient> sampleMethod(const SceneData& scene, ReconstructionMethod method,
+                                        const std::vector<Vec3d>& points);
+
 }  // namespace mfadvr
