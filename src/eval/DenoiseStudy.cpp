@@ -10,7 +10,9 @@
 // and every lambda of a sweep, the best of which is reported). Images are compared with the
 // truth's, rendered from the clean function's value and gradient (paper Table 2), and in the
 // gradient-only test (paper Table 1: value from the truth, gradient from the method). Real scans
-// from the data folder are rendered with and without smoothing (no truth there).
+// from the data folder are rendered with and without smoothing, and integer ones dequantized (no
+// truth there), whole and zoomed. The quantization rows against the truth are
+// QuantizationStudy.cpp's.
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -426,9 +428,9 @@ ExperimentReport runDenoiseStudy(const EvalContext& ctx) {
       md += ", dequantized " + fixed(dr.bitsPerSample(), 2) + " (" +
             std::to_string(dr.dequantizeIterations) + " iterations" +
             (dr.dequantizeConverged ? "" : ", not converged") + ", max |model - sample| " +
-            fixed(dr.maxError, 3) + "); encode " + fixed(seconds[0], 2) + " s / " +
-            fixed(seconds[1], 2) + " s / " + fixed(seconds[2], 2) + " s";
-    md += ".\n";
+            fixed(dr.maxError, 3) + ")";
+    md += "; encode " + fixed(seconds[0], 2) + " s / " + fixed(seconds[1], 2) + " s" +
+          (dequantized ? " / " + fixed(seconds[2], 2) + " s" : std::string()) + ".\n";
   }
   md += ctx.missingDataNote(missing);
   md +=

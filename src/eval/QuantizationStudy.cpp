@@ -18,14 +18,19 @@
 #include <functional>
 #include <map>
 #include <numbers>
+#include <optional>
 #include <random>
+#include <string>
+#include <vector>
 
 #include <tbb/parallel_for.h>
 
 #include "core/analytic/BuiltinFunction.h"
+#include "core/encode/CodingChoice.h"
 #include "core/encode/Encoder.h"
 #include "core/image/BitmapFont.h"
 #include "core/image/Montage.h"
+#include "core/render/ReconstructionMethod.h"
 #include "eval/CsvTable.h"
 #include "eval/EvalRendering.h"
 
