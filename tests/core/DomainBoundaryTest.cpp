@@ -148,6 +148,46 @@ TEST(DomainBoundary, LinesThroughEdgesAndVerticesCrossOnce) {
   EXPECT_FALSE(inIntervals(intervals, nv, 1.1));
 }
 
+TEST(DomainBoundary, LinesInThePlaneOfASharedEdgeAreNeverLost) {
+  // A fan of eight triangles about (0, 0, 1) in the plane z = 1, facing up; the edge from the
+  // centre to vertex 1 lies in the plane x = y. Lines in that plane cross the fan on that edge:
+  // its edge function is then zero in exact arithmetic, and a fused multiply-add of the two
+  // products (which a compiler may make of them) leaves a rounding error of the same sign in both
+  // triangles; both would reject the line. Each line must cross the fan exactly once.
+  std::vector<Vec3f> vertices{Vec3f(0, 0, 1)};
+  for (int k = 0; k < 8; ++k) {
+    const double a = 2.0 * 3.14159265358979 * k / 8.0;
+    vertices.emplace_back(static_cast<float>(1.7 * std::cos(a)),
+                          static_cast<float>(1.7 * std::sin(a)), 1.0f);
+  }
+  vertices[2][1] = vertices[2][0];  // exactly on x = y
+  std::vector<BoundaryTriangle> triangles;
+  for (std::uint32_t k = 0; k < 8; ++k) triangles.push_back({0, 1 + k, 1 + (k + 1) % 8});
+  const DomainBoundary b(vertices, triangles);
+  const BoundaryView v = b.view();
+  int lost = 0, lines = 0;
+  for (int i = 1; i < 2000; ++i) {
+    const double t = 1.2 * i / 2000.0;  // along the edge, whose far end is at x = y = 1.2
+    for (const double tilt : {0.0, 1e-3, -3.7e-2}) {
+      const double o[3] = {t + 5.0 * tilt, t + 5.0 * tilt, 6.0}, d[3] = {-tilt, -tilt, -1.0};
+      BoundaryCrossing c[kMaxBoundaryCrossings];
+      int n = 0;
+      forEachCrossing(v, o, d, [&](double at, int step) {
+        c[n++] = {at, step};
+        return n < kMaxBoundaryCrossings;
+      });
+      n = mergeCrossings(c, n, v.scale);
+      lost += n != 1;
+      ++lines;
+      if (n == 1) {
+        EXPECT_EQ(c[0].step, 1);  // entering: against the upward normal
+        EXPECT_NEAR(c[0].t, 5.0, 1e-9);
+      }
+    }
+  }
+  EXPECT_EQ(lost, 0) << "of " << lines << " lines";
+}
+
 TEST(DomainBoundary, BadTrianglesAreClearErrors) {
   EXPECT_THROW(DomainBoundary({Vec3f(0, 0, 0), Vec3f(1, 0, 0), Vec3f(0, 1, 0)}, {{0, 1, 3}}),
                Error);

@@ -7,8 +7,9 @@
 //
 // The crossings are found with the watertight ray-triangle test of Woop, Benthin and Wald,
 // "Watertight Ray/Triangle Intersection", JCGT 2(1), 2013: in the ray's sheared frame the three
-// edge functions of a triangle are computed from the vertices alone, so that a line through an
-// edge or a vertex shared by several triangles is never missed by all of them. It may be found by
+// edge functions of a triangle are computed from the vertices alone (each edge's in one order for
+// both of its triangles: boundaryEdgeFunction), so that a line through an edge or a vertex shared
+// by several triangles is never missed by all of them. It may be found by
 // more than one of them instead; those crossings lie at the same distance and in the same
 // direction, and are merged into one (mergeCrossings). A line through a silhouette edge touches
 // the surface: one entry and one exit at the same distance, which cancel.
@@ -44,6 +45,19 @@ struct BoundaryCrossing {
   double t;
   int step;
 };
+
+// The edge function p x q = px qy - py qx of two projected vertices. The pair is taken in a
+// fixed order (and the sign restored), so that the two triangles sharing an edge compute the same
+// expression on the same operands and get exactly opposite values: a compiler may fuse one of the
+// products into a multiply-add (GCC does by default), which rounds p x q and q x p differently,
+// and a line through the edge, where both are zero in exact arithmetic, then got a rounding error
+// of the same sign in both triangles and was lost by both.
+MFADVR_HD MFADVR_INLINE double boundaryEdgeFunction(double px, double py, double qx, double qy) {
+  const bool swap = qx < px || (qx == px && qy < py);
+  const double ax = swap ? qx : px, ay = swap ? qy : py, bx = swap ? px : qx, by = swap ? py : qy;
+  const double e = ax * by - ay * bx;
+  return swap ? -e : e;
+}
 
 // Calls hit(t, step) for every crossing of the whole line o + t d (t over all reals) with the
 // boundary; returns false if it stopped early because hit returned false.
@@ -119,9 +133,9 @@ MFADVR_HD MFADVR_INLINE bool forEachCrossing(const BoundaryView& v, const double
         bz = sz * B[kz];
         cz = sz * C[kz];
       }
-      const double U = cx * by - cy * bx;
-      const double V = ax * cy - ay * cx;
-      const double W = bx * ay - by * ax;
+      const double U = boundaryEdgeFunction(cx, cy, bx, by);
+      const double V = boundaryEdgeFunction(ax, ay, cx, cy);
+      const double W = boundaryEdgeFunction(bx, by, ax, ay);
       if ((U < 0.0 || V < 0.0 || W < 0.0) && (U > 0.0 || V > 0.0 || W > 0.0)) continue;
       const double det = U + V + W;
       if (det == 0.0) continue;  // the line lies in the triangle's plane: no crossing
