@@ -49,9 +49,9 @@ struct BoundaryCrossing {
 // The edge function p x q = px qy - py qx of two projected vertices. The pair is taken in a
 // fixed order (and the sign restored), so that the two triangles sharing an edge compute the same
 // expression on the same operands and get exactly opposite values: a compiler may fuse one of the
-// products into a multiply-add (GCC does by default), which rounds p x q and q x p differently,
-// and a line through the edge, where both are zero in exact arithmetic, then got a rounding error
-// of the same sign in both triangles and was lost by both.
+// products into a multiply-add (GCC does by default), which rounds p x q and q x p differently:
+// for a line through the edge, where both are zero in exact arithmetic, the two triangles would
+// get rounding errors of the same sign and could both reject it.
 MFADVR_HD MFADVR_INLINE double boundaryEdgeFunction(double px, double py, double qx, double qy) {
   const bool swap = qx < px || (qx == px && qy < py);
   const double ax = swap ? qx : px, ay = swap ? qy : py, bx = swap ? px : qx, by = swap ? py : qy;
