@@ -4,6 +4,7 @@
 //   build/release/bench/mfadvr_gpu_bench [--size 1024x1024] [--frames 5] [--cpu-frames 2]
 //                                       [--scenes 256:3,512:2] [--no-cpu]
 //                                       [--model FILE.mfa ... [--tf step:0.2]]
+//                                       [--blend MODE [--iso F]]
 //
 // The control points are the function's samples on the control grid (no fit: the frame time
 // does not depend on how control points were found, and a 512^3 fit would dominate the run).
@@ -12,7 +13,9 @@
 // frame (model upload, kernel load) is reported separately. Without a usable GPU it says why and
 // measures the CPU alone. `--model` adds scenes of saved models (a sparse scan: the TF hides the
 // air), each rendered with empty-space skipping on and off on both devices. Self-contained:
-// scripts/pack-gpu-check.sh bundles it for a GPU machine.
+// scripts/pack-gpu-check.sh bundles it for a GPU machine. `--blend` renders every scene in
+// another blend mode (as render --blend); the isosurface of `--blend iso` is at the fraction
+// `--iso` of each model's value range.
 #include <tbb/info.h>
 #include <tbb/parallel_for.h>
 #include <CLI/CLI.hpp>
@@ -28,6 +31,7 @@
 #include "core/field/ModelField.h"
 #include "core/image/ImageMetrics.h"
 #include "core/model/ModelFile.h"
+#include "core/render/BlendMode.h"
 #include "core/render/EmptySpaceGrid.h"
 #include "core/render/RayCaster.h"
 #include "gpu/CudaRenderer.h"
@@ -103,6 +107,14 @@ RenderSettings modelSettings(const Model& m, int width, int height, const std::s
   return s;
 }
 
+// `s` in the blend mode `blend`; an isosurface at the fraction `isoFraction` of the value range.
+RenderSettings withBlend(RenderSettings s, const Model& m, BlendMode blend, double isoFraction) {
+  s.blend = blend;
+  if (blend == BlendMode::Iso)
+    s.isoSurfaces = {{m.valueMin() + isoFraction * (m.valueMax() - m.valueMin()), {}, {}}};
+  return s;
+}
+
 // Median frame and the last frame's image and counts of one device, skipping on or off.
 struct Timed {
   double frame = 0.0, kernel = 0.0, first = 0.0;
@@ -128,10 +140,11 @@ Timed timeFrames(gpu::CudaRenderer* gpuRenderer, const ModelField& field, const 
   return t;
 }
 
-void runModelScene(const std::string& path, const std::string& tf, int width, int height,
-                   int frames, int cpuFrames, bool noCpu, gpu::CudaRenderer* gpuRenderer) {
+void runModelScene(const std::string& path, const std::string& tf, BlendMode blend,
+                   double isoFraction, int width, int height, int frames, int cpuFrames, bool noCpu,
+                   gpu::CudaRenderer* gpuRenderer) {
   const Model model = loadModel(path);
-  RenderSettings s = modelSettings(model, width, height, tf);
+  RenderSettings s = withBlend(modelSettings(model, width, height, tf), model, blend, isoFraction);
   EmptySpaceCache cache;
   const ModelField field(model, &cache);
   const std::string name = std::filesystem::path(path).filename().string();
@@ -170,7 +183,8 @@ int run(int argc, char** argv) {
   int frames = 5, cpuFrames = 2;
   bool noCpu = false;
   std::vector<std::string> models;
-  std::string tf = "step:0.2";
+  std::string tf = "step:0.2", blendName = "composite";
+  double isoFraction = 0.5;
   CLI::App app("GPU (CUDA) against CPU frame time of the MFA ray caster");
   app.add_option("--size", size, "Image size WxH")->capture_default_str();
   app.add_option("--frames", frames, "Timed GPU frames (median)")->capture_default_str();
@@ -181,7 +195,16 @@ int run(int argc, char** argv) {
       ->check(CLI::ExistingFile);
   app.add_option("--tf", tf, "Opacity TF of the --model scenes (as render --tf)")
       ->capture_default_str();
+  app.add_option("--blend", blendName, "Blend mode of every scene (" + blendModeChoices() + ")")
+      ->capture_default_str();
+  app.add_option("--iso", isoFraction, "--blend iso: the isovalue, a fraction of the value range")
+      ->capture_default_str();
   CLI11_PARSE(app, argc, argv);
+  const std::optional<BlendMode> blend = parseBlendMode(blendName);
+  if (!blend) {
+    std::fprintf(stderr, "--blend: expected one of %s\n", blendModeChoices().c_str());
+    return 1;
+  }
   int width = 0, height = 0;
   if (std::sscanf(size.c_str(), "%dx%d", &width, &height) != 2 || width <= 0 || height <= 0) {
     std::fprintf(stderr, "--size: expected WxH\n");
@@ -206,8 +229,10 @@ int run(int argc, char** argv) {
   std::printf("GPU: %s (CUDA runtime %s)\n", status.describe().c_str(),
               gpu::cudaVersionString(status.runtimeVersion).c_str());
   std::printf("CPU: %s, %d threads\n", cpuName().c_str(), tbb::info::default_concurrency());
-  std::printf("%dx%d, shaded, Marschner-Lobb, step = half the control spacing, skipping on\n\n",
-              width, height);
+  std::printf(
+      "%dx%d, shaded, %s blend, Marschner-Lobb, step = half the control spacing, "
+      "skipping on\n\n",
+      width, height, blendModeName(*blend));
   std::printf("%-10s %-4s %10s %9s %10s %10s %11s %9s\n", "scene", "dev", "frame s", "fps",
               "kernel s", "first s", "M samples", "speed-up");
   const auto f = makeBuiltin("marschner-lobb");
@@ -216,7 +241,8 @@ int run(int argc, char** argv) {
     const Model model = sampledModel(*f, sc.n, sc.degree);
     const double buildSeconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - buildStart).count();
-    const RenderSettings s = sceneSettings(model, width, height, sc.n);
+    const RenderSettings s =
+        withBlend(sceneSettings(model, width, height, sc.n), model, *blend, isoFraction);
     EmptySpaceCache cache;  // as a viewer: flags built once for the TF
     const ModelField field(model, &cache);
     const std::string name = std::to_string(sc.n) + "^3 p=" + std::to_string(sc.degree);
@@ -254,7 +280,7 @@ int run(int argc, char** argv) {
                   compareImages(toImage8(*gpuImage), toImage8(*cpuImage)).psnr, buildSeconds);
   }
   for (const std::string& path : models)
-    runModelScene(path, tf, width, height, frames, cpuFrames, noCpu,
+    runModelScene(path, tf, *blend, isoFraction, width, height, frames, cpuFrames, noCpu,
                   gpuRenderer ? &*gpuRenderer : nullptr);
   if (!gpuRenderer) std::printf("\nno GPU figures: %s\n", status.reason.c_str());
   return 0;

@@ -7,7 +7,8 @@
 #   OUT/run-bench.sh [bench options]         # frame times, GPU and CPU in the same run
 #
 # The CUDA runtime is linked statically; the driver's libcuda.so comes from the target machine.
-# Everything else the programs load, except the C library itself, is copied into OUT/lib.
+# Everything else the programs load, except the C library itself, is copied into OUT/lib, and
+# libzfp (opened at run time for zfp-coded models) with what it loads.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out="${1:-build/gpu-check}"
@@ -25,11 +26,15 @@ mkdir -p "$out/lib"
 cp "$tests" "$bench" "$out/"
 # The C library and the dynamic loader stay the target's; libcuda is the target's driver.
 keep='^(linux-vdso|ld-linux|libc\.so|libm\.so|libpthread\.so|libdl\.so|librt\.so|libcuda\.so)'
-for f in "$tests" "$bench"; do
+# libzfp is opened at run time (zfp-coded models, e.g. integer scans encoded with the defaults):
+# it travels too, when this machine has it.
+zfp=$(ldconfig -p | awk '/libzfp\.so\.1 / {p = $NF} END {print p}')
+for f in "$tests" "$bench" $zfp; do
   ldd "$f" | awk '/=> \// {print $1, $3}' | while read -r name path; do
     if ! [[ "$name" =~ $keep ]]; then cp -L -n "$path" "$out/lib/"; fi
   done
 done
+if [[ -n "$zfp" ]]; then cp -L -n "$zfp" "$out/lib/libzfp.so.1"; fi
 for tool in tests bench; do
   cat >"$out/run-$tool.sh" <<SCRIPT
 #!/bin/sh

@@ -37,6 +37,12 @@ std::vector<HostArray> modelArrays(const ModelView& v) {
   if (v.mask.nodes)
     out.push_back({v.mask.nodes, std::size_t(v.mask.dims[0] * v.mask.dims[1] * v.mask.dims[2]),
                    "the domain mask"});
+  if (v.boundary.nodes) {
+    out.push_back({v.boundary.nodes, std::size_t(v.boundary.nodeCount) * sizeof(BoundaryNode),
+                   "the boundary's hierarchy"});
+    out.push_back({v.boundary.triangles, std::size_t(v.boundary.triangleCount) * 9 * sizeof(double),
+                   "the boundary triangles"});
+  }
   return out;
 }
 
@@ -51,8 +57,10 @@ ModelView relocateModel(const ModelView& view, const std::vector<const void*>& c
     a.inverseLength = static_cast<const double*>(copies[i++]);
   }
   if (v.mask.nodes) v.mask.nodes = static_cast<const std::uint8_t*>(copies[i++]);
-  // The device's rays use the mask: the exact boundary is not uploaded (SplineRaySampler.h).
-  v.boundary = BoundaryView{};
+  if (v.boundary.nodes) {
+    v.boundary.nodes = static_cast<const BoundaryNode*>(copies[i++]);
+    v.boundary.triangles = static_cast<const double*>(copies[i++]);
+  }
   return v;
 }
 

@@ -22,8 +22,9 @@ struct HostArray {
 std::size_t totalBytes(const std::vector<HostArray>& arrays);
 
 // The model's own arrays, in a fixed order: control points; per axis knots, basis polynomials,
-// inverse span lengths; the mask's nodes when there is a mask. (Not the empty-space flags,
-// which depend on the transfer function.)
+// inverse span lengths; the mask's nodes when there is a mask; a mesh's exact boundary (its
+// hierarchy's nodes, its triangles) when there is one. (Not the empty-space flags, which depend
+// on the transfer function.)
 std::vector<HostArray> modelArrays(const ModelView& view);
 // `view` with those arrays replaced by `copies` (one per modelArrays(view) entry, same order).
 ModelView relocateModel(const ModelView& view, const std::vector<const void*>& copies);

@@ -309,5 +309,42 @@ TEST(DomainBoundary, RaysSampleExactlyTheChordsOfTheMesh) {
   EXPECT_FALSE(field.sampler().inside(Vec3d(0.4, 0.4, 0.3)));
 }
 
+// Skipping leaves a mesh model's image unchanged: the march ahead through empty cells, which
+// walks several rays at once, must not test samples against another ray's stretches inside the
+// boundary (it did: 39.8 dB between the blunt fin's images with and without skipping).
+TEST(DomainBoundary, SkippingLeavesTheImageOfABoundedModelUnchanged) {
+  Model m = octahedronModel();
+  std::array<KnotVector, 3> knots;
+  for (auto& k : knots) k = KnotVector::clampedUniform(2, 12);
+  std::vector<float> ctrl(12 * 12 * 12);
+  for (int k = 0; k < 12; ++k)
+    for (int j = 0; j < 12; ++j)
+      for (int i = 0; i < 12; ++i)
+        ctrl[i + 12 * (j + 12 * k)] = float((7 * i + 3 * j + 5 * k) % 11) / 10.0f;
+  Model bounded(TensorBSpline(knots, std::move(ctrl)), m.domain(), 0.0, 1.0);
+  bounded.setBoundary(std::make_shared<const DomainBoundary>(*m.boundary()));
+  RenderSettings s;
+  s.width = 96;
+  s.height = 80;
+  s.camera.position = Vec3d(0.7, 0.4, 5);
+  s.camera.focalPoint = Vec3d(0, 0, 0);
+  s.camera.viewUp = Vec3d(0, 1, 0);
+  s.camera.viewAngle = 30;
+  s.sampleDistance = 0.01;
+  s.transferFunction.space = TfSpace::Data;
+  s.transferFunction.color = {{0.0, Vec3f(0, 0, 1)}, {1.0, Vec3f(1, 0.5, 0)}};
+  s.transferFunction.opacity = {{0.0, 0.0f}, {0.6, 0.0f}, {0.7, 1.0f}, {1.0, 1.0f}};
+  for (bool shade : {false, true}) {
+    s.shade = shade;
+    RenderStats on, off;
+    const Image skipping = renderVolume(ModelField(bounded), s, &on);
+    s.skipEmptySpace = false;
+    const Image every = renderVolume(ModelField(bounded), s, &off);
+    s.skipEmptySpace = true;
+    EXPECT_GT(on.skipped, 0);
+    EXPECT_EQ(skipping.rgba, every.rgba) << (shade ? "shaded" : "unshaded");
+  }
+}
+
 }  // namespace
 }  // namespace mfadvr

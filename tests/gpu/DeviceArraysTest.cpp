@@ -46,6 +46,7 @@ std::vector<const Model*> models() {
   for (int p = 1; p <= 5; ++p) out.push_back(&mlModel(p));
   out.push_back(&mixedDegreeModel());
   out.push_back(&maskedModel());
+  out.push_back(&boundedModel());
   return out;
 }
 
@@ -54,8 +55,9 @@ TEST(DeviceArrays, SizesAreThoseOfTheOwningContainers) {
     ModelView view;
     view.spline = m->spline().view();
     view.mask = m->mask().view();
+    if (m->boundary()) view.boundary = m->boundary()->view();
     const std::vector<HostArray> arrays = gpu::modelArrays(view);
-    ASSERT_EQ(arrays.size(), 10u + (m->mask().empty() ? 0u : 1u));
+    ASSERT_EQ(arrays.size(), 10u + (m->mask().empty() ? 0u : 1u) + (m->boundary() ? 2u : 0u));
     EXPECT_EQ(arrays[0].data, m->spline().controlPoints().data());
     EXPECT_EQ(arrays[0].bytes, m->spline().controlPoints().size() * sizeof(float));
     for (int a = 0; a < 3; ++a) {
@@ -66,12 +68,16 @@ TEST(DeviceArrays, SizesAreThoseOfTheOwningContainers) {
     if (!m->mask().empty()) {
       EXPECT_EQ(arrays[10].bytes, m->mask().nodes().size());
     }
+    if (const DomainBoundary* b = m->boundary()) {
+      EXPECT_EQ(arrays[11].bytes, std::size_t(b->view().nodeCount) * sizeof(BoundaryNode));
+      EXPECT_EQ(arrays[12].bytes, b->triangles().size() * 9 * sizeof(double));
+    }
     EXPECT_GT(gpu::totalBytes(arrays), arrays[0].bytes);
   }
 }
 
 TEST(DeviceArrays, RelocatedCopiesRenderTheCpuImage) {
-  int renders = 0, skipping = 0, withRayEnds = 0;
+  int renders = 0, skipping = 0, withRayEnds = 0, bounded = 0;
   for (const Model* m : models())
     for (const TransferFunction& tf : {transferFunctions()[0], transferFunctions()[2]})
       for (bool shade : {false, true}) {
@@ -106,6 +112,12 @@ TEST(DeviceArrays, RelocatedCopiesRenderTheCpuImage) {
         if (view.mask.nodes) {
           EXPECT_TRUE(model.owns(view.mask.nodes));
         }
+        EXPECT_EQ(view.boundary.nodes != nullptr, m->boundary() != nullptr);
+        if (view.boundary.nodes) {
+          EXPECT_TRUE(model.owns(view.boundary.nodes));
+          EXPECT_TRUE(model.owns(view.boundary.triangles));
+          ++bounded;
+        }
         if (view.empty) {
           EXPECT_TRUE(flags->owns(view.empty));
           EXPECT_EQ(view.emptyPyramid, nullptr);  // the device's rays read the cells only
@@ -122,9 +134,10 @@ TEST(DeviceArrays, RelocatedCopiesRenderTheCpuImage) {
         EXPECT_EQ(relocated.rgba, cpu.rgba) << "shade " << shade;
         ++renders;
       }
-  EXPECT_EQ(renders, 28);
+  EXPECT_EQ(renders, 32);
   EXPECT_GT(skipping, 0);
-  EXPECT_EQ(withRayEnds, 14);
+  EXPECT_EQ(withRayEnds, 16);
+  EXPECT_EQ(bounded, 4);
 }
 
 // The gradient-opacity and 2-D tables travel with the frame.

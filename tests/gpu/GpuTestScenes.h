@@ -1,12 +1,14 @@
 #pragma once
 // Scenes of the GPU tests: Marschner-Lobb models of every kernel the GPU instantiates (degrees 1
-// to 5, mixed degrees, a domain mask) and transfer functions of every kind. Synthetic: the test
+// to 5, mixed degrees, a domain mask, a mesh's exact boundary) and transfer functions of every
+// kind. Synthetic: the test
 // program must run on a machine without data files.
 #include <map>
 
 #include "TestSupport.h"
 #include "core/analytic/BuiltinFunction.h"
 #include "core/encode/StructuredEncoder.h"
+#include "core/mask/DomainBoundary.h"
 #include "core/model/Model.h"
 #include "core/render/RenderSettings.h"
 
@@ -46,6 +48,28 @@ inline const Model& maskedModel() {
   static const Model m = [] {
     Model copy = mlModel(3);
     copy.setMask(test::ballMask());
+    return copy;
+  }();
+  return m;
+}
+
+// A mesh's model: mlModel(3) on the octahedron of 8 tetrahedra around the box's centre, its
+// corners 0.45 of the box's width from the centre. The exact boundary, not the ball mask it also
+// carries, decides what is inside.
+inline const Model& boundedModel() {
+  static const Model m = [] {
+    Model copy = mlModel(3);
+    copy.setMask(test::ballMask());
+    const Vec3d c = 0.5 * (copy.domain().min + copy.domain().max);
+    const double r = 0.45 * (copy.domain().max - copy.domain().min)[0];
+    std::vector<Vec3d> points{c};
+    for (int a = 0; a < 3; ++a)
+      for (double side : {r, -r}) points.push_back(c + side * Vec3d::Unit(a));
+    std::vector<Tetrahedron> tets;
+    for (int sx : {1, 2})
+      for (int sy : {3, 4})
+        for (int sz : {5, 6}) tets.push_back({0, sx, sy, sz});
+    copy.setBoundary(std::make_shared<const DomainBoundary>(boundaryOfTetrahedra(points, tets)));
     return copy;
   }();
   return m;

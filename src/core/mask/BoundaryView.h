@@ -14,8 +14,8 @@
 // direction, and are merged into one (mergeCrossings). A line through a silhouette edge touches
 // the surface: one entry and one exit at the same distance, which cancel.
 //
-// Plain arrays and no allocation: the host's ray caster calls it per ray
-// (SplineRaySampler::beginRay), Model::inside per point.
+// Plain arrays and no allocation: the ray casters (host and device) call it once per ray
+// (SplineRaySampler::inside), Model::inside per point.
 #include <cstdint>
 
 #include "core/util/HostDevice.h"
@@ -32,7 +32,7 @@ struct BoundaryNode {
 struct BoundaryView {
   const BoundaryNode* nodes = nullptr;  // null: no boundary
   const double* triangles = nullptr;    // 9 per triangle: a, b, c with (b - a) x (c - a) outward
-  std::int32_t nodeCount = 0;
+  std::int32_t nodeCount = 0, triangleCount = 0;
   // The box diagonal: the scale of the distance below which two crossings are one.
   double scale = 1.0;
 };

@@ -115,6 +115,7 @@ BoundaryView DomainBoundary::view() const {
   v.nodes = nodes_.data();
   v.triangles = leafTriangles_.data();
   v.nodeCount = static_cast<std::int32_t>(nodes_.size());
+  v.triangleCount = static_cast<std::int32_t>(leafTriangles_.size() / 9);
   v.scale = scale_;
   return v;
 }

@@ -62,8 +62,8 @@ class Model {
   const DomainMask& mask() const { return mask_; }
   void setMask(DomainMask mask) { mask_ = std::move(mask); }
   // Models of meshes also carry the mesh's exact boundary (DomainBoundary.h), which then decides
-  // what is inside; the mask stays for readers and renderers that do not use the boundary (the
-  // GPU's) and for rays that cross the boundary more often than the renderer follows.
+  // what is inside; the mask stays for readers that do not use the boundary and for rays that
+  // cross the boundary more often than the renderer follows.
   const DomainBoundary* boundary() const { return boundary_ ? boundary_.get() : nullptr; }
   void setBoundary(std::shared_ptr<const DomainBoundary> boundary) {
     boundary_ = boundary && !boundary->empty() ? std::move(boundary) : nullptr;

@@ -81,9 +81,11 @@ void castRays(const RenderSettings& settings, const RayParams& params, const Mak
           }
 #endif
           if constexpr (marchesRaysApart<decltype(sampler)>()) {
-            // The way in through empty space, kMarchGroup rays at a time.
+            // The way in through empty space, kMarchGroup rays at a time; not through a mesh's
+            // exact boundary, which the sampler holds for one ray at a time.
             constexpr int G = kMarchGroup;
-            for (; composite && x + G <= x1; x += G) {
+            const bool interleaved = composite && !(Masked && sampler.insideFollowsTheRay());
+            for (; interleaved && x + G <= x1; x += G) {
               RaySegment segment[G];
               const RaySegment* rays[G];
               RayStart start[G];

@@ -31,11 +31,11 @@ constexpr bool marchesRaysApart() {
 // only the profiling build's (its time counts as the rays', as marching and as marching ahead,
 // its checks and jumps as such).
 // Masked: samples outside the sampler's domain mask are passed over uncounted, as
-// integrateSegment does.
+// integrateSegment does; the mask, not a mesh's boundary, which the sampler follows for one ray
+// at a time (insideFollowsTheRay(): the caller does not march such rays here).
 template <int G, bool Masked, class Sampler>
-MFADVR_INLINE void marchIn(const RayParams& rp, const Sampler& sampler,
-                           const RaySegment* const rays[G], RayStart start[G],
-                           [[maybe_unused]] RayCounters& counters) {
+MFADVR_INLINE void marchIn(const RayParams& rp, Sampler& sampler, const RaySegment* const rays[G],
+                           RayStart start[G], [[maybe_unused]] RayCounters& counters) {
 #if MFADVR_EMPTY_SPACE_PROFILE
   const std::int64_t marchStart = cycleCount();
 #endif

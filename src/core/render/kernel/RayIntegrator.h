@@ -45,6 +45,9 @@
 // This is the composite blend; the other blend modes reduce the same samples (RayReduction.h)
 // or walk the ray for isosurfaces (IsoSurfaceWalk.h), chosen per ray from rp.blend. With rp.depth,
 // each ray records where its opacity first reaches 0.5 (the midpoint of that sample's step).
+// A driver may compile the composite blend and the others as separate kernels (RayBlends): on a
+// GPU one kernel for all of them carries the isosurface walk's registers and stack into every
+// composite ray (measured 1.5x slower, docs/gpu.md).
 #include "core/render/kernel/IsoSurfaceWalk.h"
 #include "core/render/kernel/RayReduction.h"
 #include "core/render/kernel/RaySteps.h"
@@ -60,26 +63,12 @@ inline constexpr bool kReducesWithSkipping = false;
 inline constexpr bool kReducesWithSkipping = true;
 #endif
 
-// Integrates the segment (raySegment; null: the ray misses the box) from `start` into out.
+// The composite blend of the segment (null: the ray misses the box) from `start` into out.
 template <bool Masked, bool Shade, class Sampler>
-MFADVR_HD MFADVR_INLINE void integrateSegment(const RayParams& rp, Sampler& sampler,
+MFADVR_HD MFADVR_INLINE void compositeSegment(const RayParams& rp, Sampler& sampler,
                                               const RaySegment* segment, RayStart start,
                                               float out[4], RayCounters& counters) {
   float red = 0.0f, green = 0.0f, blue = 0.0f, alpha = 0.0f;
-  if (segment && rp.blend != BlendMode::Composite) {
-    ++counters.hits;
-    if (rp.blend == BlendMode::Iso) {
-      isoSegment<Masked, Shade>(rp, sampler, *segment, out, counters);
-    } else if constexpr (!Sampler::kSkipsEmptySpace || (!Shade && kReducesWithSkipping)) {
-      reduceSegment<Masked>(rp, sampler, *segment, out, counters);
-    } else {
-      // Not reached: the other blends skip in unshaded renders on the host only
-      // (ModelRenderSetup, CudaRenderer), and leaving the reduction out of the other skipping
-      // loops keeps their compilation shorter.
-      overBackground(rp, 0.0f, 0.0f, 0.0f, 0.0f, out);
-    }
-    return;
-  }
   float depth = NAN;  // where alpha first reaches 0.5 (rp.depth)
   if (segment) {
     const RaySegment& ray = *segment;
@@ -234,12 +223,48 @@ MFADVR_HD MFADVR_INLINE void integrateSegment(const RayParams& rp, Sampler& samp
   overBackground(rp, red, green, blue, alpha, out);
 }
 
-template <bool Masked, bool Shade, class Sampler>
+// Which blends an instantiation of the integration renders: every one (chosen per ray from
+// rp.blend), only the composite blend, or only the others (rp.blend is not Composite).
+enum class RayBlends { Any, Composite, Others };
+
+// Integrates the segment (raySegment; null: the ray misses the box) from `start` into out.
+template <bool Masked, bool Shade, RayBlends Blends = RayBlends::Any, class Sampler>
+MFADVR_HD MFADVR_INLINE void integrateSegment(const RayParams& rp, Sampler& sampler,
+                                              const RaySegment* segment, RayStart start,
+                                              float out[4], RayCounters& counters) {
+  if constexpr (Blends == RayBlends::Others) {
+    if (!segment) {
+      overBackground(rp, 0.0f, 0.0f, 0.0f, 0.0f, out);
+      return;
+    }
+  }
+  if constexpr (Blends != RayBlends::Composite) {
+    if (segment && (Blends == RayBlends::Others || rp.blend != BlendMode::Composite)) {
+      ++counters.hits;
+      if (rp.blend == BlendMode::Iso) {
+        isoSegment<Masked, Shade>(rp, sampler, *segment, out, counters);
+      } else if constexpr (!Sampler::kSkipsEmptySpace || (!Shade && kReducesWithSkipping)) {
+        reduceSegment<Masked>(rp, sampler, *segment, out, counters);
+      } else {
+        // Not reached: the other blends skip in unshaded renders on the host only
+        // (ModelRenderSetup, CudaRenderer), and leaving the reduction out of the other skipping
+        // loops keeps their compilation shorter.
+        overBackground(rp, 0.0f, 0.0f, 0.0f, 0.0f, out);
+      }
+      return;
+    }
+  }
+  if constexpr (Blends != RayBlends::Others)
+    compositeSegment<Masked, Shade>(rp, sampler, segment, start, out, counters);
+}
+
+template <bool Masked, bool Shade, RayBlends Blends = RayBlends::Any, class Sampler>
 MFADVR_HD MFADVR_INLINE void integrateRay(const RayParams& rp, Sampler& sampler, int x, int y,
                                           float out[4], RayCounters& counters) {
   RaySegment ray;
   const bool hits = raySegment(rp, x, y, ray);
-  integrateSegment<Masked, Shade>(rp, sampler, hits ? &ray : nullptr, RayStart{}, out, counters);
+  integrateSegment<Masked, Shade, Blends>(rp, sampler, hits ? &ray : nullptr, RayStart{}, out,
+                                          counters);
 }
 
 }  // namespace mfadvr

@@ -142,28 +142,24 @@ class SplineRaySampler {
 
   MFADVR_HD MFADVR_INLINE void beginRay(const double o[3], const double d[3]) {
     if constexpr (Skip) beginMarch(o, d, march_);
-#if !defined(__CUDA_ARCH__)
-    // The ray's stretches inside the mesh's boundary: inside() then tests a sample's distance
-    // against them (the host only: the device keeps its stack for the spline).
-    boundaryStretches_ = -1;
+    // The ray's stretches inside the mesh's boundary are gathered at its first inside() test
+    // (only masked renders test; the unmasked kernels leave the traversal out).
     if (m_.boundary.nodes) {
-      boundaryStretches_ = boundaryIntervals(m_.boundary, o, d, boundaryIntervals_);
-      double dd = 0.0;
       for (int a = 0; a < 3; ++a) {
         rayOrigin_[a] = o[a];
         rayDirection_[a] = d[a];
-        dd += d[a] * d[a];
       }
-      rayInverseLength2_ = dd > 0.0 ? 1.0 / dd : 0.0;
+      boundaryStretches_ = kBoundaryPending;
     }
-#endif
   }
+
+  // Whether inside() answers for the ray of the last beginRay() only (a mesh's exact boundary):
+  // then rays cannot be marched interleaved through one sampler (InterleavedMarch.h).
+  MFADVR_HD MFADVR_INLINE bool insideFollowsTheRay() const { return m_.boundary.nodes != nullptr; }
 
   // The isosurface walk's pieces (kernel/IsoSurfaceWalk.h): inside a knot-span cell the spline
   // along a ray is a polynomial of the degrees' sum.
-  MFADVR_HD MFADVR_INLINE int rayDegree() const {
-    return p_[0] + p_[1] + p_[2];
-  }
+  MFADVR_HD MFADVR_INLINE int rayDegree() const { return p_[0] + p_[1] + p_[2]; }
 
   // Where the ray o + t d leaves the knot-span cell it is in just after t: the nearest knot
   // plane beyond t on any axis (+inf for a ray parallel to every axis's knots).
@@ -190,14 +186,23 @@ class SplineRaySampler {
     return end;
   }
 
-  MFADVR_HD MFADVR_INLINE bool inside(const double p[3]) const {
-#if !defined(__CUDA_ARCH__)
-    if (boundaryStretches_ >= 0) {
-      double t = 0.0;
-      for (int a = 0; a < 3; ++a) t += (p[a] - rayOrigin_[a]) * rayDirection_[a];
-      return inIntervals(boundaryIntervals_, boundaryStretches_, t * rayInverseLength2_);
+  // Inside the mesh's exact boundary (the stretches of the current ray), or, without one or on
+  // a ray of more crossings than kMaxBoundaryCrossings, inside the domain mask.
+  MFADVR_HD MFADVR_INLINE bool inside(const double p[3]) {
+    if (m_.boundary.nodes) {
+      if (boundaryStretches_ == kBoundaryPending) {
+        boundaryStretches_ =
+            boundaryIntervals(m_.boundary, rayOrigin_, rayDirection_, boundaryIntervals_);
+        double dd = 0.0;
+        for (int a = 0; a < 3; ++a) dd += rayDirection_[a] * rayDirection_[a];
+        rayInverseLength2_ = dd > 0.0 ? 1.0 / dd : 0.0;
+      }
+      if (boundaryStretches_ >= 0) {
+        double t = 0.0;
+        for (int a = 0; a < 3; ++a) t += (p[a] - rayOrigin_[a]) * rayDirection_[a];
+        return inIntervals(boundaryIntervals_, boundaryStretches_, t * rayInverseLength2_);
+      }
     }
-#endif
     double u[3];
     toParameter(p, u);
     return insideMask(m_.mask, u);
@@ -325,12 +330,8 @@ class SplineRaySampler {
   }
 
   // The levels of the extreme bounds' bytes (boundedAt).
-  MFADVR_HD MFADVR_INLINE const float* upperLevels() const {
-    return m_.extremeUpperLevels;
-  }
-  MFADVR_HD MFADVR_INLINE const float* lowerLevels() const {
-    return m_.extremeLowerLevels;
-  }
+  MFADVR_HD MFADVR_INLINE const float* upperLevels() const { return m_.extremeUpperLevels; }
+  MFADVR_HD MFADVR_INLINE const float* lowerLevels() const { return m_.extremeLowerLevels; }
 
   MFADVR_HD MFADVR_INLINE void stage(int lane, const double p[3]) {
     if constexpr (kLocateLanes) {
@@ -484,8 +485,9 @@ class SplineRaySampler {
   bool located_ = false;
   AxisLocation loc_[3];
   RayMarch march_;
-  // The current ray's stretches inside the boundary (-1: none, or more than the limit: the
-  // mask decides), and the ray, to turn a sample's point into its distance.
+  // The current ray's stretches inside the boundary (-1: more than the limit, the mask decides;
+  // kBoundaryPending: not gathered yet), and the ray, to turn a sample's point into its distance.
+  static constexpr int kBoundaryPending = -2;
   int boundaryStretches_ = -1;
   double boundaryIntervals_[2 * kMaxBoundaryIntervals];
   double rayOrigin_[3], rayDirection_[3], rayInverseLength2_ = 0.0;
