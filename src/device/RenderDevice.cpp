@@ -45,7 +45,8 @@ RenderDevice openRenderDevice(const std::string& choice, const MethodSpec& spec)
   return d;
 #else
   const std::string why =
-      "this mfadvr was built without the CUDA backend (no nvcc when it was configured)";
+      "this mfadvr was built without the CUDA backend (configured with -DMFADVR_CUDA=OFF, as the "
+      "paraview preset is, or without nvcc)";
   if (required) throw Error(kCudaRequired + why);
   return cpu(why);
 #endif

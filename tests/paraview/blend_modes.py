@@ -5,7 +5,8 @@ curvature transfer function and contour width change the composite and isosurfac
 own MFA Blend Mode (maximum, minimum, average intensity, additive) overrides ParaView's and
 gives it back with "As Blend Mode"; ParaView's cropping box crops (fewer lit pixels, the
 uncropped image back when it is off); ParaView's 2-D transfer function (Use Transfer 2D, a box
-of the 2-D editor) replaces the 1-D maps."""
+of the 2-D editor) replaces the 1-D maps. MFA Device chooses where the mapper renders and MFA
+Device In Use says where it did: CPU gives the automatic choice's image, on the CPU."""
 import os
 import sys
 
@@ -120,5 +121,27 @@ if not differs(green, composite) or not (mean[1] > mean[0] and mean[1] > mean[2]
     sys.exit(f"2-D transfer function: the image is not the green box's (mean {mean})")
 if differs(pixels("transfer-1d-again"), composite):
     sys.exit("Use Transfer 2D off: the composite image did not come back")
-print("blend modes, cropping, the 2-D transfer function, curvature and contours reach the "
-      "mapper; ParaView offers", available)
+
+
+# The device: Auto (the default) and CPU render the same image; MFA Device In Use says where.
+def device_in_use():
+    display.UpdatePropertyInformation()
+    return display.GetProperty("MFADeviceInUse").GetData()
+
+
+print("MFA Device offered:", display.GetProperty("MFADevice").Available)
+automatic = pixels("device-auto")
+auto_in_use = device_in_use()
+display.MFADevice = "CPU"
+on_cpu = pixels("device-cpu")
+cpu_in_use = device_in_use()
+display.MFADevice = "Auto"
+print("device in use: Auto ->", repr(auto_in_use), "; CPU ->", repr(cpu_in_use))
+if not cpu_in_use.startswith("CPU"):
+    sys.exit(f"MFA Device CPU: the device in use is {cpu_in_use!r}")
+if not auto_in_use:
+    sys.exit("MFA Device In Use is empty after an automatic frame")
+if auto_in_use.startswith("CPU") and differs(automatic, on_cpu):
+    sys.exit("MFA Device CPU: the image is not the automatic choice's (also on the CPU)")
+print("blend modes, cropping, the 2-D transfer function, curvature, contours and the device "
+      "reach the mapper; ParaView offers", available)

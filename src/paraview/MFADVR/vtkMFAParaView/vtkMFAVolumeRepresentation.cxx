@@ -66,6 +66,17 @@ void vtkMFAVolumeRepresentation::SetContourColor(double r, double g, double b) {
   this->Modified();
 }
 
+void vtkMFAVolumeRepresentation::SetDevice(int device) {
+  if (this->GetMFAMapper()->GetDevice() != device) {
+    this->GetMFAMapper()->SetDevice(device);
+    this->Modified();
+  }
+}
+
+const char* vtkMFAVolumeRepresentation::GetLastDeviceDescription() {
+  return this->GetMFAMapper()->GetLastDeviceDescription();
+}
+
 void vtkMFAVolumeRepresentation::SetBlendMode(int mode) {
   this->ParaViewBlendMode = mode;
   this->ApplyBlendMode();

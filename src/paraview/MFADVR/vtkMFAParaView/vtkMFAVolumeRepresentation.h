@@ -56,6 +56,17 @@ class VTKMFAPARAVIEW_EXPORT vtkMFAVolumeRepresentation : public vtkImageVolumeRe
   void SetMFABlendMode(int mode);
   //@}
 
+  //@{
+  /**
+   * Where the mapper's ray caster runs (vtkMFAVolumeMapper::SetDevice): 0 auto (a CUDA GPU when
+   * the plugin was built with the CUDA backend and one is usable, else the CPU), 1 the CPU, 2
+   * CUDA (an error and no image when no GPU can render). GetLastDeviceDescription says where the
+   * last frame ran: the GPU's name, or the CPU and why not the GPU.
+   */
+  void SetDevice(int device);
+  const char* GetLastDeviceDescription();
+  //@}
+
  protected:
   vtkMFAVolumeRepresentation();
   ~vtkMFAVolumeRepresentation() override;
