@@ -2,8 +2,9 @@
 // a block's gathers share cache lines). The degree is a template parameter for 1..4 on every
 // axis, as on the CPU; other and mixed degrees take the run-time-degree kernel. The composite
 // blend and the other blends are separate kernels (RayBlends), and the parameters are
-// __grid_constant__ (read where they are, not copied to each thread's stack): together 1.9x
-// faster composite kernels than one kernel for every blend with copied parameters (docs/gpu.md).
+// __grid_constant__ (read where they are, not copied to each thread's stack): together 1.9-2.4x
+// faster composite kernels than one kernel for every blend with copied parameters
+// (docs/benchmarks.md).
 #include <cuda_runtime.h>
 
 #include "core/render/kernel/RayIntegrator.h"

@@ -47,7 +47,7 @@
 // each ray records where its opacity first reaches 0.5 (the midpoint of that sample's step).
 // A driver may compile the composite blend and the others as separate kernels (RayBlends): on a
 // GPU one kernel for all of them carries the isosurface walk's registers and stack into every
-// composite ray (measured 1.5x slower, docs/gpu.md).
+// composite ray (measured 1.3-1.5x slower, docs/benchmarks.md).
 #include "core/render/kernel/IsoSurfaceWalk.h"
 #include "core/render/kernel/RayReduction.h"
 #include "core/render/kernel/RaySteps.h"
