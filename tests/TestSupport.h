@@ -2,12 +2,14 @@
 // Helpers shared by the test programs: where the real data lives, scratch folders.
 #include <cstdlib>
 #include <filesystem>
+#include <memory>
 #include <span>
 #include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
 
+#include "core/mask/DomainBoundary.h"
 #include "core/mask/DomainMask.h"
 #include "core/render/kernel/CameraRays.h"
 #include "core/util/Error.h"
@@ -75,6 +77,18 @@ inline DomainMask ballMask() {
         nodes[i + 17 * (j + 17 * k)] =
             (i - 8) * (i - 8) + (j - 8) * (j - 8) + (k - 8) * (k - 8) <= 49 ? 1 : 0;
   return DomainMask(MaskKind::PointCoverage, dims, nodes);
+}
+
+// The boundary of the octahedron |x - c|_1 <= r, given as 8 tetrahedra around c.
+inline std::shared_ptr<const DomainBoundary> octahedronBoundary(const Vec3d& c, double r) {
+  std::vector<Vec3d> points{c};
+  for (int a = 0; a < 3; ++a)
+    for (double side : {r, -r}) points.push_back(c + side * Vec3d::Unit(a));
+  std::vector<Tetrahedron> tets;
+  for (int sx : {1, 2})
+    for (int sy : {3, 4})
+      for (int sz : {5, 6}) tets.push_back({0, sx, sy, sz});
+  return std::make_shared<const DomainBoundary>(boundaryOfTetrahedra(points, tets));
 }
 
 }  // namespace mfadvr::test

@@ -77,26 +77,22 @@ double timedLaunch(const CameraRays& camera, Launch&& launch) {
   return ms * 1e-3;
 }
 
-template <int P, bool Masked, bool Shade, bool Skip>
-void launchModel(const ModelLaunch& l, dim3 grid, dim3 block) {
-  using Sampler = SplineRaySampler<P, Skip, Shade>;
-  if (l.params.blend == BlendMode::Composite)
-    raysKernel<Masked, Shade, RayBlends::Composite, Sampler, ModelView>
-        <<<grid, block>>>(l.params, l.view, l.image, l.counters);
+// The composite kernel or the other blends' kernel, as params.blend asks.
+template <bool Masked, bool Shade, class Sampler, class View>
+void launchBlend(const RayParams& params, const View& view, float* image,
+                 DeviceRayCounters* counters, dim3 grid, dim3 block) {
+  if (params.blend == BlendMode::Composite)
+    raysKernel<Masked, Shade, RayBlends::Composite, Sampler, View>
+        <<<grid, block>>>(params, view, image, counters);
   else
-    raysKernel<Masked, Shade, RayBlends::Others, Sampler, ModelView>
-        <<<grid, block>>>(l.params, l.view, l.image, l.counters);
+    raysKernel<Masked, Shade, RayBlends::Others, Sampler, View>
+        <<<grid, block>>>(params, view, image, counters);
 }
 
-template <bool Shade>
-void launchGrid(const GridLaunch& l, dim3 grid, dim3 block) {
-  using Sampler = TrilinearRaySampler<Shade>;
-  if (l.params.blend == BlendMode::Composite)
-    raysKernel<false, Shade, RayBlends::Composite, Sampler, GridView>
-        <<<grid, block>>>(l.params, l.grid, l.image, l.counters);
-  else
-    raysKernel<false, Shade, RayBlends::Others, Sampler, GridView>
-        <<<grid, block>>>(l.params, l.grid, l.image, l.counters);
+template <int P, bool Masked, bool Shade, bool Skip>
+void launchModel(const ModelLaunch& l, dim3 grid, dim3 block) {
+  launchBlend<Masked, Shade, SplineRaySampler<P, Skip, Shade>>(l.params, l.view, l.image,
+                                                               l.counters, grid, block);
 }
 
 template <int P>
@@ -149,9 +145,11 @@ double launchModelRays(const ModelLaunch& l) {
 double launchGridRays(const GridLaunch& l) {
   return timedLaunch(l.params.camera, [&](dim3 grid, dim3 block) {
     if (l.shade)
-      launchGrid<true>(l, grid, block);
+      launchBlend<false, true, TrilinearRaySampler<true>>(l.params, l.grid, l.image, l.counters,
+                                                          grid, block);
     else
-      launchGrid<false>(l, grid, block);
+      launchBlend<false, false, TrilinearRaySampler<false>>(l.params, l.grid, l.image, l.counters,
+                                                            grid, block);
   });
 }
 

@@ -8,6 +8,7 @@
 #include <functional>
 #include <random>
 
+#include "TestSupport.h"
 #include "core/field/ModelField.h"
 #include "core/mask/DomainBoundary.h"
 #include "core/model/ModelFile.h"
@@ -205,14 +206,22 @@ Model octahedronModel() {
   for (auto& k : knots) k = KnotVector::clampedUniform(2, 4);
   Model m(TensorBSpline(knots, std::vector<float>(64, 1.0f)),
           DomainBox{Vec3d(-1, -1, -1), Vec3d(1, 1, 1)}, 1.0, 1.0);
-  std::vector<Vec3d> points{{0, 0, 0},  {1, 0, 0}, {-1, 0, 0}, {0, 1, 0},
-                            {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
-  std::vector<Tetrahedron> tets;
-  for (int sx : {1, 2})
-    for (int sy : {3, 4})
-      for (int sz : {5, 6}) tets.push_back({0, sx, sy, sz});
-  m.setBoundary(std::make_shared<const DomainBoundary>(boundaryOfTetrahedra(points, tets)));
+  m.setBoundary(test::octahedronBoundary(Vec3d::Zero(), 1.0));
   return m;
+}
+
+// A camera on the octahedron models, steps of 0.01.
+RenderSettings octahedronView(int width, int height) {
+  RenderSettings s;
+  s.width = width;
+  s.height = height;
+  s.camera.position = Vec3d(0.7, 0.4, 5);
+  s.camera.focalPoint = Vec3d(0, 0, 0);
+  s.camera.viewUp = Vec3d(0, 1, 0);
+  s.camera.viewAngle = 30;
+  s.sampleDistance = 0.01;
+  s.transferFunction.space = TfSpace::Data;
+  return s;
 }
 
 // The chord of the ray o + t d through the octahedron (a convex body: 8 half-spaces).
@@ -269,15 +278,7 @@ TEST(DomainBoundary, ModelInsideAndFileRoundTrip) {
 }
 
 TEST(DomainBoundary, RaysSampleExactlyTheChordsOfTheMesh) {
-  RenderSettings s;
-  s.width = 48;
-  s.height = 40;
-  s.camera.position = Vec3d(0.7, 0.4, 5);
-  s.camera.focalPoint = Vec3d(0, 0, 0);
-  s.camera.viewUp = Vec3d(0, 1, 0);
-  s.camera.viewAngle = 30;
-  s.sampleDistance = 0.01;
-  s.transferFunction.space = TfSpace::Data;
+  RenderSettings s = octahedronView(48, 40);
   s.transferFunction.color = {{0.0, Vec3f(1, 1, 1)}, {2.0, Vec3f(1, 1, 1)}};
   s.transferFunction.opacity = {{0.0, 0.5f}, {2.0, 0.5f}};
   const Model m = octahedronModel();
@@ -323,15 +324,7 @@ TEST(DomainBoundary, SkippingLeavesTheImageOfABoundedModelUnchanged) {
         ctrl[i + 12 * (j + 12 * k)] = float((7 * i + 3 * j + 5 * k) % 11) / 10.0f;
   Model bounded(TensorBSpline(knots, std::move(ctrl)), m.domain(), 0.0, 1.0);
   bounded.setBoundary(std::make_shared<const DomainBoundary>(*m.boundary()));
-  RenderSettings s;
-  s.width = 96;
-  s.height = 80;
-  s.camera.position = Vec3d(0.7, 0.4, 5);
-  s.camera.focalPoint = Vec3d(0, 0, 0);
-  s.camera.viewUp = Vec3d(0, 1, 0);
-  s.camera.viewAngle = 30;
-  s.sampleDistance = 0.01;
-  s.transferFunction.space = TfSpace::Data;
+  RenderSettings s = octahedronView(96, 80);
   s.transferFunction.color = {{0.0, Vec3f(0, 0, 1)}, {1.0, Vec3f(1, 0.5, 0)}};
   s.transferFunction.opacity = {{0.0, 0.0f}, {0.6, 0.0f}, {0.7, 1.0f}, {1.0, 1.0f}};
   for (bool shade : {false, true}) {

@@ -8,7 +8,6 @@
 #include "TestSupport.h"
 #include "core/analytic/BuiltinFunction.h"
 #include "core/encode/StructuredEncoder.h"
-#include "core/mask/DomainBoundary.h"
 #include "core/model/Model.h"
 #include "core/render/RenderSettings.h"
 
@@ -60,16 +59,8 @@ inline const Model& boundedModel() {
   static const Model m = [] {
     Model copy = mlModel(3);
     copy.setMask(test::ballMask());
-    const Vec3d c = 0.5 * (copy.domain().min + copy.domain().max);
-    const double r = 0.45 * (copy.domain().max - copy.domain().min)[0];
-    std::vector<Vec3d> points{c};
-    for (int a = 0; a < 3; ++a)
-      for (double side : {r, -r}) points.push_back(c + side * Vec3d::Unit(a));
-    std::vector<Tetrahedron> tets;
-    for (int sx : {1, 2})
-      for (int sy : {3, 4})
-        for (int sz : {5, 6}) tets.push_back({0, sx, sy, sz});
-    copy.setBoundary(std::make_shared<const DomainBoundary>(boundaryOfTetrahedra(points, tets)));
+    copy.setBoundary(test::octahedronBoundary(0.5 * (copy.domain().min + copy.domain().max),
+                                              0.45 * (copy.domain().max - copy.domain().min)[0]));
     return copy;
   }();
   return m;

@@ -189,19 +189,17 @@ class SplineRaySampler {
   // Inside the mesh's exact boundary (the stretches of the current ray), or, without one or on
   // a ray of more crossings than kMaxBoundaryCrossings, inside the domain mask.
   MFADVR_HD MFADVR_INLINE bool inside(const double p[3]) {
-    if (m_.boundary.nodes) {
-      if (boundaryStretches_ == kBoundaryPending) {
-        boundaryStretches_ =
-            boundaryIntervals(m_.boundary, rayOrigin_, rayDirection_, boundaryIntervals_);
-        double dd = 0.0;
-        for (int a = 0; a < 3; ++a) dd += rayDirection_[a] * rayDirection_[a];
-        rayInverseLength2_ = dd > 0.0 ? 1.0 / dd : 0.0;
-      }
-      if (boundaryStretches_ >= 0) {
-        double t = 0.0;
-        for (int a = 0; a < 3; ++a) t += (p[a] - rayOrigin_[a]) * rayDirection_[a];
-        return inIntervals(boundaryIntervals_, boundaryStretches_, t * rayInverseLength2_);
-      }
+    if (boundaryStretches_ == kBoundaryPending) {
+      boundaryStretches_ =
+          boundaryIntervals(m_.boundary, rayOrigin_, rayDirection_, boundaryIntervals_);
+      double dd = 0.0;
+      for (int a = 0; a < 3; ++a) dd += rayDirection_[a] * rayDirection_[a];
+      rayInverseLength2_ = dd > 0.0 ? 1.0 / dd : 0.0;
+    }
+    if (boundaryStretches_ >= 0) {
+      double t = 0.0;
+      for (int a = 0; a < 3; ++a) t += (p[a] - rayOrigin_[a]) * rayDirection_[a];
+      return inIntervals(boundaryIntervals_, boundaryStretches_, t * rayInverseLength2_);
     }
     double u[3];
     toParameter(p, u);
@@ -485,8 +483,9 @@ class SplineRaySampler {
   bool located_ = false;
   AxisLocation loc_[3];
   RayMarch march_;
-  // The current ray's stretches inside the boundary (-1: more than the limit, the mask decides;
-  // kBoundaryPending: not gathered yet), and the ray, to turn a sample's point into its distance.
+  // The current ray's stretches inside the boundary (-1: no boundary, or more stretches than the
+  // limit: the mask decides; kBoundaryPending: not gathered yet), and the ray, to turn a sample's
+  // point into its distance.
   static constexpr int kBoundaryPending = -2;
   int boundaryStretches_ = -1;
   double boundaryIntervals_[2 * kMaxBoundaryIntervals];
