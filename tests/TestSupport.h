@@ -2,6 +2,7 @@
 // Helpers shared by the test programs: where the real data lives, scratch folders.
 #include <cstdlib>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <span>
 #include <string>
@@ -89,6 +90,50 @@ inline std::shared_ptr<const DomainBoundary> octahedronBoundary(const Vec3d& c, 
     for (int sy : {3, 4})
       for (int sz : {5, 6}) tets.push_back({0, sx, sy, sz});
   return std::make_shared<const DomainBoundary>(boundaryOfTetrahedra(points, tets));
+}
+
+struct TetMesh {
+  std::vector<Vec3d> points;
+  std::vector<Tetrahedron> tets;
+};
+
+// Unit cubes [i, i+1] x [j, j+1] x [k, k+1] of an n^3 grid where keep(i, j, k), each split into
+// the 6 tetrahedra around its main diagonal (a conforming mesh). shared = false: every cube has
+// points of its own, as the blocks of a multi-block mesh repeat the points where they meet.
+inline TetMesh cubeMesh(int n, const std::function<bool(int, int, int)>& keep, bool shared = true) {
+  TetMesh m;
+  const int np = n + 1;
+  if (shared)
+    for (int k = 0; k < np; ++k)
+      for (int j = 0; j < np; ++j)
+        for (int i = 0; i < np; ++i) m.points.emplace_back(i, j, k);
+  const int perms[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        if (!keep(i, j, k)) continue;
+        std::int64_t base = 0;
+        if (!shared) {
+          base = static_cast<std::int64_t>(m.points.size());
+          for (int c = 0; c < 8; ++c)
+            m.points.emplace_back(i + (c & 1), j + (c >> 1 & 1), k + (c >> 2));
+        }
+        auto id = [&](int x, int y, int z) -> std::int64_t {
+          if (shared) return x + np * (y + std::int64_t(np) * z);
+          return base + (x - i) + 2 * (y - j) + 4 * (z - k);
+        };
+        for (const auto& p : perms) {
+          int at[3] = {i, j, k};
+          Tetrahedron t;
+          t[0] = id(at[0], at[1], at[2]);
+          for (int s = 0; s < 3; ++s) {
+            ++at[p[s]];
+            t[s + 1] = id(at[0], at[1], at[2]);
+          }
+          m.tets.push_back(t);
+        }
+      }
+  return m;
 }
 
 }  // namespace mfadvr::test

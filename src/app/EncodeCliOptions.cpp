@@ -76,6 +76,13 @@ void EncodeCliOptions::addTo(CLI::App* sub, const std::string& group) {
          "meshes (control points gather where the mesh is refined), 0 for point clouds "
          "(docs/encoding.md)")
       ->group(group);
+  sub->add_option(
+         "--cell-samples", cellSamples,
+         "Meshes: also fit the mesh's own field (linear in each tetrahedron) at N points inside "
+         "every tetrahedron: 0 (the points alone; default), 1 (centroids) or 4. Ties the model to "
+         "the mesh between its points, so that finer control grids (--ctrl) follow it instead "
+         "of ringing; fits take longer (docs/encoding.md)")
+      ->group(group);
   sub->add_option("--mask-res", maskRes,
                   "Scattered data: domain-mask nodes N (longest axis) or NX,NY,NZ (default: 128 "
                   "along the longest axis for meshes, from the point count for point clouds)")
@@ -136,6 +143,12 @@ EncodeOptions EncodeCliOptions::parse() const {
     if (!(w >= 0.0 && w < 1.0))
       throw CLI::ValidationError("--knot-density", "must lie in [0, 1), got '" + knotDensity + "'");
     o.knotDensity = w;
+  }
+  if (!cellSamples.empty()) {
+    const double n = parseNumberList("--cell-samples", cellSamples, 1, 1)[0];
+    if (n != 0.0 && n != 1.0 && n != 4.0)
+      throw CLI::ValidationError("--cell-samples", "must be 0, 1 or 4, got '" + cellSamples + "'");
+    o.cellSamples = static_cast<int>(n);
   }
   if (!maskRes.empty()) {
     const auto n = parseIntTriple("--mask-res", maskRes);

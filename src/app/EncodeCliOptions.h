@@ -11,7 +11,8 @@ namespace mfadvr::app {
 
 class EncodeCliOptions {
  public:
-  std::string degree = "3", ctrl, smooth, maxError, maxCtrl, maskRes, dequantize, knotDensity;
+  std::string degree = "3", ctrl, smooth, maxError, maxCtrl, maskRes, dequantize, knotDensity,
+              cellSamples;
   int maxRounds = 30;
   bool noMask = false;
   bool noBoundary = false;
@@ -24,9 +25,9 @@ class EncodeCliOptions {
   // cannot carry: fitDefaultDegreeToGrid lowers it there).
   bool degreeGiven() const { return degreeOption_ && degreeOption_->count() > 0; }
   // Whether one of the options of scattered inputs only was given (--mask-res, --no-mask,
-  // --no-boundary, --knot-density).
+  // --no-boundary, --knot-density, --cell-samples).
   bool scatteredOnlyGiven() const {
-    return !maskRes.empty() || noMask || noBoundary || !knotDensity.empty();
+    return !maskRes.empty() || noMask || noBoundary || !knotDensity.empty() || !cellSamples.empty();
   }
   // Without --degree: the degree of each axis of a `dims` grid at most its samples - 1 (a
   // degree-p axis needs p + 1 samples), so that small grids (AMR patches, thin slabs) encode

@@ -298,8 +298,9 @@ Command addEncodeCommand(CLI::App& app) {
         throw CLI::ValidationError("--strict",
                                    "applies to adaptive encoding; give --max-error too");
       if (o->encode.scatteredOnlyGiven())
-        throw CLI::ValidationError("--mask-res/--no-mask/--no-boundary/--knot-density",
-                                   "apply to meshes and point clouds");
+        throw CLI::ValidationError(
+            "--mask-res/--no-mask/--no-boundary/--knot-density/--cell-samples",
+            "apply to meshes and point clouds");
       const bool progress = wantProgress(o->quiet || o->json);
       if (progress) {
         std::cerr << "reading the series " << o->input << "\n";
@@ -320,7 +321,7 @@ Command addEncodeCommand(CLI::App& app) {
       throw CLI::ValidationError("--strict", "applies to adaptive encoding; give --max-error too");
     if (!scattered && o->encode.scatteredOnlyGiven())
       throw CLI::ValidationError(
-          "--mask-res/--no-mask/--no-boundary/--knot-density",
+          "--mask-res/--no-mask/--no-boundary/--knot-density/--cell-samples",
           "apply to meshes and point clouds; " + o->input + " is a regular grid");
     const BlockRequest blockRequest{o->blocks, o->ghost, o->memoryLimit};
     if (!o->blocks.empty() && scattered)

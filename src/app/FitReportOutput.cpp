@@ -29,7 +29,11 @@ std::string formatFitReport(const FitReport& r, const std::string& modelPath) {
   o << "source          " << r.source << "\n";
   if (r.points > 0)
     o << "input           " << (r.inputKind.empty() ? "points" : r.inputKind) << ", "
-      << groupDigits(r.points) << " points  (" << groupDigits(r.inputBytes) << " bytes)\n";
+      << groupDigits(r.points) << " points  (" << groupDigits(r.inputBytes) << " bytes)"
+      << (r.cellSamples > 0 ? "; fitted with " + groupDigits(r.cellSamples) +
+                                  " samples inside the cells (errors at both)"
+                            : std::string())
+      << "\n";
   if (!r.field.empty())
     o << "field           " << r.field
       << (r.fieldAssociation.empty() ? "" : "  (" + r.fieldAssociation + ")") << "\n";
@@ -117,6 +121,7 @@ nlohmann::json fitReportJson(const FitReport& r, const std::string& modelPath) {
       {"source", r.source},
       {"encoder", r.encoder},
       {"points", r.points},
+      {"cell_samples", r.cellSamples},
       {"input_kind", r.inputKind},
       {"field", r.field},
       {"field_association", r.fieldAssociation},

@@ -341,7 +341,7 @@ PyModel encodeArraySeries(const py::array& array, const py::object& spacing,
   return translated([&] {
     EncodeOptions options = keywords.options();
     if (keywords.encode.scatteredOnlyGiven())
-      throw CLI::ValidationError("mask_res/no_mask/no_boundary/knot_density",
+      throw CLI::ValidationError("mask_res/no_mask/no_boundary/knot_density/cell_samples",
                                  "apply to meshes and point clouds");
     FitReport report;
     std::vector<std::string> notes;
@@ -370,7 +370,7 @@ PyModel encodeArray(const py::array& array, const py::object& spacing, const py:
   return translated([&] {
     EncodeOptions options = keywords.options();
     if (encode.scatteredOnlyGiven())
-      throw CLI::ValidationError("mask_res/no_mask/no_boundary/knot_density",
+      throw CLI::ValidationError("mask_res/no_mask/no_boundary/knot_density/cell_samples",
                                  "apply to meshes and point clouds");
     app::requireBlockOptions(keywords.blocks, options, false);
     for (const std::string& note : encode.fitDefaultDegreeToGrid(options, grid.dims))

@@ -1,5 +1,6 @@
 // A mesh's exact boundary through the command line: encode stores it (and --no-boundary does
-// not), info shows it, query's inside column follows it where the voxel mask cannot.
+// not), info shows it, query's inside column follows it where the voxel mask cannot. And the
+// mesh's cell samples (--cell-samples) in encode's report and refusals.
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -97,6 +98,29 @@ TEST(BoundaryCli, EncodeStoresTheBoundaryAndQueryFollowsIt) {
   r = test::runMfadvr("render " + exact + " -o " + (dir / "exact.png").string() +
                       " --size 64x64 --tf ramp --json");
   ASSERT_EQ(r.status, 0) << r.err;
+}
+
+TEST(BoundaryCli, CellSamplesAreCountedAndBadCountsRefused) {
+  const auto dir = test::scratchDir();
+  const std::string mesh = (dir / "holed.vtk").string();
+  writeHoledMesh(mesh);
+  const std::string model = (dir / "cells.mfa").string();
+  auto r = test::runMfadvr("encode " + mesh + " -o " + model + " --cell-samples 4 --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["points"], 125);
+  EXPECT_EQ(j["cell_samples"], 4 * 6 * (64 - 8 - 1));  // 4 in each tetrahedron of 55 cubes
+  r = test::runMfadvr("encode " + mesh + " -o " + model + " --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(r.out)["cell_samples"], 0);
+  const std::string refused = (dir / "refused.mfa").string();
+  for (const std::string& bad : {mesh + " --cell-samples 2", mesh + " --cell-samples x",
+                                 std::string("builtin:gaussian-beam:16 --cell-samples 1")}) {
+    r = test::runMfadvr("encode " + bad + " -o " + refused);
+    EXPECT_NE(r.status, 0) << bad;
+    EXPECT_NE(r.err.find("--cell-samples"), std::string::npos) << bad << ": " << r.err;
+    EXPECT_FALSE(std::filesystem::exists(refused)) << bad;
+  }
 }
 
 }  // namespace

@@ -19,49 +19,7 @@
 namespace mfadvr {
 namespace {
 
-struct Mesh {
-  std::vector<Vec3d> points;
-  std::vector<Tetrahedron> tets;
-};
-
-// Unit cubes [i, i+1] x [j, j+1] x [k, k+1] of an n^3 grid where keep(i, j, k), each split into
-// the 6 tetrahedra around its main diagonal (a conforming mesh). shared = false: every cube has
-// points of its own, as the blocks of a multi-block mesh repeat the points where they meet.
-Mesh cubes(int n, const std::function<bool(int, int, int)>& keep, bool shared = true) {
-  Mesh m;
-  const int np = n + 1;
-  if (shared)
-    for (int k = 0; k < np; ++k)
-      for (int j = 0; j < np; ++j)
-        for (int i = 0; i < np; ++i) m.points.emplace_back(i, j, k);
-  const int perms[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
-  for (int k = 0; k < n; ++k)
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i) {
-        if (!keep(i, j, k)) continue;
-        std::int64_t base = 0;
-        if (!shared) {
-          base = static_cast<std::int64_t>(m.points.size());
-          for (int c = 0; c < 8; ++c)
-            m.points.emplace_back(i + (c & 1), j + (c >> 1 & 1), k + (c >> 2));
-        }
-        auto id = [&](int x, int y, int z) -> std::int64_t {
-          if (shared) return x + np * (y + std::int64_t(np) * z);
-          return base + (x - i) + 2 * (y - j) + 4 * (z - k);
-        };
-        for (const auto& p : perms) {
-          int at[3] = {i, j, k};
-          Tetrahedron t;
-          t[0] = id(at[0], at[1], at[2]);
-          for (int s = 0; s < 3; ++s) {
-            ++at[p[s]];
-            t[s + 1] = id(at[0], at[1], at[2]);
-          }
-          m.tets.push_back(t);
-        }
-      }
-  return m;
-}
+using Mesh = test::TetMesh;
 
 bool all(int, int, int) {
   return true;
@@ -75,7 +33,7 @@ bool holed(int i, int j, int k) {
 }
 
 TEST(DomainBoundary, FacesOfOneTetrahedronOnlyOrientedOutward) {
-  const Mesh m = cubes(2, all);
+  const Mesh m = test::cubeMesh(2, all);
   const DomainBoundary b = boundaryOfTetrahedra(m.points, m.tets);
   EXPECT_EQ(b.triangles().size(), 48u);  // 6 faces x 4 squares x 2 triangles
   EXPECT_EQ(b.vertices().size(), 26u);   // the 27 grid points less the centre
@@ -88,7 +46,7 @@ TEST(DomainBoundary, FacesOfOneTetrahedronOnlyOrientedOutward) {
 }
 
 TEST(DomainBoundary, PointsRepeatedWhereBlocksMeetAreWelded) {
-  const Mesh m = cubes(2, all, false);
+  const Mesh m = test::cubeMesh(2, all, false);
   EXPECT_EQ(m.points.size(), 64u);
   const DomainBoundary b = boundaryOfTetrahedra(m.points, m.tets);
   EXPECT_EQ(b.triangles().size(), 48u);  // the faces between the cubes are not boundary
@@ -96,7 +54,7 @@ TEST(DomainBoundary, PointsRepeatedWhereBlocksMeetAreWelded) {
 
 TEST(DomainBoundary, ContainsTheCubesAndNotTheCavityOrTheNotch) {
   for (bool shared : {true, false}) {
-    const Mesh m = cubes(4, holed, shared);
+    const Mesh m = test::cubeMesh(4, holed, shared);
     const DomainBoundary b = boundaryOfTetrahedra(m.points, m.tets);
     std::mt19937 rng(3);
     std::uniform_real_distribution<double> u(-0.5, 4.5);
@@ -117,7 +75,7 @@ TEST(DomainBoundary, ContainsTheCubesAndNotTheCavityOrTheNotch) {
 }
 
 TEST(DomainBoundary, LinesThroughEdgesAndVerticesCrossOnce) {
-  const Mesh m = cubes(3, all);
+  const Mesh m = test::cubeMesh(3, all);
   const DomainBoundary b = boundaryOfTetrahedra(m.points, m.tets);
   const BoundaryView v = b.view();
   double intervals[2 * kMaxBoundaryIntervals];
@@ -194,7 +152,7 @@ TEST(DomainBoundary, BadTrianglesAreClearErrors) {
                Error);
   EXPECT_THROW(DomainBoundary({Vec3f(0, 0, 0), Vec3f(NAN, 0, 0), Vec3f(0, 1, 0)}, {{0, 1, 2}}),
                Error);
-  Mesh m = cubes(1, all);
+  Mesh m = test::cubeMesh(1, all);
   m.tets[0][2] = 99;
   EXPECT_THROW(boundaryOfTetrahedra(m.points, m.tets), Error);
 }

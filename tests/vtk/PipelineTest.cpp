@@ -13,8 +13,8 @@
 #include <vtkImageData.h>
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
-#include <vtkObjectFactory.h>
 #include <vtkNew.h>
+#include <vtkObjectFactory.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
@@ -550,6 +550,21 @@ TEST(MFAEncoder, FitsATetrahedralMeshWithAMask) {
   EXPECT_TRUE(out->HasDomainMask());
   EXPECT_TRUE(out->IsInside(0.1, 0.2, -0.3));
   EXPECT_LT(encoder->GetLastRMSRelativeError(), 0.1);
+
+  // Cell samples (encode --cell-samples) change the fit, not its quality here; a count the
+  // encoder has no rule for is an error without output.
+  const double plain = out->EvaluateValue(0.1, 0.2, -0.3);
+  encoder->SetCellSamples(1);
+  encoder->Update();
+  ASSERT_TRUE(encoder->GetOutput()->HasModel());
+  EXPECT_NE(encoder->GetOutput()->EvaluateValue(0.1, 0.2, -0.3), plain);
+  EXPECT_LT(encoder->GetLastRMSRelativeError(), 0.1);
+  ErrorLog log(encoder);
+  encoder->SetCellSamples(2);
+  encoder->Update();
+  EXPECT_FALSE(encoder->GetOutput()->HasModel());
+  EXPECT_NE(log.text.find("1 or 4"), std::string::npos) << log.text;
+  encoder->SetCellSamples(0);
 
   encoder->DomainMaskOff();
   encoder->Update();

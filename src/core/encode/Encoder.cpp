@@ -3,12 +3,14 @@
 #include <chrono>
 #include <cmath>
 #include <memory>
+#include <optional>
 
 #include "core/encode/CodingChoice.h"
 #include "core/encode/Dequantizer.h"
 #include "core/encode/ScatteredSmoothingChoice.h"
 #include "core/mask/DomainBoundary.h"
 #include "core/mask/MaskVoxelizer.h"
+#include "core/mesh/CellSamples.h"
 #include "core/model/ModelFile.h"
 #include "core/util/Error.h"
 
@@ -220,6 +222,18 @@ Model encodeScattered(const ScatteredData& data, const EncodeOptions& options, F
     throw Error("--dequantize is for regular grids of quantized samples, not meshes or points");
   fit.smoothing = options.smoothing.value_or(kDefaultSmoothing);
   fit.knotDensity = options.knotDensity.value_or(data.hasCells() ? kDefaultMeshKnotDensity : 0.0);
+  // With cell samples the fit sees more samples than the mesh has points; its default control
+  // counts stay those of the points (the mesh's own resolution; adaptive fits start small
+  // anyway).
+  std::optional<ScatteredData> withCells;
+  if (options.cellSamples != 0) {
+    if (!data.hasCells())
+      throw Error(data.source +
+                  ": cell samples (--cell-samples) need a mesh; a point cloud has no cells");
+    if (!options.adaptive) fit.controlCounts = resolveScatteredControlCounts(data, fit);
+    withCells = withCellSamples(data, options.cellSamples);
+  }
+  const ScatteredData& fitData = withCells ? *withCells : data;
   std::string smoothingNote;
   if (options.autoSmoothing) {
     // The choice takes most of the time: several fits of 7/8 of the points.
@@ -228,7 +242,7 @@ Model encodeScattered(const ScatteredData& data, const EncodeOptions& options, F
       choose.progress = [&](double f, const std::string& stage) {
         options.progress(0.7 * f, stage);
       };
-    const ScatteredSmoothingChoice choice = chooseScatteredSmoothing(data, choose);
+    const ScatteredSmoothingChoice choice = chooseScatteredSmoothing(fitData, choose);
     fit.smoothing = choice.lambda;
     smoothingNote = choice.note;
     if (options.progress)
@@ -245,9 +259,12 @@ Model encodeScattered(const ScatteredData& data, const EncodeOptions& options, F
         "budgets (--bits-per-sample, --psnr, --rms-error) are for regular grids");
   FitReport local;
   FitReport& r = report ? *report : local;
-  Model model = options.adaptive ? fitScatteredAdaptive(data, fit, *options.adaptive, &r)
-                                 : fitScattered(data, fit, &r);
+  Model model = options.adaptive ? fitScatteredAdaptive(fitData, fit, *options.adaptive, &r)
+                                 : fitScattered(fitData, fit, &r);
   r.smoothingNote = smoothingNote;
+  r.cellSamples = fitData.pointCount() - data.pointCount();
+  r.points = data.pointCount();
+  model.provenance().inputPoints = data.pointCount();
   if (options.mask.enabled) {
     const Index3 dims = maskDimsFor(data, options.mask);
     DomainMask mask = data.hasCells()

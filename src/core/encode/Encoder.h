@@ -49,6 +49,9 @@ struct EncodeOptions {
   // Scattered inputs: how far the knots follow the points' density (ScatteredFitOptions);
   // unset: kDefaultMeshKnotDensity for meshes, 0 (uniform) for point clouds.
   std::optional<double> knotDensity;
+  // Meshes: samples of the mesh's own (linear) field fitted per tetrahedron beside its points,
+  // 0 (points only), 1 (centroids) or 4 (core/mesh/CellSamples.h).
+  int cellSamples = 0;
   MaskOptions mask;
   CodingOptions coding;  // grids; scattered inputs take a given float32 or lossless coder
   std::function<void(double fraction, const std::string& stage)> progress;

@@ -29,6 +29,9 @@ struct FitReport {
 
   // Scattered inputs (points == 0 for grids).
   std::int64_t points = 0;
+  // Meshes with --cell-samples: samples of the mesh's linear field inside its tetrahedra, fitted
+  // beside the points; the errors above are then over the points and these samples.
+  std::int64_t cellSamples = 0;
   std::string inputKind;        // "tetrahedral mesh", "point cloud", ...
   double smoothing = 0.0;       // regularization weight lambda (grids too, with --smooth)
   int solverIterations = 0;     // conjugate-gradient iterations, all levels and rounds

@@ -74,6 +74,7 @@ void vtkMFAEncoder::PrintSelf(ostream& os, vtkIndent indent) {
   os << indent << "AutoSmoothing: " << this->AutoSmoothing << "\n";
   os << indent << "ImageSmoothing: " << this->ImageSmoothing << "\n";
   os << indent << "KnotDensity: " << this->KnotDensity << "\n";
+  os << indent << "CellSamples: " << this->CellSamples << "\n";
   os << indent << "DomainMask: " << this->DomainMask << "\n";
   os << indent << "MaskResolution: " << this->MaskResolution << "\n";
   os << indent << "GhostLevels: " << this->GhostLevels << "\n";
@@ -318,6 +319,7 @@ int vtkMFAEncoder::RequestData(vtkInformation*, vtkInformationVector** inInfo,
   if (this->KnotDensity >= 0.0) {
     options.knotDensity = this->KnotDensity;
   }
+  options.cellSamples = this->CellSamples;
   if (this->MaxError > 0.0) {
     mfadvr::AdaptiveOptions adaptive;
     adaptive.maxRelativeError = this->MaxError;

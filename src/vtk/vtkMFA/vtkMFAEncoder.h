@@ -125,6 +125,16 @@ class VTKMFA_EXPORT vtkMFAEncoder : public vtkMFAModelAlgorithm {
 
   //@{
   /**
+   * Meshes: samples of the mesh's own field (linear in each tetrahedron) fitted per tetrahedron
+   * beside its points, as `encode --cell-samples`: 0 (the points alone; the default), 1
+   * (centroids) or 4. Other values make the update fail. Point clouds: must stay 0.
+   */
+  vtkSetMacro(CellSamples, int);
+  vtkGetMacro(CellSamples, int);
+  //@}
+
+  //@{
+  /**
    * Image data: weight lambda of the roughness penalty, a smoothing fit for noisy or quantized
    * samples (default 0: none; at most 1e4; docs/denoise.md). The same lambda for every piece, so
    * that pieces agree; `mfadvr encode --smooth auto` chooses one from the data.
@@ -238,6 +248,7 @@ class VTKMFA_EXPORT vtkMFAEncoder : public vtkMFAModelAlgorithm {
   double Smoothing = 1e-2;
   bool AutoSmoothing = false;
   double KnotDensity = -1.0;
+  int CellSamples = 0;
   double ImageSmoothing = 0.0;
   bool DomainMask = true;
   int MaskResolution = 0;

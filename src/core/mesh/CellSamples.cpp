@@ -1,0 +1,85 @@
+#include "core/mesh/CellSamples.h"
+
+#include <Eigen/Geometry>
+#include <array>
+#include <string>
+
+#include "core/util/Error.h"
+
+namespace mfadvr {
+
+namespace {
+
+// Barycentric weights of the rules: the centroid, and the symmetric degree-2 rule of four
+// points with a = (5 + 3 sqrt 5) / 20, b = (5 - sqrt 5) / 20 (exact for quadratics).
+constexpr double kA = 0.5854101966249685;
+constexpr double kB = 0.1381966011250105;
+constexpr std::array<std::array<double, 4>, 1> kCentroid{{{0.25, 0.25, 0.25, 0.25}}};
+constexpr std::array<std::array<double, 4>, 4> kFourPoint{
+    {{kA, kB, kB, kB}, {kB, kA, kB, kB}, {kB, kB, kA, kB}, {kB, kB, kB, kA}}};
+
+bool hasVolume(const ScatteredData& data, const Tetrahedron& t) {
+  const Vec3d& p0 = data.points[static_cast<size_t>(t[0])];
+  const Vec3d e1 = data.points[static_cast<size_t>(t[1])] - p0;
+  const Vec3d e2 = data.points[static_cast<size_t>(t[2])] - p0;
+  const Vec3d e3 = data.points[static_cast<size_t>(t[3])] - p0;
+  return e1.dot(e2.cross(e3)) != 0.0;
+}
+
+template <size_t N>
+void appendSamples(const ScatteredData& data, const std::array<std::array<double, 4>, N>& rule,
+                   ScatteredData& out) {
+  for (const Tetrahedron& t : data.tets) {
+    if (!hasVolume(data, t)) continue;
+    for (const auto& w : rule) {
+      Vec3d p{0.0, 0.0, 0.0};
+      double v = 0.0;
+      for (int k = 0; k < 4; ++k) {
+        p += w[k] * data.points[static_cast<size_t>(t[k])];
+        v += data.values[static_cast<size_t>(t[k])] * w[k];
+      }
+      out.points.push_back(p);
+      out.values.push_back(v);
+    }
+  }
+}
+
+}  // namespace
+
+bool isCellSampleCount(int perCell) {
+  return perCell == 1 || perCell == 4;
+}
+
+std::int64_t cellSampleCount(const ScatteredData& data, int perCell) {
+  std::int64_t n = 0;
+  for (const Tetrahedron& t : data.tets)
+    if (hasVolume(data, t)) ++n;
+  return n * perCell;
+}
+
+ScatteredData withCellSamples(const ScatteredData& data, int perCell) {
+  if (!isCellSampleCount(perCell))
+    throw Error("cell samples per tetrahedron must be 1 or 4, not " + std::to_string(perCell));
+  if (!data.hasCells())
+    throw Error(data.source + ": cell samples need a mesh; a point cloud has no cells");
+  ScatteredData out;
+  out.source = data.source;
+  out.fieldName = data.fieldName;
+  out.fieldAssociation = data.fieldAssociation;
+  out.kind = data.kind;
+  out.sampleType = data.sampleType;
+  out.inputBytes = data.inputBytes;
+  out.inputCells = data.inputCells;
+  const std::int64_t extra = cellSampleCount(data, perCell);
+  out.points.reserve(data.points.size() + static_cast<size_t>(extra));
+  out.values.reserve(data.values.size() + static_cast<size_t>(extra));
+  out.points = data.points;
+  out.values = data.values;
+  if (perCell == 1)
+    appendSamples(data, kCentroid, out);
+  else
+    appendSamples(data, kFourPoint, out);
+  return out;
+}
+
+}  // namespace mfadvr
