@@ -74,6 +74,9 @@ TEST(CellSamples, LeaveFlatTetrahedraOutAndRejectWhatTheyCannotSample) {
   EXPECT_EQ(withCellSamples(d, 4).pointCount(), d.pointCount() + 24);
   EXPECT_THROW(withCellSamples(d, 2), Error);
   EXPECT_THROW(withCellSamples(d, 0), Error);
+  ScatteredData broken = d;
+  broken.tets.push_back({0, 1, 2, 1000});
+  EXPECT_THROW(withCellSamples(broken, 1), Error);
   ScatteredData cloud = d;
   cloud.tets.clear();
   EXPECT_THROW(withCellSamples(cloud, 1), Error);

@@ -62,6 +62,7 @@ ScatteredData withCellSamples(const ScatteredData& data, int perCell) {
     throw Error("cell samples per tetrahedron must be 1 or 4, not " + std::to_string(perCell));
   if (!data.hasCells())
     throw Error(data.source + ": cell samples need a mesh; a point cloud has no cells");
+  data.validate();  // tetrahedra index the points
   ScatteredData out;
   out.source = data.source;
   out.fieldName = data.fieldName;

@@ -16,10 +16,11 @@ bool isCellSampleCount(int perCell);
 
 // `data` with, after its points, `perCell` samples of every tetrahedron of nonzero volume, each
 // with the linear interpolation of its tetrahedron's vertex values. Throws mfadvr::Error for an
-// unsupported count or data without cells. The points come first and keep their order.
+// unsupported count, data without cells, or data that fail ScatteredData::validate (such as a
+// tetrahedron index out of range). The points come first and keep their order.
 ScatteredData withCellSamples(const ScatteredData& data, int perCell);
 
-// Samples withCellSamples adds: `perCell` per tetrahedron of nonzero volume.
+// Samples withCellSamples adds: `perCell` per tetrahedron of nonzero volume (of valid data).
 std::int64_t cellSampleCount(const ScatteredData& data, int perCell);
 
 }  // namespace mfadvr
