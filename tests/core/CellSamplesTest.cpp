@@ -55,7 +55,7 @@ TEST(CellSamples, LieInTheirTetrahedraWithTheLinearField) {
       EXPECT_EQ(s.points[static_cast<size_t>(i)], d.points[static_cast<size_t>(i)]);
       EXPECT_EQ(s.values[static_cast<size_t>(i)], d.values[static_cast<size_t>(i)]);
     }
-    EXPECT_TRUE(s.tets.empty() || s.tets == d.tets);
+    EXPECT_EQ(s.tets, d.tets);
     for (size_t t = 0; t < d.tets.size(); ++t)
       for (int k = 0; k < perCell; ++k) {
         const size_t i =

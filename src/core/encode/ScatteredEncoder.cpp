@@ -3,7 +3,6 @@
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
 
-#include <Eigen/Geometry>
 #include <Eigen/IterativeLinearSolvers>
 #include <Eigen/Sparse>
 #include <algorithm>
@@ -314,11 +313,7 @@ Index3 defaultScatteredControlCounts(const ScatteredData& data, const Degree3& d
   for (const Tetrahedron& t : data.tets) {
     if (std::any_of(t.begin(), t.end(), [&](std::int64_t i) { return i < 0 || i >= points; }))
       continue;  // ScatteredData::validate names it
-    const Vec3d& a = data.points[static_cast<size_t>(t[0])];
-    const Vec3d e1 = data.points[static_cast<size_t>(t[1])] - a;
-    const Vec3d e2 = data.points[static_cast<size_t>(t[2])] - a;
-    const Vec3d e3 = data.points[static_cast<size_t>(t[3])] - a;
-    volume += std::abs(e1.dot(e2.cross(e3))) / 6.0;
+    volume += std::abs(data.volume6(t)) / 6.0;
   }
   const double box = extent.prod();
   if (!(volume > 0.0) || !(volume <= box)) volume = box;  // clouds; cells beyond the box

@@ -1,6 +1,5 @@
 #include "core/mesh/CellSamples.h"
 
-#include <Eigen/Geometry>
 #include <array>
 #include <string>
 
@@ -18,19 +17,11 @@ constexpr std::array<std::array<double, 4>, 1> kCentroid{{{0.25, 0.25, 0.25, 0.2
 constexpr std::array<std::array<double, 4>, 4> kFourPoint{
     {{kA, kB, kB, kB}, {kB, kA, kB, kB}, {kB, kB, kA, kB}, {kB, kB, kB, kA}}};
 
-bool hasVolume(const ScatteredData& data, const Tetrahedron& t) {
-  const Vec3d& p0 = data.points[static_cast<size_t>(t[0])];
-  const Vec3d e1 = data.points[static_cast<size_t>(t[1])] - p0;
-  const Vec3d e2 = data.points[static_cast<size_t>(t[2])] - p0;
-  const Vec3d e3 = data.points[static_cast<size_t>(t[3])] - p0;
-  return e1.dot(e2.cross(e3)) != 0.0;
-}
-
 template <size_t N>
 void appendSamples(const ScatteredData& data, const std::array<std::array<double, 4>, N>& rule,
                    ScatteredData& out) {
   for (const Tetrahedron& t : data.tets) {
-    if (!hasVolume(data, t)) continue;
+    if (data.volume6(t) == 0.0) continue;
     for (const auto& w : rule) {
       Vec3d p{0.0, 0.0, 0.0};
       double v = 0.0;
@@ -53,7 +44,7 @@ bool isCellSampleCount(int perCell) {
 std::int64_t cellSampleCount(const ScatteredData& data, int perCell) {
   std::int64_t n = 0;
   for (const Tetrahedron& t : data.tets)
-    if (hasVolume(data, t)) ++n;
+    if (data.volume6(t) != 0.0) ++n;
   return n * perCell;
 }
 
@@ -63,19 +54,10 @@ ScatteredData withCellSamples(const ScatteredData& data, int perCell) {
   if (!data.hasCells())
     throw Error(data.source + ": cell samples need a mesh; a point cloud has no cells");
   data.validate();  // tetrahedra index the points
-  ScatteredData out;
-  out.source = data.source;
-  out.fieldName = data.fieldName;
-  out.fieldAssociation = data.fieldAssociation;
-  out.kind = data.kind;
-  out.sampleType = data.sampleType;
-  out.inputBytes = data.inputBytes;
-  out.inputCells = data.inputCells;
-  const std::int64_t extra = cellSampleCount(data, perCell);
-  out.points.reserve(data.points.size() + static_cast<size_t>(extra));
-  out.values.reserve(data.values.size() + static_cast<size_t>(extra));
-  out.points = data.points;
-  out.values = data.values;
+  ScatteredData out = data;
+  const auto total = data.points.size() + static_cast<size_t>(cellSampleCount(data, perCell));
+  out.points.reserve(total);
+  out.values.reserve(total);
   if (perCell == 1)
     appendSamples(data, kCentroid, out);
   else

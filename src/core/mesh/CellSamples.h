@@ -17,7 +17,8 @@ bool isCellSampleCount(int perCell);
 // `data` with, after its points, `perCell` samples of every tetrahedron of nonzero volume, each
 // with the linear interpolation of its tetrahedron's vertex values. Throws mfadvr::Error for an
 // unsupported count, data without cells, or data that fail ScatteredData::validate (such as a
-// tetrahedron index out of range). The points come first and keep their order.
+// tetrahedron index out of range). The points come first and keep their order; the tetrahedra
+// stay as they were (they index the points only).
 ScatteredData withCellSamples(const ScatteredData& data, int perCell);
 
 // Samples withCellSamples adds: `perCell` per tetrahedron of nonzero volume (of valid data).

@@ -1,5 +1,6 @@
 #include "core/mesh/ScatteredData.h"
 
+#include <Eigen/Geometry>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -18,6 +19,14 @@ Vec3d ScatteredData::boxMax() const {
   Vec3d hi = Vec3d::Constant(-std::numeric_limits<double>::infinity());
   for (const Vec3d& p : points) hi = hi.cwiseMax(p);
   return hi;
+}
+
+double ScatteredData::volume6(const Tetrahedron& t) const {
+  const Vec3d& a = points[static_cast<size_t>(t[0])];
+  const Vec3d e1 = points[static_cast<size_t>(t[1])] - a;
+  const Vec3d e2 = points[static_cast<size_t>(t[2])] - a;
+  const Vec3d e3 = points[static_cast<size_t>(t[3])] - a;
+  return e1.dot(e2.cross(e3));
 }
 
 void ScatteredData::validate() const {

@@ -33,6 +33,9 @@ struct ScatteredData {
   bool hasCells() const { return !tets.empty(); }
   Vec3d boxMin() const;
   Vec3d boxMax() const;
+  // Six times the signed volume of tetrahedron t (the triple product of its edges from t[0]);
+  // 0 for a flat one. Its indices must be valid (validate()).
+  double volume6(const Tetrahedron& t) const;
 
   // Throws mfadvr::Error for: no points, values not one per point, a NaN/Inf coordinate or
   // value (naming the first), a box of zero extent on some axis, a tetrahedron index out of
