@@ -1,5 +1,7 @@
 #pragma once
 // Helpers shared by the test programs: where the real data lives, scratch folders.
+#include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <functional>
@@ -10,8 +12,10 @@
 
 #include <gtest/gtest.h>
 
+#include "core/image/Image.h"
 #include "core/mask/DomainBoundary.h"
 #include "core/mask/DomainMask.h"
+#include "core/render/RenderSettings.h"
 #include "core/render/kernel/CameraRays.h"
 #include "core/util/Error.h"
 
@@ -80,22 +84,87 @@ inline DomainMask ballMask() {
   return DomainMask(MaskKind::PointCoverage, dims, nodes);
 }
 
-// The boundary of the octahedron |x - c|_1 <= r, given as 8 tetrahedra around c.
-inline std::shared_ptr<const DomainBoundary> octahedronBoundary(const Vec3d& c, double r) {
-  std::vector<Vec3d> points{c};
-  for (int a = 0; a < 3; ++a)
-    for (double side : {r, -r}) points.push_back(c + side * Vec3d::Unit(a));
-  std::vector<Tetrahedron> tets;
-  for (int sx : {1, 2})
-    for (int sy : {3, 4})
-      for (int sz : {5, 6}) tets.push_back({0, sx, sy, sz});
-  return std::make_shared<const DomainBoundary>(boundaryOfTetrahedra(points, tets));
-}
-
 struct TetMesh {
   std::vector<Vec3d> points;
   std::vector<Tetrahedron> tets;
 };
+
+// The octahedron |x - c|_1 <= r as 8 tetrahedra around c.
+inline TetMesh octahedronMesh(const Vec3d& c, double r) {
+  TetMesh m;
+  m.points.push_back(c);
+  for (int a = 0; a < 3; ++a)
+    for (double side : {r, -r}) m.points.push_back(c + side * Vec3d::Unit(a));
+  for (int sx : {1, 2})
+    for (int sy : {3, 4})
+      for (int sz : {5, 6}) m.tets.push_back({0, sx, sy, sz});
+  return m;
+}
+
+// Its boundary.
+inline std::shared_ptr<const DomainBoundary> octahedronBoundary(const Vec3d& c, double r) {
+  const TetMesh m = octahedronMesh(c, r);
+  return std::make_shared<const DomainBoundary>(boundaryOfTetrahedra(m.points, m.tets));
+}
+
+// The length of the chord of the ray o + t d through the octahedron |x|_1 <= 1 (a convex body:
+// 8 half-spaces).
+inline double octahedronChord(const Vec3d& o, const Vec3d& d) {
+  double t0 = -INFINITY, t1 = INFINITY;
+  for (int s = 0; s < 8; ++s) {
+    const Vec3d n(s & 1 ? -1 : 1, s & 2 ? -1 : 1, s & 4 ? -1 : 1);  // n . x <= 1
+    const double dn = n.dot(d), on = n.dot(o);
+    if (dn == 0.0) {
+      if (on > 1.0) return 0.0;
+      continue;
+    }
+    const double t = (1.0 - on) / dn;
+    if (dn > 0)
+      t1 = std::min(t1, t);
+    else
+      t0 = std::max(t0, t);
+  }
+  return t1 > t0 ? (t1 - t0) * d.norm() : 0.0;
+}
+
+// A camera on the octahedron |x|_1 <= 1, steps of 0.01, data-space transfer function.
+inline RenderSettings octahedronView(int width, int height) {
+  RenderSettings s;
+  s.width = width;
+  s.height = height;
+  s.camera.position = Vec3d(0.7, 0.4, 5);
+  s.camera.focalPoint = Vec3d(0, 0, 0);
+  s.camera.viewUp = Vec3d(0, 1, 0);
+  s.camera.viewAngle = 30;
+  s.sampleDistance = 0.01;
+  s.transferFunction.space = TfSpace::Data;
+  return s;
+}
+
+// For an image of a field that is 1 in that octahedron, with opacity 0.5 per unit distance
+// (white): each pixel's alpha is the transmittance of its ray's chord, within one step, and rays
+// that miss stay empty. Returns the number of rays that hit.
+inline int expectChordTransmittance(const Image& image, const RenderSettings& s) {
+  const RayGenerator rays(s.camera, s.width, s.height);
+  int hit = 0;
+  for (int y = 0; y < s.height; ++y)
+    for (int x = 0; x < s.width; ++x) {
+      Vec3d o, d;
+      rays.ray(x, y, o, d);
+      const double chord = octahedronChord(o, d);
+      const double alpha = image.pixel(x, y)[3];
+      if (chord == 0.0) {
+        EXPECT_EQ(alpha, 0.0) << x << " " << y;
+        continue;
+      }
+      ++hit;
+      const double low = 1.0 - std::pow(0.5, std::max(chord - s.sampleDistance, 0.0));
+      const double high = 1.0 - std::pow(0.5, chord + s.sampleDistance);
+      EXPECT_GE(alpha, low - 1e-5) << x << " " << y << " chord " << chord;
+      EXPECT_LE(alpha, high + 1e-5) << x << " " << y << " chord " << chord;
+    }
+  return hit;
+}
 
 // Unit cubes [i, i+1] x [j, j+1] x [k, k+1] of an n^3 grid where keep(i, j, k), each split into
 // the 6 tetrahedra around its main diagonal (a conforming mesh). shared = false: every cube has

@@ -225,11 +225,13 @@ Command addRenderCommand(CLI::App& app) {
       ->required();
   sub->add_option("-o,--output", o->output,
                   "PNG to write (8-bit RGB; RGBA with --alpha); required unless --video is given");
-  sub->add_option("--method", o->method,
-                  "Reconstruction: " + methodList(reconstructionMethodNames()) +
-                      " [default: mfa; a non-model input is encoded first with the encoding "
-                      "options]; or a VTK baseline: vtk-fixedpoint (grids), vtk-bunyk, "
-                      "vtk-zsweep, vtk-pt (tetrahedral meshes; a grid is tetrahedralized)")
+  sub->add_option(
+         "--method", o->method,
+         "Reconstruction: " + methodList(reconstructionMethodNames()) +
+             " [default: mfa; a non-model input is encoded first with the encoding "
+             "options; mesh: a tetrahedral mesh's own field, linear in each tetrahedron, sampled "
+             "by our ray caster]; or a VTK baseline: vtk-fixedpoint (grids), vtk-bunyk, "
+             "vtk-zsweep, vtk-pt (tetrahedral meshes; a grid is tetrahedralized)")
       ->check(CLI::IsMember(allMethodNames()));
   sub->add_option("--gradient-from", o->gradientFrom,
                   "Gradient test (paper Table 1): value from the truth, gradient from this method")
@@ -312,6 +314,7 @@ Command addRenderCommand(CLI::App& app) {
       if (!m) continue;
       needs.model |= *m == ReconstructionMethod::Mfa;
       needs.grid |= isGridMethod(*m);
+      needs.mesh |= *m == ReconstructionMethod::Mesh;
     }
 
     const RenderDevice device = openRenderDevice(o->device, spec);

@@ -102,6 +102,7 @@ SceneData LoadedScene::view() const {
   d.streamedBlocks = streamedBlocks ? &*streamedBlocks : nullptr;
   d.grid = grid ? &*grid : nullptr;
   d.truth = truth.get();
+  d.mesh = mesh ? &*mesh : nullptr;
   d.differenceStep = spacing;
   d.emptySpace = emptySpace.get();
   return d;
@@ -113,6 +114,12 @@ LoadedScene loadSceneData(const std::string& input, const SceneNeeds& needs,
   LoadedScene s;
   s.input = input;
   const auto start = Clock::now();
+  if (needs.mesh && (isModelFile(input) || !isScatteredInput(input)))
+    throw Error("method 'mesh' renders a tetrahedral mesh's own field; " + input +
+                (isModelFile(input) ? " is a model, which holds no mesh: render the mesh it was "
+                                      "encoded from"
+                                    : " is a regular grid: render it with a grid method "
+                                      "(e.g. trilinear)"));
   if (isBlockModelInput(input)) {
     BlockIndex index = readBlockIndex(input);
     const std::vector<ModelFileSummary> summaries = summarizeBlocks(input, index);
@@ -226,6 +233,11 @@ LoadedScene loadSceneData(const std::string& input, const SceneNeeds& needs,
       takeModelFacts(s);
     } else {
       takeScatteredFacts(s, data, encode);
+    }
+    if (needs.mesh) {
+      const auto locateStart = Clock::now();
+      s.mesh.emplace(data);
+      s.loadSeconds += since(locateStart);
     }
     if (needs.cells) s.scattered = std::move(data);
     return s;

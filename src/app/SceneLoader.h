@@ -1,8 +1,8 @@
 #pragma once
 // Turns a render command's INPUT into what the methods reconstruct from: a model (loaded, or
 // encoded on the fly from a volume, mesh or point cloud), the grid samples, the mesh or point
-// cloud itself (for VTK's tetrahedral baselines), and the analytic truth when the input is a
-// built-in function (or a model encoded from one).
+// cloud itself (for VTK's tetrahedral baselines, and located for the mesh method), and the analytic
+// truth when the input is a built-in function (or a model encoded from one).
 #include <memory>
 #include <optional>
 #include <string>
@@ -10,6 +10,7 @@
 #include "core/analytic/BuiltinFunction.h"
 #include "core/encode/Encoder.h"
 #include "core/mesh/ScatteredData.h"
+#include "core/mesh/TetLocator.h"
 #include "core/model/BlockModelFile.h"
 #include "core/model/Model.h"
 #include "core/model/TimeVaryingModel.h"
@@ -25,6 +26,8 @@ struct SceneNeeds {
   // Some method renders the input's cells (VTK's tetrahedral mappers): a mesh or point cloud is
   // kept as it was read, a volume (or a model of a builtin) as its grid.
   bool cells = false;
+  // Some method samples a mesh's own field (method mesh): the mesh is located once.
+  bool mesh = false;
 };
 
 struct LoadedScene {
@@ -35,6 +38,7 @@ struct LoadedScene {
   std::optional<BlockModelStream> streamedBlocks;
   std::optional<StructuredGrid> grid;
   std::optional<ScatteredData> scattered;  // a mesh or point cloud input, when needs.cells
+  std::optional<TetLocator> mesh;          // a mesh input located for sampling, when needs.mesh
   std::unique_ptr<BuiltinFunction> truth;
   Vec3d boxMin = Vec3d::Zero(), boxMax = Vec3d::Ones();
   Vec3d spacing = Vec3d::Ones();          // of the data samples: default step and difference step

@@ -692,6 +692,10 @@ py::array render(const py::object& input, const py::object& size, const py::obje
   });
   if (spec.method == ReconstructionMethod::Truth)
     throw py::value_error("method 'truth' needs a built-in function; render an array or a model");
+  if (spec.method == ReconstructionMethod::Mesh)
+    throw py::value_error(
+        "method 'mesh' renders a mesh file's own field; render() takes arrays and models (use "
+        "`mfadvr render MESH --method mesh`)");
   app::LoadedScene scene;
   if (py::isinstance<PyModel>(input)) {
     if (spec.method != ReconstructionMethod::Mfa)

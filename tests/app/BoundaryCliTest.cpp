@@ -1,6 +1,7 @@
 // A mesh's exact boundary through the command line: encode stores it (and --no-boundary does
 // not), info shows it, query's inside column follows it where the voxel mask cannot. And the
-// mesh's cell samples (--cell-samples) in encode's report and refusals.
+// mesh's cell samples (--cell-samples) in encode's report and refusals, and the mesh rendered as
+// itself (--method mesh).
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -120,6 +121,40 @@ TEST(BoundaryCli, CellSamplesAreCountedAndBadCountsRefused) {
     EXPECT_NE(r.status, 0) << bad;
     EXPECT_NE(r.err.find("--cell-samples"), std::string::npos) << bad << ": " << r.err;
     EXPECT_FALSE(std::filesystem::exists(refused)) << bad;
+  }
+}
+
+// --method mesh: the mesh's own field through our ray caster; inputs without a mesh are refused
+// with the method's name and no image.
+TEST(BoundaryCli, MethodMeshRendersTheMeshAndRefusesInputsWithoutOne) {
+  const auto dir = test::scratchDir();
+  const std::string mesh = (dir / "holed.vtk").string();
+  writeHoledMesh(mesh);
+  const std::string image = (dir / "mesh.png").string();
+  auto r = test::runMfadvr("render " + mesh + " --method mesh --size 48x40 -o " + image);
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("mesh, 48x40"), std::string::npos) << r.out;
+  EXPECT_TRUE(std::filesystem::is_regular_file(image));
+  // The model renders the same data through the same rays: close to the mesh's image.
+  const std::string model = (dir / "model.png").string();
+  r = test::runMfadvr("render " + mesh + " --size 48x40 -o " + model);
+  ASSERT_EQ(r.status, 0) << r.err;
+  r = test::runMfadvr("compare " + model + " " + image + " --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto psnr = nlohmann::json::parse(r.out)["psnr"];  // null: identical
+  EXPECT_TRUE(psnr.is_null() || psnr.get<double>() > 30.0) << r.out;
+
+  const std::string cloud = (dir / "cloud.csv").string();
+  {
+    std::ofstream f(cloud);
+    f << "x,y,z,value\n0,0,0,1\n1,0,0,2\n0,1,0,3\n0,0,1,4\n1,1,1,5\n";
+  }
+  const std::string refused = (dir / "refused.png").string();
+  for (const std::string& input : {cloud, std::string("builtin:gaussian-beam:16")}) {
+    r = test::runMfadvr("render " + input + " --method mesh --size 16x16 -o " + refused);
+    EXPECT_NE(r.status, 0) << input;
+    EXPECT_NE(r.err.find("mesh"), std::string::npos) << input << ": " << r.err;
+    EXPECT_FALSE(std::filesystem::exists(refused)) << input;
   }
 }
 

@@ -168,39 +168,6 @@ Model octahedronModel() {
   return m;
 }
 
-// A camera on the octahedron models, steps of 0.01.
-RenderSettings octahedronView(int width, int height) {
-  RenderSettings s;
-  s.width = width;
-  s.height = height;
-  s.camera.position = Vec3d(0.7, 0.4, 5);
-  s.camera.focalPoint = Vec3d(0, 0, 0);
-  s.camera.viewUp = Vec3d(0, 1, 0);
-  s.camera.viewAngle = 30;
-  s.sampleDistance = 0.01;
-  s.transferFunction.space = TfSpace::Data;
-  return s;
-}
-
-// The chord of the ray o + t d through the octahedron (a convex body: 8 half-spaces).
-double octahedronChord(const Vec3d& o, const Vec3d& d) {
-  double t0 = -INFINITY, t1 = INFINITY;
-  for (int s = 0; s < 8; ++s) {
-    const Vec3d n(s & 1 ? -1 : 1, s & 2 ? -1 : 1, s & 4 ? -1 : 1);  // n . x <= 1
-    const double dn = n.dot(d), on = n.dot(o);
-    if (dn == 0.0) {
-      if (on > 1.0) return 0.0;
-      continue;
-    }
-    const double t = (1.0 - on) / dn;
-    if (dn > 0)
-      t1 = std::min(t1, t);
-    else
-      t0 = std::max(t0, t);
-  }
-  return t1 > t0 ? (t1 - t0) * d.norm() : 0.0;
-}
-
 TEST(DomainBoundary, ModelInsideAndFileRoundTrip) {
   const Model m = octahedronModel();
   ASSERT_NE(m.boundary(), nullptr);
@@ -236,32 +203,14 @@ TEST(DomainBoundary, ModelInsideAndFileRoundTrip) {
 }
 
 TEST(DomainBoundary, RaysSampleExactlyTheChordsOfTheMesh) {
-  RenderSettings s = octahedronView(48, 40);
+  RenderSettings s = test::octahedronView(48, 40);
   s.transferFunction.color = {{0.0, Vec3f(1, 1, 1)}, {2.0, Vec3f(1, 1, 1)}};
   s.transferFunction.opacity = {{0.0, 0.5f}, {2.0, 0.5f}};
   const Model m = octahedronModel();
   const ModelField field(m);
   RenderStats stats;
   const Image image = renderVolume(field, s, &stats);
-  const RayGenerator rays(s.camera, s.width, s.height);
-  int hit = 0;
-  for (int y = 0; y < s.height; ++y)
-    for (int x = 0; x < s.width; ++x) {
-      Vec3d o, d;
-      rays.ray(x, y, o, d);
-      const double chord = octahedronChord(o, d);
-      // Opacity 0.5 per unit distance: the chord's transmittance, within one step.
-      const double alpha = image.pixel(x, y)[3];
-      if (chord == 0.0) {
-        EXPECT_EQ(alpha, 0.0) << x << " " << y;
-        continue;
-      }
-      ++hit;
-      const double low = 1.0 - std::pow(0.5, std::max(chord - s.sampleDistance, 0.0));
-      const double high = 1.0 - std::pow(0.5, chord + s.sampleDistance);
-      EXPECT_GE(alpha, low - 1e-5) << x << " " << y << " chord " << chord;
-      EXPECT_LE(alpha, high + 1e-5) << x << " " << y << " chord " << chord;
-    }
+  const int hit = test::expectChordTransmittance(image, s);
   EXPECT_GT(hit, 400);
   // The same through the generic field path (ModelField's sampler: Model::inside per sample).
   EXPECT_TRUE(field.sampler().masked());
@@ -282,7 +231,7 @@ TEST(DomainBoundary, SkippingLeavesTheImageOfABoundedModelUnchanged) {
         ctrl[i + 12 * (j + 12 * k)] = float((7 * i + 3 * j + 5 * k) % 11) / 10.0f;
   Model bounded(TensorBSpline(knots, std::move(ctrl)), m.domain(), 0.0, 1.0);
   bounded.setBoundary(std::make_shared<const DomainBoundary>(*m.boundary()));
-  RenderSettings s = octahedronView(96, 80);
+  RenderSettings s = test::octahedronView(96, 80);
   s.transferFunction.color = {{0.0, Vec3f(0, 0, 1)}, {1.0, Vec3f(1, 0.5, 0)}};
   s.transferFunction.opacity = {{0.0, 0.0f}, {0.6, 0.0f}, {0.7, 1.0f}, {1.0, 1.0f}};
   for (bool shade : {false, true}) {

@@ -117,6 +117,9 @@ def test_render_gives_the_command_line_s_pixels(model, tmp_path):
     # An array renders with a grid filter, or encoded.
     assert mfadvr.render(sphere(), size=(32, 32), method="trilinear").shape == (32, 32, 3)
     assert mfadvr.render(sphere(), size=(32, 32), blend="max").max() > 0
+    # A mesh's own field renders from a mesh file only.
+    with pytest.raises(ValueError, match="mfadvr render MESH --method mesh"):
+        mfadvr.render(sphere(), size=(32, 32), method="mesh")
 
 
 def test_points_encode():

@@ -9,6 +9,7 @@
 #include "core/field/DerivedFields.h"
 #include "core/field/GridField.h"
 #include "core/field/GridFilters.h"
+#include "core/field/MeshField.h"
 #include "core/field/ModelField.h"
 #include "core/render/EmptySpaceGrid.h"
 #include "core/render/PieceCompositor.h"
@@ -27,7 +28,7 @@ constexpr NamedMethod kMethods[] = {
     {ReconstructionMethod::Mfa, "mfa"},           {ReconstructionMethod::Truth, "truth"},
     {ReconstructionMethod::Nearest, "nearest"},   {ReconstructionMethod::Trilinear, "trilinear"},
     {ReconstructionMethod::Tricubic, "tricubic"}, {ReconstructionMethod::CatmullRom, "catmull-rom"},
-    {ReconstructionMethod::BSpline, "bspline"},
+    {ReconstructionMethod::BSpline, "bspline"},   {ReconstructionMethod::Mesh, "mesh"},
 };
 
 using Clock = std::chrono::steady_clock;
@@ -62,6 +63,12 @@ void withField(const SceneData& scene, ReconstructionMethod method, Fn&& fn) {
       return fn(GridField<CatmullRomFilter>(needGrid()));
     case ReconstructionMethod::BSpline:
       return fn(GridField<BSplineFilter>(needGrid()));
+    case ReconstructionMethod::Mesh:
+      if (!scene.mesh)
+        throw Error(
+            "method 'mesh' renders a tetrahedral mesh's own field; give a mesh (.vtu, an "
+            "unstructured .vtk, .vts) as input");
+      return fn(MeshField(*scene.mesh));
   }
   throw Error("unknown reconstruction method");
 }
@@ -89,7 +96,8 @@ ReconstructionMethod parseReconstructionMethod(const std::string& name) {
 }
 
 bool isGridMethod(ReconstructionMethod m) {
-  return m != ReconstructionMethod::Mfa && m != ReconstructionMethod::Truth;
+  return m != ReconstructionMethod::Mfa && m != ReconstructionMethod::Truth &&
+         m != ReconstructionMethod::Mesh;
 }
 
 std::string whyNotOnDevice(const MethodSpec& spec) {

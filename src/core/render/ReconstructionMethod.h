@@ -16,14 +16,25 @@
 namespace mfadvr {
 
 class EmptySpaceCache;
+class TetLocator;
 
-enum class ReconstructionMethod { Mfa, Truth, Nearest, Trilinear, Tricubic, CatmullRom, BSpline };
+enum class ReconstructionMethod {
+  Mfa,
+  Truth,
+  Nearest,
+  Trilinear,
+  Tricubic,
+  CatmullRom,
+  BSpline,
+  Mesh  // a tetrahedral mesh's own field, linear in each tetrahedron (MeshField.h)
+};
 
-// mfa, truth, nearest, trilinear, tricubic, catmull-rom, bspline.
+// mfa, truth, nearest, trilinear, tricubic, catmull-rom, bspline, mesh.
 std::vector<std::string> reconstructionMethodNames();
 std::string methodName(ReconstructionMethod m);
 // Throws mfadvr::Error listing the names.
 ReconstructionMethod parseReconstructionMethod(const std::string& name);
+// The methods that filter a regular grid's samples (not mfa, truth or mesh).
 bool isGridMethod(ReconstructionMethod m);
 
 enum class GradientMode {
@@ -44,7 +55,7 @@ struct MethodSpec {
 };
 
 // What a scene can be reconstructed from; a method needs its piece (mfa: model, grid methods:
-// grid, truth: truth). Pointers are borrowed.
+// grid, truth: truth, mesh: mesh). Pointers are borrowed.
 struct SceneData {
   const Model* model = nullptr;
   // A multi-block model (BlockModelFile.h): mfa renders each block in its region and composites
@@ -55,6 +66,8 @@ struct SceneData {
   const BlockModelStream* streamedBlocks = nullptr;
   const StructuredGrid* grid = nullptr;
   const BuiltinFunction* truth = nullptr;
+  // A tetrahedral mesh located for sampling (method mesh).
+  const TetLocator* mesh = nullptr;
   // Step of central differences, physical units per axis (normally the data spacing).
   Vec3d differenceStep = Vec3d::Constant(0.01);
   // Empty-space flags kept between renders by a caller that renders the scene repeatedly (they
