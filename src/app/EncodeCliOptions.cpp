@@ -79,9 +79,10 @@ void EncodeCliOptions::addTo(CLI::App* sub, const std::string& group) {
   sub->add_option(
          "--cell-samples", cellSamples,
          "Meshes: also fit the mesh's own field (linear in each tetrahedron) at N points inside "
-         "every tetrahedron: 0 (the points alone; default), 1 (centroids) or 4. Ties the model to "
-         "the mesh between its points, so that finer control grids (--ctrl) follow it instead "
-         "of ringing; fits take longer (docs/encoding.md)")
+         "every tetrahedron: 0 (the points alone), 1 (centroids) or 4. Ties the model to the mesh "
+         "between its points instead of ringing there; fits take 3-5x longer. Default: 1 for "
+         "meshes, 0 with --max-error or --smooth auto (their bound and choice concern the "
+         "measured points) and for point clouds (docs/encoding.md)")
       ->group(group);
   sub->add_option("--mask-res", maskRes,
                   "Scattered data: domain-mask nodes N (longest axis) or NX,NY,NZ (default: 128 "

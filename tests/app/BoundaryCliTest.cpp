@@ -111,9 +111,18 @@ TEST(BoundaryCli, CellSamplesAreCountedAndBadCountsRefused) {
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["points"], 125);
   EXPECT_EQ(j["cell_samples"], 4 * 6 * (64 - 8 - 1));  // 4 in each tetrahedron of 55 cubes
+  // By default a mesh gets one (the centroid) in each tetrahedron; not with --max-error or
+  // --smooth auto, whose bound and choice concern the measured points.
   r = test::runMfadvr("encode " + mesh + " -o " + model + " --json");
   ASSERT_EQ(r.status, 0) << r.err;
-  EXPECT_EQ(nlohmann::json::parse(r.out)["cell_samples"], 0);
+  EXPECT_EQ(nlohmann::json::parse(r.out)["cell_samples"], 6 * (64 - 8 - 1));
+  for (const std::string& without :
+       {std::string("--cell-samples 0"), std::string("--max-error 0.5"),
+        std::string("--smooth auto")}) {
+    r = test::runMfadvr("encode " + mesh + " -o " + model + " --json " + without);
+    ASSERT_EQ(r.status, 0) << without << ": " << r.err;
+    EXPECT_EQ(nlohmann::json::parse(r.out)["cell_samples"], 0) << without;
+  }
   const std::string refused = (dir / "refused.mfa").string();
   for (const std::string& bad : {mesh + " --cell-samples 2", mesh + " --cell-samples x",
                                  std::string("builtin:gaussian-beam:16 --cell-samples 1")}) {

@@ -551,13 +551,18 @@ TEST(MFAEncoder, FitsATetrahedralMeshWithAMask) {
   EXPECT_TRUE(out->IsInside(0.1, 0.2, -0.3));
   EXPECT_LT(encoder->GetLastRMSRelativeError(), 0.1);
 
-  // Cell samples (encode --cell-samples) change the fit, not its quality here; a count the
-  // encoder has no rule for is an error without output.
-  const double plain = out->EvaluateValue(0.1, 0.2, -0.3);
+  // Cell samples (encode --cell-samples; a mesh gets 1 by default) change the fit, not its
+  // quality here; a count the encoder has no rule for is an error without output.
+  EXPECT_EQ(encoder->GetCellSamples(), -1);
+  const double byDefault = out->EvaluateValue(0.1, 0.2, -0.3);
   encoder->SetCellSamples(1);
   encoder->Update();
   ASSERT_TRUE(encoder->GetOutput()->HasModel());
-  EXPECT_NE(encoder->GetOutput()->EvaluateValue(0.1, 0.2, -0.3), plain);
+  EXPECT_EQ(encoder->GetOutput()->EvaluateValue(0.1, 0.2, -0.3), byDefault);
+  encoder->SetCellSamples(0);
+  encoder->Update();
+  ASSERT_TRUE(encoder->GetOutput()->HasModel());
+  EXPECT_NE(encoder->GetOutput()->EvaluateValue(0.1, 0.2, -0.3), byDefault);
   EXPECT_LT(encoder->GetLastRMSRelativeError(), 0.1);
   ErrorLog log(encoder);
   encoder->SetCellSamples(2);

@@ -214,6 +214,11 @@ Index3 maskDimsFor(const ScatteredData& data, const MaskOptions& options) {
   return defaultMaskDims(box, longest);
 }
 
+int defaultCellSamples(const ScatteredData& data, const EncodeOptions& options) {
+  return data.hasCells() && !options.adaptive && !options.autoSmoothing ? kDefaultMeshCellSamples
+                                                                        : 0;
+}
+
 Model encodeScattered(const ScatteredData& data, const EncodeOptions& options, FitReport* report) {
   ScatteredFitOptions fit;
   fit.degree = options.degree;
@@ -226,12 +231,13 @@ Model encodeScattered(const ScatteredData& data, const EncodeOptions& options, F
   // counts stay those of the points (the mesh's own resolution; adaptive fits start small
   // anyway).
   std::optional<ScatteredData> withCells;
-  if (options.cellSamples != 0) {
+  const int cellSamples = options.cellSamples.value_or(defaultCellSamples(data, options));
+  if (cellSamples != 0) {
     if (!data.hasCells())
       throw Error(data.source +
                   ": cell samples (--cell-samples) need a mesh; a point cloud has no cells");
     if (!options.adaptive) fit.controlCounts = resolveScatteredControlCounts(data, fit);
-    withCells = withCellSamples(data, options.cellSamples);
+    withCells = withCellSamples(data, cellSamples);
   }
   const ScatteredData& fitData = withCells ? *withCells : data;
   std::string smoothingNote;

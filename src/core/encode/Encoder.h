@@ -50,12 +50,20 @@ struct EncodeOptions {
   // unset: kDefaultMeshKnotDensity for meshes, 0 (uniform) for point clouds.
   std::optional<double> knotDensity;
   // Meshes: samples of the mesh's own (linear) field fitted per tetrahedron beside its points,
-  // 0 (points only), 1 (centroids) or 4 (core/mesh/CellSamples.h).
-  int cellSamples = 0;
+  // 0 (points only), 1 (centroids) or 4 (core/mesh/CellSamples.h); unset:
+  // defaultCellSamples().
+  std::optional<int> cellSamples;
   MaskOptions mask;
   CodingOptions coding;  // grids; scattered inputs take a given float32 or lossless coder
   std::function<void(double fraction, const std::string& stage)> progress;
 };
+
+// The cell samples a scattered input gets unless told: kDefaultMeshCellSamples for a mesh fitted
+// with fixed control counts and a fixed smoothing; 0 for point clouds (no cells), --max-error fits
+// and --smooth auto, whose bound and choice are about the measured points (the samples inside the
+// tetrahedra are the mesh's interpolation, not measurements).
+constexpr int kDefaultMeshCellSamples = 1;
+int defaultCellSamples(const ScatteredData& data, const EncodeOptions& options);
 
 // A fit (fixed, adaptive, or the candidates of a budget), smoothed when asked (with
 // options.autoSmoothing, lambda is chosen first, on the whole grid), and the coding of its control

@@ -319,7 +319,9 @@ int vtkMFAEncoder::RequestData(vtkInformation*, vtkInformationVector** inInfo,
   if (this->KnotDensity >= 0.0) {
     options.knotDensity = this->KnotDensity;
   }
-  options.cellSamples = this->CellSamples;
+  if (this->CellSamples != -1) {
+    options.cellSamples = this->CellSamples;
+  }
   if (this->MaxError > 0.0) {
     mfadvr::AdaptiveOptions adaptive;
     adaptive.maxRelativeError = this->MaxError;

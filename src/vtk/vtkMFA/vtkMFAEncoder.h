@@ -126,8 +126,9 @@ class VTKMFA_EXPORT vtkMFAEncoder : public vtkMFAModelAlgorithm {
   //@{
   /**
    * Meshes: samples of the mesh's own field (linear in each tetrahedron) fitted per tetrahedron
-   * beside its points, as `encode --cell-samples`: 0 (the points alone; the default), 1
-   * (centroids) or 4. Other values make the update fail. Point clouds: must stay 0.
+   * beside its points, as `encode --cell-samples`: 0 (the points alone), 1 (centroids) or 4;
+   * -1 (the default): the encoder's choice, 1 for meshes, 0 for point clouds and for fits with
+   * a MaxError or automatic smoothing. Other values make the update fail. Point clouds: -1 or 0.
    */
   vtkSetMacro(CellSamples, int);
   vtkGetMacro(CellSamples, int);
@@ -248,7 +249,7 @@ class VTKMFA_EXPORT vtkMFAEncoder : public vtkMFAModelAlgorithm {
   double Smoothing = 1e-2;
   bool AutoSmoothing = false;
   double KnotDensity = -1.0;
-  int CellSamples = 0;
+  int CellSamples = -1;
   double ImageSmoothing = 0.0;
   bool DomainMask = true;
   int MaskResolution = 0;
