@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <functional>
 #include <memory>
 #include <span>
@@ -88,6 +89,22 @@ struct TetMesh {
   std::vector<Vec3d> points;
   std::vector<Tetrahedron> tets;
 };
+
+// Writes m as a legacy VTK unstructured grid (ASCII) with the point scalar v = value(point).
+inline void writeLegacyTetMesh(const std::filesystem::path& path, const TetMesh& m,
+                               const std::function<double(const Vec3d&)>& value) {
+  std::ofstream f(path);
+  f << "# vtk DataFile Version 3.0\ntetrahedra\nASCII\nDATASET UNSTRUCTURED_GRID\n";
+  f << "POINTS " << m.points.size() << " double\n";
+  for (const Vec3d& p : m.points) f << p.x() << " " << p.y() << " " << p.z() << "\n";
+  f << "CELLS " << m.tets.size() << " " << 5 * m.tets.size() << "\n";
+  for (const auto& t : m.tets)
+    f << "4 " << t[0] << " " << t[1] << " " << t[2] << " " << t[3] << "\n";
+  f << "CELL_TYPES " << m.tets.size() << "\n";
+  for (size_t c = 0; c < m.tets.size(); ++c) f << "10\n";
+  f << "POINT_DATA " << m.points.size() << "\nSCALARS v double 1\nLOOKUP_TABLE default\n";
+  for (const Vec3d& p : m.points) f << value(p) << "\n";
+}
 
 // The octahedron |x - c|_1 <= r as 8 tetrahedra around c.
 inline TetMesh octahedronMesh(const Vec3d& c, double r) {

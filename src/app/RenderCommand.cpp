@@ -339,6 +339,9 @@ Command addRenderCommand(CLI::App& app) {
       load.time = animation.front();
     }
     LoadedScene scene = loadScene(o->input, needs, load);
+    if (needs.mesh && !scene.mesh)
+      throw Error("method 'mesh' renders a tetrahedral mesh's own field; " + o->input +
+                  " holds points without cells: render it with --method mfa");
     std::string tfWarning;
     RenderSettings settings = o->render.settingsFor(scene, &tfWarning);
     settings.depth = !o->depthOutput.empty();

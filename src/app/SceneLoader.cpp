@@ -234,7 +234,7 @@ LoadedScene loadSceneData(const std::string& input, const SceneNeeds& needs,
     } else {
       takeScatteredFacts(s, data, encode);
     }
-    if (needs.mesh) {
+    if (needs.mesh && data.hasCells()) {
       const auto locateStart = Clock::now();
       s.mesh.emplace(data);
       s.loadSeconds += since(locateStart);

@@ -26,7 +26,8 @@ struct SceneNeeds {
   // Some method renders the input's cells (VTK's tetrahedral mappers): a mesh or point cloud is
   // kept as it was read, a volume (or a model of a builtin) as its grid.
   bool cells = false;
-  // Some method samples a mesh's own field (method mesh): the mesh is located once.
+  // Some method samples a mesh's own field (method mesh): a mesh input's tetrahedra are located
+  // once (a point cloud has none: LoadedScene::mesh stays empty); other inputs are refused.
   bool mesh = false;
 };
 

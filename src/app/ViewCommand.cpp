@@ -389,10 +389,12 @@ Command addViewCommand(CLI::App& app) {
                   "`mfadvr render`, or open it in ParaView (docs/paraview.md)");
     requireRenderDisplay();
     // Grid methods need the samples: volumes and built-in functions have them; model files
-    // and scattered inputs do not (a model of a built-in function has its truth).
+    // and scattered inputs do not (a model of a built-in function has its truth). A mesh
+    // renders as itself too (method mesh).
     SceneNeeds needs;
     needs.model = true;
     needs.grid = !isModelFile(o->input) && !isScatteredInput(o->input);
+    needs.mesh = !isModelFile(o->input) && isScatteredInput(o->input);
     SceneLoadOptions load;
     load.encode = o->encode.parse();
     load.volume = parseVolumeLoadOptions(o->spacing, o->origin, o->field);
@@ -409,6 +411,7 @@ Command addViewCommand(CLI::App& app) {
                      ReconstructionMethod::CatmullRom, ReconstructionMethod::BSpline})
         viewer->methods.push_back(m);
     if (scene.truth) viewer->methods.push_back(ReconstructionMethod::Truth);
+    if (scene.mesh) viewer->methods.push_back(ReconstructionMethod::Mesh);
     const ReconstructionMethod first = parseReconstructionMethod(o->method);
     viewer->method = 0;
     while (viewer->method < viewer->methods.size() && viewer->methods[viewer->method] != first)

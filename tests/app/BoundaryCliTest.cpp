@@ -16,40 +16,11 @@ namespace {
 // A legacy VTK mesh of the unit cubes of a 4^3 grid less a cavity (the central 2^3 cubes) and a
 // notch (the corner cube at 3,3,3), 6 tetrahedra a cube, with the point scalar x + y + z.
 void writeHoledMesh(const std::filesystem::path& path) {
-  const int n = 4, np = n + 1;
-  std::ofstream f(path);
-  f << "# vtk DataFile Version 3.0\nholed cubes\nASCII\nDATASET UNSTRUCTURED_GRID\n";
-  f << "POINTS " << np * np * np << " double\n";
-  for (int k = 0; k < np; ++k)
-    for (int j = 0; j < np; ++j)
-      for (int i = 0; i < np; ++i) f << i << " " << j << " " << k << "\n";
-  auto id = [&](int i, int j, int k) { return i + np * (j + np * k); };
-  const int perms[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
-  std::vector<std::array<int, 4>> tets;
-  for (int k = 0; k < n; ++k)
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i) {
-        const bool cavity = i >= 1 && i <= 2 && j >= 1 && j <= 2 && k >= 1 && k <= 2;
-        if (cavity || (i == 3 && j == 3 && k == 3)) continue;
-        for (const auto& p : perms) {
-          int at[3] = {i, j, k};
-          std::array<int, 4> t{};
-          t[0] = id(at[0], at[1], at[2]);
-          for (int s = 0; s < 3; ++s) {
-            ++at[p[s]];
-            t[s + 1] = id(at[0], at[1], at[2]);
-          }
-          tets.push_back(t);
-        }
-      }
-  f << "CELLS " << tets.size() << " " << 5 * tets.size() << "\n";
-  for (const auto& t : tets) f << "4 " << t[0] << " " << t[1] << " " << t[2] << " " << t[3] << "\n";
-  f << "CELL_TYPES " << tets.size() << "\n";
-  for (size_t c = 0; c < tets.size(); ++c) f << "10\n";
-  f << "POINT_DATA " << np * np * np << "\nSCALARS v double 1\nLOOKUP_TABLE default\n";
-  for (int k = 0; k < np; ++k)
-    for (int j = 0; j < np; ++j)
-      for (int i = 0; i < np; ++i) f << i + j + k << "\n";
+  const test::TetMesh m = test::cubeMesh(4, [](int i, int j, int k) {
+    const bool cavity = i >= 1 && i <= 2 && j >= 1 && j <= 2 && k >= 1 && k <= 2;
+    return !cavity && !(i == 3 && j == 3 && k == 3);
+  });
+  test::writeLegacyTetMesh(path, m, [](const Vec3d& p) { return p.sum(); });
 }
 
 TEST(BoundaryCli, EncodeStoresTheBoundaryAndQueryFollowsIt) {

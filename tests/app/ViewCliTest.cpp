@@ -76,6 +76,21 @@ TEST(CliView, ScreenshotMatchesRenderForBlendModesAndClipping) {
   }
 }
 
+// A mesh offers its own field (method mesh) beside its model; the frame is render's.
+TEST(CliView, AMeshRendersAsItselfToo) {
+  const auto dir = test::scratchDir();
+  const std::string mesh = (dir / "cubes.vtk").string();
+  test::writeLegacyTetMesh(mesh, test::cubeMesh(3, [](int, int, int) { return true; }),
+                           [](const Vec3d& p) { return p.x() * p.y() + p.z(); });
+  const std::string view = (dir / "view.png").string(), render = (dir / "render.png").string();
+  const std::string common = " --method mesh --size 64x48 --azimuth 30 --elevation 20 -q";
+  const auto v = runMfadvr("view " + mesh + " --screenshot " + view + common);
+  ASSERT_EQ(v.status, 0) << v.err;
+  EXPECT_NE(v.out.find("mesh"), std::string::npos) << v.out;
+  ASSERT_EQ(runMfadvr("render " + mesh + " -o " + render + common).status, 0);
+  EXPECT_GT(compareImages(readPng(view), readPng(render)).psnr, 48.0);
+}
+
 TEST(CliView, RejectsMethodsTheInputCannotProvide) {
   const auto dir = test::scratchDir();
   const std::string model = (dir / "ml.mfa").string();
