@@ -78,6 +78,7 @@ TEST(MeshField, EveryPointIsFoundInItsTetrahedronWithTheLinearField) {
   }
   EXPECT_GT(found, 5000);
   EXPECT_GT(outside, 2000);
+  EXPECT_EQ(mesh.locate(Vec3d(std::nan(""), 1.0, 1.0)), -1);
 }
 
 TEST(MeshField, SampleMethodGivesTheMeshsFieldAndBadMeshesAreRefused) {

@@ -69,10 +69,7 @@ TetLocator::TetLocator(const ScatteredData& mesh) {
     bins_[size_t(a)] = std::clamp<std::int64_t>(std::int64_t(std::ceil(extent[a] / cell)), 1, 1024);
     binScale_[a] = double(bins_[size_t(a)]) / extent[a];
   }
-  const auto binOf = [&](const Vec3d& x, int a) {
-    return std::clamp<std::int64_t>(std::int64_t((x[a] - boxMin_[a]) * binScale_[a]), 0,
-                                    bins_[size_t(a)] - 1);
-  };
+  const auto binOf = [&](const Vec3d& x, int a) { return binIndex(x, a); };
   const std::int64_t binTotal = bins_[0] * bins_[1] * bins_[2];
   // Two passes over the tetrahedra's bin ranges: count, then fill (compressed rows).
   auto forEachBin = [&](size_t t, auto&& fn) {
@@ -92,6 +89,11 @@ TetLocator::TetLocator(const ScatteredData& mesh) {
     forEachBin(t, [&](std::int64_t b) { binTets_[size_t(fill[size_t(b)]++)] = std::uint32_t(t); });
 }
 
+std::int64_t TetLocator::binIndex(const Vec3d& x, int a) const {
+  return std::clamp<std::int64_t>(std::int64_t((x[a] - boxMin_[a]) * binScale_[a]), 0,
+                                  bins_[size_t(a)] - 1);
+}
+
 bool TetLocator::contains(const Piece& p, const Vec3d& x) const {
   const Vec3d l = p.inverse * (x - p.origin);
   return l.minCoeff() >= -kSlack && l.sum() <= 1.0 + kSlack;
@@ -99,12 +101,10 @@ bool TetLocator::contains(const Piece& p, const Vec3d& x) const {
 
 std::int64_t TetLocator::locate(const Vec3d& x, std::int64_t hint) const {
   if (hint >= 0 && hint < tetCount() && contains(tets_[size_t(hint)], x)) return hint;
-  if ((x.array() < boxMin_.array()).any() || (x.array() > boxMax_.array()).any()) return -1;
+  if (!((x.array() >= boxMin_.array()).all() && (x.array() <= boxMax_.array()).all()))
+    return -1;  // outside the box, or not a number
   std::int64_t b = 0;
-  for (int a = 2; a >= 0; --a)
-    b = b * bins_[size_t(a)] +
-        std::clamp<std::int64_t>(std::int64_t((x[a] - boxMin_[a]) * binScale_[a]), 0,
-                                 bins_[size_t(a)] - 1);
+  for (int a = 2; a >= 0; --a) b = b * bins_[size_t(a)] + binIndex(x, a);
   for (std::int64_t i = binStart_[size_t(b)]; i < binStart_[size_t(b) + 1]; ++i) {
     const std::uint32_t t = binTets_[size_t(i)];
     if (contains(tets_[t], x)) return t;

@@ -46,6 +46,8 @@ class TetLocator {
     double value0;
   };
   bool contains(const Piece& p, const Vec3d& x) const;
+  // The bin along axis a of a point in the box.
+  std::int64_t binIndex(const Vec3d& x, int a) const;
 
   std::vector<Piece> tets_;
   Vec3d boxMin_, boxMax_;
