@@ -392,7 +392,11 @@ PyModel encodeArray(const py::array& array, const py::object& spacing, const py:
   });
 }
 
-PyModel encodePoints(const py::array& xyz, const py::array& values, const py::kwargs& kwargs) {
+// Scattered points, or a tetrahedral mesh when `tets` is an (M, 4) array of point indices: the
+// mesh gets what `mfadvr encode` gives a mesh file (mask, exact boundary, cell samples, knots
+// that follow the points).
+PyModel encodePoints(const py::array& xyz, const py::array& values, const py::object& tets,
+                     const py::kwargs& kwargs) {
   for (const char* name : {"blocks", "ghost", "memory_limit"})
     if (kwargs.contains(name))
       throw py::value_error(std::string("--") + name +
@@ -405,8 +409,28 @@ PyModel encodePoints(const py::array& xyz, const py::array& values, const py::kw
   if (!v || v.ndim() != 1 || v.shape(0) != p.shape(0))
     throw py::value_error("values must be an (N,) array, one per point");
   ScatteredData data;
-  data.source = "numpy points";
-  data.kind = "point cloud";
+  data.source = tets.is_none() ? "numpy points" : "numpy mesh";
+  data.kind = tets.is_none() ? "point cloud" : "tetrahedral mesh";
+  data.fieldAssociation = "point data";
+  if (!tets.is_none()) {
+    const py::array given = py::array::ensure(tets);
+    if (!given || given.ndim() != 2 || given.shape(1) != 4 || given.shape(0) == 0 ||
+        !(given.dtype().kind() == 'i' || given.dtype().kind() == 'u'))
+      throw py::value_error("tets must be an (M, 4) integer array of point indices, M > 0");
+    const auto t =
+        py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(given);
+    data.tets.resize(static_cast<size_t>(t.shape(0)));
+    for (py::ssize_t c = 0; c < t.shape(0); ++c)
+      for (int k = 0; k < 4; ++k) {
+        const std::int64_t index = t.at(c, k);
+        if (index < 0 || index >= p.shape(0))
+          throw py::value_error("tets: tetrahedron " + std::to_string(c) + " has point index " +
+                                std::to_string(index) + ", outside 0.." +
+                                std::to_string(p.shape(0) - 1));
+        data.tets[static_cast<size_t>(c)][static_cast<size_t>(k)] = index;
+      }
+    data.inputCells = static_cast<std::int64_t>(data.tets.size());
+  }
   data.fieldName = "value";
   data.sampleType = sampleTypeOf(values.dtype());
   const std::int64_t n = p.shape(0);
@@ -864,7 +888,8 @@ PYBIND11_MODULE(_mfadvr, m) {
 
   m.def("_encode", &encodeArray, py::arg("array"), py::arg("spacing") = py::none(),
         py::arg("origin") = py::none());
-  m.def("_encode_points", &encodePoints, py::arg("points"), py::arg("values"));
+  m.def("_encode_points", &encodePoints, py::arg("points"), py::arg("values"),
+        py::arg("tets") = py::none());
   m.def(
       "load",
       [](const std::string& path) {

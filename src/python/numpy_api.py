@@ -26,10 +26,14 @@ def encode(array, spacing=None, origin=None, **options):
     return _mfadvr._encode(np.asanyarray(array), spacing, origin, **options)
 
 
-def encode_points(points, values, **options):
+def encode_points(points, values, tets=None, **options):
     """Fits a model to scattered points: an (N, 3) array of x, y, z and (N,) values, with the
-    CLI's options for meshes and point clouds (degree, ctrl, smooth, mask_res, no_mask, ...)."""
-    return _mfadvr._encode_points(np.asanyarray(points), np.asanyarray(values), **options)
+    CLI's options for meshes and point clouds (degree, ctrl, smooth, mask_res, no_mask, ...).
+    With tets, an (M, 4) integer array of point indices, the points are a tetrahedral mesh and
+    the model gets what `mfadvr encode` gives a mesh file: its exact boundary, a mask from its
+    cells and samples of its linear field inside them (cell_samples)."""
+    return _mfadvr._encode_points(np.asanyarray(points), np.asanyarray(values),
+                                  None if tets is None else np.asanyarray(tets), **options)
 
 
 _INTEGER_TYPES = ("uint8", "int8", "uint16", "int16", "uint32", "int32")

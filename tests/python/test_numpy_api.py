@@ -122,6 +122,45 @@ def test_render_gives_the_command_line_s_pixels(model, tmp_path):
         mfadvr.render(sphere(), size=(32, 32), method="mesh")
 
 
+def cube_mesh(n, hollow=lambda i, j, k: False):
+    """The unit cubes of an n^3 grid but the hollow ones, 6 tetrahedra a cube (the points of the
+    (n+1)^3 grid, x fastest)."""
+    m = n + 1
+    grid = np.stack(np.meshgrid(np.arange(m), np.arange(m), np.arange(m), indexing="ij"), -1)
+    points = grid.transpose(2, 1, 0, 3).reshape(-1, 3).astype(float)  # x fastest
+    index = lambda i, j, k: i + m * (j + m * k)
+    tets = []
+    for k in range(n):
+        for j in range(n):
+            for i in range(n):
+                if hollow(i, j, k):
+                    continue
+                for order in ((0, 1, 2), (0, 2, 1), (1, 0, 2), (1, 2, 0), (2, 0, 1), (2, 1, 0)):
+                    at = [i, j, k]
+                    tet = [index(*at)]
+                    for axis in order:
+                        at[axis] += 1
+                        tet.append(index(*at))
+                    tets.append(tet)
+    return points, np.array(tets)
+
+
+def test_mesh_encode():
+    # A mesh given as arrays gets what a mesh file gets: an exact boundary (here around a
+    # cavity), and one sample of its linear field in every tetrahedron.
+    points, tets = cube_mesh(4, lambda i, j, k: 1 <= i <= 2 and 1 <= j <= 2 and 1 <= k <= 2)
+    values = points[:, 0] + 2 * points[:, 1] - points[:, 2]
+    m = mfadvr.encode_points(points, values, tets=tets, ctrl=6)
+    assert m.report["cell_samples"] == len(tets) == 6 * (64 - 8)
+    assert m.info["boundary"]["triangles"] == 6 * 16 * 2 + 6 * 4 * 2
+    assert abs(m.query(np.array([[0.5, 0.5, 3.5]]))[0] - (0.5 + 1.0 - 3.5)) < 1e-3
+    assert mfadvr.encode_points(points, values, tets=tets, ctrl=6,
+                                cell_samples=0).report["cell_samples"] == 0
+    for bad in (tets[:, :3], tets.astype(float), tets + len(points)):
+        with pytest.raises(ValueError, match="tets"):
+            mfadvr.encode_points(points, values, tets=bad)
+
+
 def test_points_encode():
     rng = np.random.default_rng(2)
     xyz = rng.random((3000, 3))
