@@ -144,18 +144,24 @@ inline double octahedronChord(const Vec3d& o, const Vec3d& d) {
   return t1 > t0 ? (t1 - t0) * d.norm() : 0.0;
 }
 
-// A camera on the octahedron |x|_1 <= 1, steps of 0.01, data-space transfer function.
-inline RenderSettings octahedronView(int width, int height) {
+// A perspective view (view-up +y) with steps of `step` and a data-space transfer function.
+inline RenderSettings viewOf(int width, int height, const Vec3d& position, const Vec3d& focalPoint,
+                             double viewAngle, double step) {
   RenderSettings s;
   s.width = width;
   s.height = height;
-  s.camera.position = Vec3d(0.7, 0.4, 5);
-  s.camera.focalPoint = Vec3d(0, 0, 0);
+  s.camera.position = position;
+  s.camera.focalPoint = focalPoint;
   s.camera.viewUp = Vec3d(0, 1, 0);
-  s.camera.viewAngle = 30;
-  s.sampleDistance = 0.01;
+  s.camera.viewAngle = viewAngle;
+  s.sampleDistance = step;
   s.transferFunction.space = TfSpace::Data;
   return s;
+}
+
+// A camera on the octahedron |x|_1 <= 1, steps of 0.01.
+inline RenderSettings octahedronView(int width, int height) {
+  return viewOf(width, height, Vec3d(0.7, 0.4, 5), Vec3d::Zero(), 30, 0.01);
 }
 
 // For an image of a field that is 1 in that octahedron, with opacity 0.5 per unit distance
@@ -183,6 +189,25 @@ inline int expectChordTransmittance(const Image& image, const RenderSettings& s)
   return hit;
 }
 
+// Appends the 6 tetrahedra around the main diagonal of the cube with lowest corner (i, j, k) (the
+// monotone paths from its corner 000 to 111), with id(x, y, z) the index of the point (x, y, z):
+// neighbouring cubes split this way share their faces' diagonals (a conforming mesh).
+template <class Id>
+void appendCubeTetrahedra(std::int64_t i, std::int64_t j, std::int64_t k, Id&& id,
+                          std::vector<Tetrahedron>& tets) {
+  const int paths[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+  for (const auto& path : paths) {
+    std::int64_t at[3] = {i, j, k};
+    Tetrahedron t;
+    t[0] = id(at[0], at[1], at[2]);
+    for (int s = 0; s < 3; ++s) {
+      ++at[path[s]];
+      t[s + 1] = id(at[0], at[1], at[2]);
+    }
+    tets.push_back(t);
+  }
+}
+
 // Unit cubes [i, i+1] x [j, j+1] x [k, k+1] of an n^3 grid where keep(i, j, k), each split into
 // the 6 tetrahedra around its main diagonal (a conforming mesh). shared = false: every cube has
 // points of its own, as the blocks of a multi-block mesh repeat the points where they meet.
@@ -193,7 +218,6 @@ inline TetMesh cubeMesh(int n, const std::function<bool(int, int, int)>& keep, b
     for (int k = 0; k < np; ++k)
       for (int j = 0; j < np; ++j)
         for (int i = 0; i < np; ++i) m.points.emplace_back(i, j, k);
-  const int perms[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
   for (int k = 0; k < n; ++k)
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < n; ++i) {
@@ -204,20 +228,11 @@ inline TetMesh cubeMesh(int n, const std::function<bool(int, int, int)>& keep, b
           for (int c = 0; c < 8; ++c)
             m.points.emplace_back(i + (c & 1), j + (c >> 1 & 1), k + (c >> 2));
         }
-        auto id = [&](int x, int y, int z) -> std::int64_t {
+        auto id = [&](std::int64_t x, std::int64_t y, std::int64_t z) -> std::int64_t {
           if (shared) return x + np * (y + std::int64_t(np) * z);
           return base + (x - i) + 2 * (y - j) + 4 * (z - k);
         };
-        for (const auto& p : perms) {
-          int at[3] = {i, j, k};
-          Tetrahedron t;
-          t[0] = id(at[0], at[1], at[2]);
-          for (int s = 0; s < 3; ++s) {
-            ++at[p[s]];
-            t[s + 1] = id(at[0], at[1], at[2]);
-          }
-          m.tets.push_back(t);
-        }
+        appendCubeTetrahedra(i, j, k, id, m.tets);
       }
   return m;
 }

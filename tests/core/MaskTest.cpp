@@ -6,6 +6,7 @@
 #include <cmath>
 #include <random>
 
+#include "TestSupport.h"
 #include "core/field/DerivedFields.h"
 #include "core/field/ModelField.h"
 #include "core/mask/MaskVoxelizer.h"
@@ -62,37 +63,21 @@ TEST(DomainMask, TrilinearThresholdIsOneHalf) {
 // A tetrahedralized ball: the cubes of a grid of spacing `s` over [-r, r]^3 whose 8 corners lie
 // within radius r, each split into the 6 tetrahedra around its main diagonal (the Kuhn
 // triangulation, conforming across cubes).
-struct Ball {
-  std::vector<Vec3d> points;
-  std::vector<Tetrahedron> tets;
-};
-
-Ball tetrahedralizedBall(double r, int cells) {
-  Ball b;
+test::TetMesh tetrahedralizedBall(double r, int cells) {
+  test::TetMesh b;
   const double s = 2 * r / cells;
   const int n = cells + 1;
   for (int k = 0; k < n; ++k)
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < n; ++i) b.points.emplace_back(-r + i * s, -r + j * s, -r + k * s);
-  auto id = [&](int i, int j, int k) { return std::int64_t(i) + n * (j + std::int64_t(n) * k); };
-  const int perms[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+  auto id = [&](std::int64_t i, std::int64_t j, std::int64_t k) { return i + n * (j + n * k); };
   for (int k = 0; k < cells; ++k)
     for (int j = 0; j < cells; ++j)
       for (int i = 0; i < cells; ++i) {
         bool inside = true;
         for (int c = 0; c < 8; ++c)
           inside = inside && b.points[id(i + (c & 1), j + (c >> 1 & 1), k + (c >> 2))].norm() <= r;
-        if (!inside) continue;
-        for (const auto& p : perms) {
-          int at[3] = {i, j, k};
-          Tetrahedron t;
-          t[0] = id(at[0], at[1], at[2]);
-          for (int step = 0; step < 3; ++step) {
-            ++at[p[step]];
-            t[step + 1] = id(at[0], at[1], at[2]);
-          }
-          b.tets.push_back(t);
-        }
+        if (inside) test::appendCubeTetrahedra(i, j, k, id, b.tets);
       }
   return b;
 }
@@ -111,7 +96,7 @@ bool insideAt(const DomainMask& m, const DomainBox& box, const Vec3d& x) {
 TEST(MaskVoxelizer, MeshOccupancyOfATetrahedralizedBall) {
   const double r = 1.0;
   const int cells = 12;
-  const Ball ball = tetrahedralizedBall(r, cells);
+  const test::TetMesh ball = tetrahedralizedBall(r, cells);
   ASSERT_GT(ball.tets.size(), 1000u);
   const DomainBox box{Vec3d(-1, -1, -1), Vec3d(1, 1, 1)};
   const Index3 dims{41, 37, 33};  // non-cubic, spacings that do not match the mesh
@@ -158,7 +143,7 @@ TEST(MaskVoxelizer, MeshOccupancyOfATetrahedralizedBall) {
 
 TEST(MaskVoxelizer, NodesOnTheMeshBoundaryAreInside) {
   // One cube exactly filling the box, as 6 tetrahedra: every node lies in or on the mesh.
-  const Ball cube = tetrahedralizedBall(1.0, 1);  // no cube has all corners within radius 1
+  const test::TetMesh cube = tetrahedralizedBall(1.0, 1);  // no cube has all corners within radius 1
   ASSERT_TRUE(cube.tets.empty());
   std::vector<Vec3d> points;
   for (int c = 0; c < 8; ++c) points.emplace_back(c & 1, c >> 1 & 1, c >> 2);
@@ -177,7 +162,7 @@ TEST(MaskVoxelizer, NodesOnTheMeshBoundaryAreInside) {
 }
 
 TEST(MaskVoxelizer, ResultDoesNotDependOnThreadCount) {
-  const Ball ball = tetrahedralizedBall(1.0, 10);
+  const test::TetMesh ball = tetrahedralizedBall(1.0, 10);
   const DomainBox box{Vec3d(-1, -1, -1), Vec3d(1, 1, 1)};
   std::mt19937 rng(3);
   std::normal_distribution<double> g(0.0, 0.4);

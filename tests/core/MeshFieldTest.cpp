@@ -131,14 +131,7 @@ TEST(MeshField, AModelOfALinearFieldRendersAsTheMeshDoes) {
       4, [](int, int, int) { return false; }, linear);
   const TetLocator mesh(d);
   const Model model = encodeScattered(d, EncodeOptions{});
-  RenderSettings s;
-  s.width = s.height = 64;
-  s.camera.position = Vec3d(9, 7, 11);
-  s.camera.focalPoint = Vec3d(2, 2, 2);
-  s.camera.viewUp = Vec3d(0, 1, 0);
-  s.camera.viewAngle = 40;
-  s.sampleDistance = 0.05;
-  s.transferFunction.space = TfSpace::Data;
+  RenderSettings s = test::viewOf(64, 64, Vec3d(9, 7, 11), Vec3d(2, 2, 2), 40, 0.05);
   s.transferFunction.color = {{-11.0, Vec3f(0, 0, 1)}, {11.0, Vec3f(1, 0.5, 0)}};
   s.transferFunction.opacity = {{-11.0, 0.05f}, {11.0, 0.3f}};
   SceneData scene;

@@ -56,21 +56,10 @@ ScatteredData testMesh(const StructuredGrid& g) {
   auto id = [&](std::int64_t i, std::int64_t j, std::int64_t k) {
     return i + g.dims[0] * (j + g.dims[1] * k);
   };
-  // The 6 monotone paths from corner 000 to 111.
-  const int paths[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
   for (std::int64_t k = 0; k + 1 < g.dims[2]; ++k)
     for (std::int64_t j = 0; j + 1 < g.dims[1]; ++j)
       for (std::int64_t i = 0; i + 1 < g.dims[0]; ++i)
-        for (const auto& path : paths) {
-          std::int64_t c[3] = {i, j, k};
-          Tetrahedron t;
-          t[0] = id(c[0], c[1], c[2]);
-          for (int s = 0; s < 3; ++s) {
-            ++c[path[s]];
-            t[s + 1] = id(c[0], c[1], c[2]);
-          }
-          d.tets.push_back(t);
-        }
+        test::appendCubeTetrahedra(i, j, k, id, d.tets);
   return d;
 }
 
