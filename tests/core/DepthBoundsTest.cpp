@@ -129,7 +129,7 @@ TEST(DepthBounds, NoStepOutsideARaysBoundsIsInACellThatIsNotEmpty) {
               ++ballRays;
               if (ray.steps < whole.steps && ray.steps > start.k) ++raysEndingEarlier;
             }
-            sampler.beginRay(ray.o, ray.d);
+            sampler.beginRay(ray);
             std::int64_t sampledAfter = 0;  // steps cut off that have a sample
             for (std::int64_t k = 0; k < whole.steps; ++k) {
               if (k == start.k) k = ray.steps;  // the steps between the bounds

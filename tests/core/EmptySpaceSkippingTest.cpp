@@ -459,7 +459,12 @@ TEST(EmptySpaceSkipping, JumpsWalkOnlyThroughEmptyCells) {
       ASSERT_TRUE(std::isfinite(tLeave));
       // Every point up to tLeave is in an empty cell (the jump's end included). A start on a
       // face the ray leaves by ends its jump there (at most an inset behind it).
-      sampler.beginRay(o.data(), d.data());
+      RaySegment ray;
+      for (int a = 0; a < 3; ++a) {
+        ray.o[a] = o[a];
+        ray.d[a] = d[a];
+      }
+      sampler.beginRay(ray);
       for (int k = 1; k <= 256 && tLeave > 0.0; ++k) {
         const double t = k == 256 ? tLeave : tLeave * k / 256.0;
         const Eigen::Vector3d q = o + t * d;

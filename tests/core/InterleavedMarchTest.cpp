@@ -92,7 +92,7 @@ TEST(InterleavedMarch, EachRayStopsAtItsFirstSampleOutsideEmptyCells) {
           continue;
         }
         const RaySegment& ray = *rays[g];
-        sampler.beginRay(ray.o, ray.d);
+        sampler.beginRay(ray);
         // Every step before start.k was skipped, and its sample lies in an empty cell.
         EXPECT_EQ(start[g].skipped, start[g].k);
         for (std::int64_t k = 0; k < start[g].k; ++k) {

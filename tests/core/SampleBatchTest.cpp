@@ -27,7 +27,7 @@ class OneLane {
   static constexpr bool kSkipsEmptySpace = S::kSkipsEmptySpace;
   static constexpr int kBatch = 1;
   explicit OneLane(S s) : s_(std::move(s)) {}
-  void beginRay(const double o[3], const double d[3]) { s_.beginRay(o, d); }
+  void beginRay(const RaySegment& ray) { s_.beginRay(ray); }
   bool inside(const double p[3]) { return s_.inside(p); }
   bool emptyAt(const double p[3], double& tLeave) { return s_.emptyAt(p, tLeave); }
   bool boundedAt(const double p[3], bool maximum, int bound, double& tLeave) {

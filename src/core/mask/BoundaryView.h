@@ -14,8 +14,10 @@
 // direction, and are merged into one (mergeCrossings). A line through a silhouette edge touches
 // the surface: one entry and one exit at the same distance, which cancel.
 //
-// Plain arrays and no allocation: the ray casters (host and device) call it once per ray
-// (SplineRaySampler::inside), Model::inside per point.
+// Plain arrays and no allocation: the device's ray caster queries it once per ray
+// (SplineRaySampler::inside), Model::inside once per point; the host's ray caster gathers a
+// tile's rays at once with the same test (crossesTriangle, BoundaryRaster.h) and queries only
+// the rays a tile leaves out.
 #include <cstdint>
 
 #include "core/util/HostDevice.h"
@@ -59,13 +61,23 @@ MFADVR_HD MFADVR_INLINE double boundaryEdgeFunction(double px, double py, double
   return swap ? -e : e;
 }
 
-// Calls hit(t, step) for every crossing of the whole line o + t d (t over all reals) with the
-// boundary; returns false if it stopped early because hit returned false.
-template <class Hit>
-MFADVR_HD MFADVR_INLINE bool forEachCrossing(const BoundaryView& v, const double o[3],
-                                             const double d[3], Hit&& hit) {
-  // The watertight test's shear: kz the axis of the largest |d|, kx and ky the others in an
-  // order that keeps the winding of the triangles.
+// A line o + t d set up for the watertight test: its origin and direction, and the shear that
+// maps it to the z axis (kz the axis of the largest |d|, kx and ky the others in an order that
+// keeps the winding of the triangles). valid is false for a zero direction, which crosses
+// nothing.
+struct BoundaryLine {
+  double o[3], d[3];
+  int kx = 0, ky = 1, kz = 2;
+  double sx = 0.0, sy = 0.0, sz = 0.0;
+  bool valid = false;
+};
+
+MFADVR_HD MFADVR_INLINE BoundaryLine boundaryLine(const double o[3], const double d[3]) {
+  BoundaryLine l;
+  for (int a = 0; a < 3; ++a) {
+    l.o[a] = o[a];
+    l.d[a] = d[a];
+  }
   int kz = 0;
   for (int a = 1; a < 3; ++a)
     if ((d[a] < 0 ? -d[a] : d[a]) > (d[kz] < 0 ? -d[kz] : d[kz])) kz = a;
@@ -76,8 +88,64 @@ MFADVR_HD MFADVR_INLINE bool forEachCrossing(const BoundaryView& v, const double
     kx = ky;
     ky = s;
   }
-  if (d[kz] == 0.0) return true;  // no direction
-  const double sx = d[kx] / d[kz], sy = d[ky] / d[kz], sz = 1.0 / d[kz];
+  if (d[kz] == 0.0) return l;  // no direction
+  l.kx = kx;
+  l.ky = ky;
+  l.kz = kz;
+  l.sx = d[kx] / d[kz];
+  l.sy = d[ky] / d[kz];
+  l.sz = 1.0 / d[kz];
+  l.valid = true;
+  return l;
+}
+
+// Whether the line crosses the triangle tri (9 values: a, b, c with (b - a) x (c - a) outward);
+// if so, its distance t and step +1 for an entry, -1 for an exit. A line in the triangle's plane
+// crosses nothing.
+MFADVR_HD MFADVR_INLINE bool crossesTriangle(const BoundaryLine& l, const double* tri, double& t,
+                                             int& step) {
+  const double* o = l.o;
+  double ax = 0, ay = 0, az = 0, bx = 0, by = 0, bz = 0, cx = 0, cy = 0, cz = 0;
+  {
+    const double A[3] = {tri[0] - o[0], tri[1] - o[1], tri[2] - o[2]};
+    const double B[3] = {tri[3] - o[0], tri[4] - o[1], tri[5] - o[2]};
+    const double C[3] = {tri[6] - o[0], tri[7] - o[1], tri[8] - o[2]};
+    ax = A[l.kx] - l.sx * A[l.kz];
+    ay = A[l.ky] - l.sy * A[l.kz];
+    bx = B[l.kx] - l.sx * B[l.kz];
+    by = B[l.ky] - l.sy * B[l.kz];
+    cx = C[l.kx] - l.sx * C[l.kz];
+    cy = C[l.ky] - l.sy * C[l.kz];
+    az = l.sz * A[l.kz];
+    bz = l.sz * B[l.kz];
+    cz = l.sz * C[l.kz];
+  }
+  const double U = boundaryEdgeFunction(cx, cy, bx, by);
+  const double V = boundaryEdgeFunction(ax, ay, cx, cy);
+  const double W = boundaryEdgeFunction(bx, by, ax, ay);
+  if ((U < 0.0 || V < 0.0 || W < 0.0) && (U > 0.0 || V > 0.0 || W > 0.0)) return false;
+  const double det = U + V + W;
+  if (det == 0.0) return false;  // the line lies in the triangle's plane: no crossing
+  // Entry where d runs against the outward normal (b - a) x (c - a).
+  const double* d = l.d;
+  const double e1[3] = {tri[3] - tri[0], tri[4] - tri[1], tri[5] - tri[2]};
+  const double e2[3] = {tri[6] - tri[0], tri[7] - tri[1], tri[8] - tri[2]};
+  const double dn = (e1[1] * e2[2] - e1[2] * e2[1]) * d[0] +
+                    (e1[2] * e2[0] - e1[0] * e2[2]) * d[1] +
+                    (e1[0] * e2[1] - e1[1] * e2[0]) * d[2];
+  if (dn == 0.0) return false;
+  t = (U * az + V * bz + W * cz) / det;
+  step = dn < 0.0 ? 1 : -1;
+  return true;
+}
+
+// Calls hit(t, step) for every crossing of the whole line o + t d (t over all reals) with the
+// boundary; returns false if it stopped early because hit returned false.
+template <class Hit>
+MFADVR_HD MFADVR_INLINE bool forEachCrossing(const BoundaryView& v, const double o[3],
+                                             const double d[3], Hit&& hit) {
+  const BoundaryLine line = boundaryLine(o, d);
+  if (!line.valid) return true;
   double inv[3];
   for (int a = 0; a < 3; ++a) inv[a] = d[a] != 0.0 ? 1.0 / d[a] : 0.0;
 
@@ -117,37 +185,11 @@ MFADVR_HD MFADVR_INLINE bool forEachCrossing(const BoundaryView& v, const double
       continue;
     }
     for (std::int32_t i = n.first; i < n.first + n.count; ++i) {
-      const double* tri = v.triangles + 9 * static_cast<std::int64_t>(i);
-      double ax = 0, ay = 0, az = 0, bx = 0, by = 0, bz = 0, cx = 0, cy = 0, cz = 0;
-      {
-        const double A[3] = {tri[0] - o[0], tri[1] - o[1], tri[2] - o[2]};
-        const double B[3] = {tri[3] - o[0], tri[4] - o[1], tri[5] - o[2]};
-        const double C[3] = {tri[6] - o[0], tri[7] - o[1], tri[8] - o[2]};
-        ax = A[kx] - sx * A[kz];
-        ay = A[ky] - sy * A[kz];
-        bx = B[kx] - sx * B[kz];
-        by = B[ky] - sy * B[kz];
-        cx = C[kx] - sx * C[kz];
-        cy = C[ky] - sy * C[kz];
-        az = sz * A[kz];
-        bz = sz * B[kz];
-        cz = sz * C[kz];
-      }
-      const double U = boundaryEdgeFunction(cx, cy, bx, by);
-      const double V = boundaryEdgeFunction(ax, ay, cx, cy);
-      const double W = boundaryEdgeFunction(bx, by, ax, ay);
-      if ((U < 0.0 || V < 0.0 || W < 0.0) && (U > 0.0 || V > 0.0 || W > 0.0)) continue;
-      const double det = U + V + W;
-      if (det == 0.0) continue;  // the line lies in the triangle's plane: no crossing
-      const double t = (U * az + V * bz + W * cz) / det;
-      // Entry where d runs against the outward normal (b - a) x (c - a).
-      const double e1[3] = {tri[3] - tri[0], tri[4] - tri[1], tri[5] - tri[2]};
-      const double e2[3] = {tri[6] - tri[0], tri[7] - tri[1], tri[8] - tri[2]};
-      const double dn = (e1[1] * e2[2] - e1[2] * e2[1]) * d[0] +
-                        (e1[2] * e2[0] - e1[0] * e2[2]) * d[1] +
-                        (e1[0] * e2[1] - e1[1] * e2[0]) * d[2];
-      if (dn == 0.0) continue;
-      if (!hit(t, dn < 0.0 ? 1 : -1)) return false;
+      double t = 0.0;
+      int step = 0;
+      if (crossesTriangle(line, v.triangles + 9 * static_cast<std::int64_t>(i), t, step) &&
+          !hit(t, step))
+        return false;
     }
   }
   return true;

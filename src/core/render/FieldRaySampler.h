@@ -13,6 +13,8 @@
 
 namespace mfadvr {
 
+struct RaySegment;  // kernel/RaySteps.h
+
 template <class S, bool Shade>
 class FieldRaySampler : public PointwiseBatch<FieldRaySampler<S, Shade>, kSampleBatch, Shade> {
  public:
@@ -25,7 +27,7 @@ class FieldRaySampler : public PointwiseBatch<FieldRaySampler<S, Shade>, kSample
   explicit FieldRaySampler(S sampler, double differenceStep = 1e-4)
       : s_(std::move(sampler)), step_(differenceStep) {}
 
-  void beginRay(const double*, const double*) {}
+  void beginRay(const RaySegment&) {}
 
   bool inside(const double p[3]) {
     if constexpr (kHasInside)

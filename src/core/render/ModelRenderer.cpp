@@ -4,8 +4,10 @@
 #include <chrono>
 #include <optional>
 
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/task_arena.h>
 
+#include "core/render/BoundaryRaster.h"
 #include "core/render/DepthBounds.h"
 #include "core/render/ModelKernelSwitch.h"
 #include "core/render/ModelRenderSetup.h"
@@ -32,13 +34,26 @@ Image renderModelView(const RenderSettings& settings, const RayParams& params,
     else
       build();
   }
+  // A mesh's boundary: its triangles projected into the image once, so that each tile gathers
+  // its rays' stretches inside the mesh at once (BoundaryRaster.h).
+  std::optional<BoundaryRaster> raster;
+  if (view.boundary.nodes) raster.emplace(view.boundary, params.camera);
+  tbb::enumerable_thread_specific<BoundaryTileStretches> tileStretches;
   const double boundsSeconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   modelKernelSwitch(view, settings.needsGradients(),
                     [&]<int P, bool Masked, bool Shade, bool Skip>() {
-                      castRays<Masked, Shade>(
-                          settings, frame, [&] { return SplineRaySampler<P, Skip, Shade>(view); },
-                          image, stats, depth ? depth->view() : DepthBoundsView{});
+                      auto make = [&](int x0, int y0, int x1, int y1) {
+                        SplineRaySampler<P, Skip, Shade> sampler(view);
+                        if (Masked && raster) {
+                          BoundaryTileStretches& tile = tileStretches.local();
+                          raster->gather(x0, y0, x1, y1, tile);
+                          sampler.useBoundaryTile(tile.view);
+                        }
+                        return sampler;
+                      };
+                      castRays<Masked, Shade>(settings, frame, make, image, stats,
+                                              depth ? depth->view() : DepthBoundsView{});
                     });
   if (stats) stats->seconds += boundsSeconds;
   return image;

@@ -19,6 +19,7 @@
 // kMarchGroup rays make their way in through empty space together (kernel/InterleavedMarch.h),
 // also with the same result per pixel.
 #include <functional>
+#include <type_traits>
 
 #include "core/field/Field.h"
 #include "core/field/ModelField.h"
@@ -51,7 +52,18 @@ void keepDepth(const RenderSettings& settings, Image& image, RayParams& params);
 using TileFunction = std::function<void(int, int, int, int, RayCounters&)>;
 void forEachTile(const RenderSettings& settings, const TileFunction& tile, RenderStats* stats);
 
-// Casts every pixel's ray with samplers from make() (one per tile). depth: where the rays of a
+// A sampler for the tile [x0, x1) x [y0, y1): make(x0, y0, x1, y1) where make takes the tile
+// (to gather what the tile's rays share, such as their stretches inside a mesh's boundary), else
+// make().
+template <class MakeSampler>
+auto samplerForTile(const MakeSampler& make, int x0, int y0, int x1, int y1) {
+  if constexpr (std::is_invocable_v<const MakeSampler&, int, int, int, int>)
+    return make(x0, y0, x1, y1);
+  else
+    return make();
+}
+
+// Casts every pixel's ray with samplers from make() or make(x0, y0, x1, y1) (one per tile). depth: where the rays of a
 // sampler that skips empty space may begin and end their march (DepthBounds.h; not for
 // Masked).
 template <bool Masked, bool Shade, class MakeSampler>
@@ -66,7 +78,7 @@ void castRays(const RenderSettings& settings, const RayParams& params, const Mak
   forEachTile(
       settings,
       [&](int x0, int y0, int x1, int y1, RayCounters& counters) {
-        auto sampler = make();
+        auto sampler = samplerForTile(make, x0, y0, x1, y1);
         for (int y = y0; y < y1; ++y) {
           int x = x0;
 #if defined(MFADVR_SPLINE_LANE_KERNEL)

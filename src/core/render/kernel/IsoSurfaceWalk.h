@@ -179,7 +179,7 @@ MFADVR_HD MFADVR_OUTLINE void isoSegment(const RayParams& rp, Sampler& sampler,
                                          RayCounters& counters) {
   float red = 0.0f, green = 0.0f, blue = 0.0f, alpha = 0.0f;
   float depth = NAN;
-  sampler.beginRay(ray.o, ray.d);
+  sampler.beginRay(ray);
   RayShading rayShading;
   if constexpr (Shade) {
     const float df[3] = {float(ray.d[0]), float(ray.d[1]), float(ray.d[2])};

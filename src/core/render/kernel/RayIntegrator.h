@@ -20,7 +20,7 @@
 // threshold. The result is composited over the background.
 //
 // The sampler (a "ray sampler") answers, at a physical point p (double[3]):
-//   void beginRay(const double o[3], const double d[3])  the ray about to be walked
+//   void beginRay(const RaySegment& ray)  the ray about to be walked (its pixel, origin, direction)
 //   bool inside(const double p[3])     false outside a domain mask (only called when Masked)
 //   bool emptyAt(const double p[3], double& tLeave)     only when kSkipsEmptySpace: true when
 //        no value the field can take around p is visible; tLeave: a ray distance up to which
@@ -90,7 +90,7 @@ MFADVR_HD MFADVR_INLINE void compositeSegment(const RayParams& rp, Sampler& samp
 #if MFADVR_EMPTY_SPACE_PROFILE
     const std::int64_t rayStart = cycleCount();
 #endif
-    if (samples) sampler.beginRay(o, d);
+    if (samples) sampler.beginRay(ray);
     constexpr int K = Sampler::kBatch;
     std::int64_t k = start.k;
     std::int64_t carried = start.skipped;  // passed over before step k

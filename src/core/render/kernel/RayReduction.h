@@ -85,7 +85,7 @@ MFADVR_HD MFADVR_OUTLINE void reduceSegment(const RayParams& rp, Sampler& sample
   constexpr int K = Sampler::kBatch;
   const double dt = rp.sampleDistance;
   RayReduction r;
-  sampler.beginRay(ray.o, ray.d);
+  sampler.beginRay(ray);
   [[maybe_unused]] const bool maximum = rp.blend == BlendMode::Maximum;
   [[maybe_unused]] const bool extreme = maximum || rp.blend == BlendMode::Minimum;
   // The byte a cell's bound must pass to be skipped, from the ray's extreme or the transfer

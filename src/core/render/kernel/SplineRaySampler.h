@@ -22,7 +22,9 @@
 
 #include "core/mask/BoundaryView.h"
 #include "core/mask/MaskView.h"
+#include "core/render/kernel/BoundaryTileView.h"
 #include "core/render/kernel/ExtremeLevels.h"
+#include "core/render/kernel/RaySteps.h"
 #include "core/render/kernel/SampleBatch.h"
 #include "core/spline/SplineKernel.h"
 #include "core/spline/SplineLaneKernel.h"
@@ -45,9 +47,10 @@ struct ModelView {
   double boxMin[3];
   double inverseExtent[3];  // physical -> parameter: u = (x - boxMin) * inverseExtent
   MaskView mask;
-  // The mesh's exact boundary (null nodes: none). Where it is given, the host's rays sample only
-  // their stretches inside it (SplineRaySampler::beginRay), and the mask serves rays that cross
-  // it more often than kMaxBoundaryCrossings; the device's use the mask.
+  // The mesh's exact boundary (null nodes: none). Where it is given, rays sample only their
+  // stretches inside it (SplineRaySampler::beginRay): the host's gathered a tile of rays at a
+  // time (BoundaryRaster.h), the device's queried ray by ray; the mask serves rays that cross it
+  // more often than kMaxBoundaryCrossings.
   BoundaryView boundary;
   // Per knot-span cell, x fastest over (count - degree) cells per axis: 0 when the cell is
   // visible under the current transfer function, else 1 + the level of the largest block of the
@@ -140,16 +143,29 @@ class SplineRaySampler {
       r.tieMargin += 8.0 * kEmptyInset * (r.invUd[a] < 0.0 ? -r.invUd[a] : r.invUd[a]);
   }
 
-  MFADVR_HD MFADVR_INLINE void beginRay(const double o[3], const double d[3]) {
+  // The stretches inside the mesh's boundary of the rays of a tile, gathered beforehand
+  // (BoundaryRaster.h): rays of its pixels read them instead of querying the boundary.
+  MFADVR_HD MFADVR_INLINE void useBoundaryTile(const BoundaryTileView& tile) {
+    boundaryTile_ = tile;
+  }
+
+  MFADVR_HD MFADVR_INLINE void beginRay(const RaySegment& ray) {
+    const double* o = ray.o;
+    const double* d = ray.d;
     if constexpr (Skip) beginMarch(o, d, march_);
-    // The ray's stretches inside the mesh's boundary are gathered at its first inside() test
-    // (only masked renders test; the unmasked kernels leave the traversal out).
+    // The ray's stretches inside the mesh's boundary: the tile's, or gathered at its first
+    // inside() test (only masked renders test; the unmasked kernels leave the traversal out).
     if (m_.boundary.nodes) {
+      double dd = 0.0;
       for (int a = 0; a < 3; ++a) {
         rayOrigin_[a] = o[a];
         rayDirection_[a] = d[a];
+        dd += d[a] * d[a];
       }
-      boundaryStretches_ = kBoundaryPending;
+      rayInverseLength2_ = dd > 0.0 ? 1.0 / dd : 0.0;
+      stretches_ = boundaryIntervals_;
+      boundaryStretches_ = boundaryTile_.find(ray.pixel, stretches_);
+      if (boundaryStretches_ == kStretchesNotGathered) stretches_ = boundaryIntervals_;
     }
   }
 
@@ -189,17 +205,13 @@ class SplineRaySampler {
   // Inside the mesh's exact boundary (the stretches of the current ray), or, without one or on
   // a ray of more crossings than kMaxBoundaryCrossings, inside the domain mask.
   MFADVR_HD MFADVR_INLINE bool inside(const double p[3]) {
-    if (boundaryStretches_ == kBoundaryPending) {
+    if (boundaryStretches_ == kStretchesNotGathered)
       boundaryStretches_ =
           boundaryIntervals(m_.boundary, rayOrigin_, rayDirection_, boundaryIntervals_);
-      double dd = 0.0;
-      for (int a = 0; a < 3; ++a) dd += rayDirection_[a] * rayDirection_[a];
-      rayInverseLength2_ = dd > 0.0 ? 1.0 / dd : 0.0;
-    }
     if (boundaryStretches_ >= 0) {
       double t = 0.0;
       for (int a = 0; a < 3; ++a) t += (p[a] - rayOrigin_[a]) * rayDirection_[a];
-      return inIntervals(boundaryIntervals_, boundaryStretches_, t * rayInverseLength2_);
+      return inIntervals(stretches_, boundaryStretches_, t * rayInverseLength2_);
     }
     double u[3];
     toParameter(p, u);
@@ -484,11 +496,12 @@ class SplineRaySampler {
   AxisLocation loc_[3];
   RayMarch march_;
   // The current ray's stretches inside the boundary (-1: no boundary, or more stretches than the
-  // limit: the mask decides; kBoundaryPending: not gathered yet), and the ray, to turn a sample's
-  // point into its distance.
-  static constexpr int kBoundaryPending = -2;
+  // limit: the mask decides; kStretchesNotGathered: not gathered yet) at stretches_ (the tile's
+  // or boundaryIntervals_), and the ray, to turn a sample's point into its distance.
   int boundaryStretches_ = -1;
   double boundaryIntervals_[2 * kMaxBoundaryIntervals];
+  const double* stretches_ = nullptr;
+  BoundaryTileView boundaryTile_;
   double rayOrigin_[3], rayDirection_[3], rayInverseLength2_ = 0.0;
   static constexpr int kOrder = Shade ? 1 : 0;
   AxisLocation locs_[kBatch][3];  // each lane's location, unless kLaneLocations

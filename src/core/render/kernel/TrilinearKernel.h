@@ -11,6 +11,8 @@
 
 namespace mfadvr {
 
+struct RaySegment;  // kernel/RaySteps.h
+
 // Samples with one ghost layer (PaddedGrid.h): sample (i, j, k), i in [-1, n], at
 // data[(i + 1) + sy (j + 1) + sz (k + 1)].
 struct GridView {
@@ -106,7 +108,7 @@ class TrilinearRaySampler : public PointwiseBatch<TrilinearRaySampler<Shade>, kS
  public:
   static constexpr bool kSkipsEmptySpace = false;
   MFADVR_HD explicit TrilinearRaySampler(const GridView& g) : g_(g) {}
-  MFADVR_HD MFADVR_INLINE void beginRay(const double*, const double*) {}
+  MFADVR_HD MFADVR_INLINE void beginRay(const RaySegment&) {}
   MFADVR_HD MFADVR_INLINE bool inside(const double*) const { return true; }
   MFADVR_HD MFADVR_INLINE bool emptyAt(const double*, double&) { return false; }
   MFADVR_HD MFADVR_INLINE float pointValue(const double p[3]) const {
