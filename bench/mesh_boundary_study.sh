@@ -2,7 +2,9 @@
 # Exact mesh boundaries, measured: each mesh encoded with the defaults (voxel mask and exact
 # boundary) and with --no-boundary (mask only), both rendered unshaded with a ramp next to VTK's
 # Bunyk ray caster on the mesh itself (same camera, TF and size), whole and zoomed on a part of
-# the boundary; image PSNR / SSIM of each model against Bunyk, frame times, boundary size.
+# the boundary; image PSNR / SSIM of each model against Bunyk, boundary size, and the frame
+# times (median of the frames after the first) of the exact model, the mask-only model and
+# Bunyk, with Bunyk's over the exact model's.
 #
 #   bench/mesh_boundary_study.sh [MFADVR] [OUT_DIR] [MESH|FIELD|ZOOM|FOCAL_X,Y,Z ...]
 #
@@ -15,7 +17,7 @@ exe=${1:-build/release/src/app/mfadvr}
 out=${2:-}
 shift $(($# > 2 ? 2 : $#))
 size=${SIZE:-512x512}
-frames=${FRAMES:-3}
+frames=${FRAMES:-5}
 if [ -z "$out" ]; then
   out=$(mktemp -d)
   trap 'rm -rf "$out"' EXIT
@@ -31,8 +33,8 @@ fi
 field() { python3 -c "import json,sys; j=json.load(open(sys.argv[1])); print(j$1)" "$2"; }
 psnr() { "$exe" compare "$1" "$2" --json | python3 -c \
   "import json,sys; j=json.load(sys.stdin); print('%.2f %.4f' % (j['psnr'], j['ssim']))"; }
-printf '%-22s %-6s %9s %8s %13s %13s %9s\n' mesh view triangles "encode s" "mask dB/SSIM" \
-  "exact dB/SSIM" "frame s"
+printf '%-22s %-6s %9s %8s %13s %13s %22s %7s\n' mesh view triangles "encode s" "mask dB/SSIM" \
+  "exact dB/SSIM" "frame s exact/mask/Bunyk" "Bunyk/x"
 for spec in "${meshes[@]}"; do
   IFS='|' read -r mesh fieldName zoom focal <<<"$spec"
   name=$(basename "${mesh%.*}")
@@ -44,15 +46,19 @@ for spec in "${meshes[@]}"; do
     cam=(--size "$size" --tf ramp --frames "$frames")
     [ "$view" = zoom ] && cam+=(--zoom "$zoom" --focal-point "$focal")
     "$exe" render "$mesh" "${fopt[@]}" --method vtk-bunyk "${cam[@]}" \
-      -o "$out/$name-$view-bunyk.png" -q >/dev/null
-    "$exe" render "$out/$name-mask.mfa" "${cam[@]}" -o "$out/$name-$view-mask.png" -q >/dev/null
+      -o "$out/$name-$view-bunyk.png" --json >"$out/$name-$view-bunyk.json"
+    "$exe" render "$out/$name-mask.mfa" "${cam[@]}" -o "$out/$name-$view-mask.png" --json \
+      >"$out/$name-$view-mask.json"
     "$exe" render "$out/$name.mfa" "${cam[@]}" -o "$out/$name-$view-exact.png" --json \
       >"$out/$name-$view-exact.json"
-    printf '%-22s %-6s %9s %8.2f %13s %13s %9.4f\n' "$name" "$view" \
+    exact=$(field "['seconds']['render']" "$out/$name-$view-exact.json")
+    bunyk=$(field "['seconds']['render']" "$out/$name-$view-bunyk.json")
+    printf '%-22s %-6s %9s %8.2f %13s %13s %8.3f/%6.3f/%6.3f %7.1f\n' "$name" "$view" \
       "$(field "['boundary']['triangles']" "$out/$name-encode.json")" \
       "$(field "['fit_seconds']" "$out/$name-encode.json")" \
       "$(psnr "$out/$name-$view-bunyk.png" "$out/$name-$view-mask.png" | tr ' ' /)" \
       "$(psnr "$out/$name-$view-bunyk.png" "$out/$name-$view-exact.png" | tr ' ' /)" \
-      "$(field "['seconds']['render']" "$out/$name-$view-exact.json")"
+      "$exact" "$(field "['seconds']['render']" "$out/$name-$view-mask.json")" "$bunyk" \
+      "$(python3 -c "print($bunyk / $exact)")"
   done
 done
