@@ -1,8 +1,12 @@
 #include "core/render/BoundaryRaster.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 namespace mfadvr {
 namespace {
@@ -52,16 +56,16 @@ BoundaryRaster::BoundaryRaster(const BoundaryView& boundary, const CameraRays& c
 
   const auto count = static_cast<size_t>(boundary.triangleCount);
   projected_.resize(count);
-  std::int64_t entries = 0;
-  for (size_t i = 0; i < count; ++i) {
+  // Per triangle: 0 outside the image, 1 binned, 2 across the camera's plane.
+  std::vector<std::uint8_t> kind(count, 0);
+  auto project = [&](size_t i) {
     Projected& pr = projected_[i];
     pr.rect[0] = pr.rect[1] = 0;
     pr.rect[2] = pr.rect[3] = -1;  // empty
     const double* tri = boundary.triangles + 9 * i;
     double px[3][2];
-    bool bounded = true;
     int side = 0;
-    for (int k = 0; k < 3 && bounded; ++k) {
+    for (int k = 0; k < 3; ++k) {
       const Eigen::Vector3d q =
           Eigen::Vector3d(tri[3 * k], tri[3 * k + 1], tri[3 * k + 2]) - position;
       const Eigen::Vector3d s = toCamera * q;
@@ -70,8 +74,8 @@ BoundaryRaster::BoundaryRaster(const BoundaryView& boundary, const CameraRays& c
         const double z = s[0];
         const int zSide = z > 0.0 ? 1 : -1;
         if (!(std::abs(z) > kPlaneFraction * q.norm()) || (side != 0 && zSide != side)) {
-          bounded = false;
-          break;
+          kind[i] = 2;
+          return;
         }
         side = zSide;
         sx /= z;
@@ -81,10 +85,6 @@ BoundaryRaster::BoundaryRaster(const BoundaryView& boundary, const CameraRays& c
       // - 1) halfWidth.
       px[k][0] = (sx / camera.halfWidth + 1.0) * 0.5 * w - 0.5;
       px[k][1] = (1.0 - sy / camera.halfHeight) * 0.5 * h - 0.5;
-    }
-    if (!bounded) {
-      straddling_.push_back(static_cast<std::int32_t>(i));
-      continue;
     }
     double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
     for (int k = 0; k < 3; ++k)
@@ -97,7 +97,8 @@ BoundaryRaster::BoundaryRaster(const BoundaryView& boundary, const CameraRays& c
     pr.rect[1] = static_cast<int>(std::clamp(std::ceil(lo[1] - kRasterMargin), 0.0, h));
     pr.rect[2] = static_cast<int>(std::clamp(std::floor(hi[0] + kRasterMargin), -1.0, w - 1.0));
     pr.rect[3] = static_cast<int>(std::clamp(std::floor(hi[1] + kRasterMargin), -1.0, h - 1.0));
-    if (pr.empty()) continue;  // outside the image
+    if (pr.empty()) return;  // outside the image
+    kind[i] = 1;
     const double area = (px[1][0] - px[0][0]) * (px[2][1] - px[0][1]) -
                         (px[1][1] - px[0][1]) * (px[2][0] - px[0][0]);
     bool moderate = true;
@@ -118,6 +119,15 @@ BoundaryRaster::BoundaryRaster(const BoundaryView& boundary, const CameraRays& c
       }
       pr.hasEdges = true;
     }
+  };
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, count, 1024), [&](const auto& r) {
+    for (size_t i = r.begin(); i < r.end(); ++i) project(i);
+  });
+  std::int64_t entries = 0;
+  for (size_t i = 0; i < count; ++i) {
+    if (kind[i] == 2) straddling_.push_back(static_cast<std::int32_t>(i));
+    if (kind[i] != 1) continue;
+    const Projected& pr = projected_[i];
     entries += static_cast<std::int64_t>(pr.rect[2] / kBin - pr.rect[0] / kBin + 1) *
                (pr.rect[3] / kBin - pr.rect[1] / kBin + 1);
   }

@@ -37,7 +37,13 @@ Image renderModelView(const RenderSettings& settings, const RayParams& params,
   // A mesh's boundary: its triangles projected into the image once, so that each tile gathers
   // its rays' stretches inside the mesh at once (BoundaryRaster.h).
   std::optional<BoundaryRaster> raster;
-  if (view.boundary.nodes) raster.emplace(view.boundary, params.camera);
+  if (view.boundary.nodes) {
+    auto build = [&] { raster.emplace(view.boundary, params.camera); };
+    if (settings.threads > 0)
+      tbb::task_arena(settings.threads).execute(build);
+    else
+      build();
+  }
   tbb::enumerable_thread_specific<BoundaryTileStretches> tileStretches;
   const double boundsSeconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
