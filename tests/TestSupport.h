@@ -1,6 +1,7 @@
 #pragma once
 // Helpers shared by the test programs: where the real data lives, scratch folders.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -18,6 +19,7 @@
 #include "core/mask/DomainMask.h"
 #include "core/render/RenderSettings.h"
 #include "core/render/kernel/CameraRays.h"
+#include "core/spline/TensorBSpline.h"
 #include "core/util/Error.h"
 
 namespace mfadvr::test {
@@ -187,6 +189,20 @@ inline int expectChordTransmittance(const Image& image, const RenderSettings& s)
       EXPECT_LE(alpha, high + 1e-5) << x << " " << y << " chord " << chord;
     }
   return hit;
+}
+
+// A quadratic spline of n^3 control points over the unit cube whose values (0 to 1) jump from
+// control point to control point: a field with structure everywhere, for comparing renders.
+inline TensorBSpline patternedSpline(int n) {
+  std::array<KnotVector, 3> knots;
+  for (auto& k : knots) k = KnotVector::clampedUniform(2, n);
+  std::vector<float> ctrl(static_cast<size_t>(n) * n * n);
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i)
+        ctrl[static_cast<size_t>(i + n * (j + n * k))] =
+            float((7 * i + 3 * j + 5 * k) % 11) / 10.0f;
+  return TensorBSpline(knots, std::move(ctrl));
 }
 
 // Appends the 6 tetrahedra around the main diagonal of the cube with lowest corner (i, j, k) (the

@@ -49,8 +49,8 @@ Tally expectTilesEqualQueries(const DomainBoundary& b, const CameraRays& rays, i
           bool same = m == n;
           for (int i = 0; same && i < 2 * n; ++i) same = got[i] == expected[i];
           if (!same) {
-            ADD_FAILURE() << "pixel " << x << ", " << y << ": " << m << " stretches gathered, "
-                          << n << " queried";
+            ADD_FAILURE() << "pixel " << x << ", " << y << ": " << m << " stretches gathered, " << n
+                          << " queried";
             return tally;  // one report is enough
           }
           if (n > 0) ++tally.inside;
@@ -68,7 +68,8 @@ Camera lookAt(const Vec3d& position, const Vec3d& focalPoint, double viewAngle =
   c.position = position;
   c.focalPoint = focalPoint;
   c.viewUp = Vec3d(0, 1, 0);
-  if (std::abs((focalPoint - position).normalized().dot(c.viewUp)) > 0.99) c.viewUp = Vec3d(0, 0, 1);
+  if (std::abs((focalPoint - position).normalized().dot(c.viewUp)) > 0.99)
+    c.viewUp = Vec3d(0, 0, 1);
   c.viewAngle = viewAngle;
   return c;
 }
@@ -96,8 +97,8 @@ TEST(BoundaryRaster, TilesEqualThePerRayQueryFromOutside) {
         EXPECT_GT(t.inside, t.rays / 4);
       }
     }
-    const Tally skewed =
-        expectTilesEqualQueries(b, test::skewedRays(raysOf(lookAt(Vec3d(9, 7, 11), centre), 37, 29)), 16);
+    const Tally skewed = expectTilesEqualQueries(
+        b, test::skewedRays(raysOf(lookAt(Vec3d(9, 7, 11), centre), 37, 29)), 16);
     EXPECT_EQ(skewed.notGathered, 0);
     EXPECT_GT(skewed.inside, skewed.rays / 8);
   }
@@ -138,15 +139,15 @@ TEST(BoundaryRaster, TilesEqualThePerRayQueryFromInsideAndFacingAway) {
 
 TEST(BoundaryRaster, RaysOfManyCrossingsAreLeftToTheirOwnQuery) {
   // 24 slabs one cube thick along x: a ray along x crosses 48 faces, more than a tile gathers.
-  const test::TetMesh m = test::cubeMesh(48, [](int i, int j, int k) {
-    return i % 2 == 0 && j < 2 && k < 2;
-  });
+  const test::TetMesh m =
+      test::cubeMesh(48, [](int i, int j, int k) { return i % 2 == 0 && j < 2 && k < 2; });
   const DomainBoundary b = boundaryOfTetrahedra(m.points, m.tets);
   Camera c = lookAt(Vec3d(-5, 1.02, 1.03), Vec3d(30, 1.0, 1.0), 10.0);
   const Tally t = expectTilesEqualQueries(b, raysOf(c, 16, 16), 16);
   EXPECT_GT(t.notGathered, 0);
   // Across the slabs, a ray crosses two faces.
-  const Tally across = expectTilesEqualQueries(b, raysOf(lookAt(Vec3d(7.5, 1, 9), Vec3d(7.5, 1, 1)), 32, 32), 16);
+  const Tally across =
+      expectTilesEqualQueries(b, raysOf(lookAt(Vec3d(7.5, 1, 9), Vec3d(7.5, 1, 1)), 32, 32), 16);
   EXPECT_EQ(across.notGathered, 0);
   EXPECT_GT(across.inside, 0);
 }
@@ -155,16 +156,9 @@ TEST(BoundaryRaster, RaysOfManyCrossingsAreLeftToTheirOwnQuery) {
 // querying the boundary alone (samplers made without the tile): the same image, to the bit.
 TEST(BoundaryRaster, ARenderOfGatheredTilesEqualsOneOfRaysQueryingAlone) {
   const test::TetMesh mesh = test::cubeMesh(4, holed);
-  std::array<KnotVector, 3> knots;
-  for (auto& k : knots) k = KnotVector::clampedUniform(2, 10);
-  std::vector<float> ctrl(10 * 10 * 10);
-  for (int k = 0; k < 10; ++k)
-    for (int j = 0; j < 10; ++j)
-      for (int i = 0; i < 10; ++i)
-        ctrl[i + 10 * (j + 10 * k)] = float((7 * i + 3 * j + 5 * k) % 11) / 10.0f;
-  Model model(TensorBSpline(knots, std::move(ctrl)), DomainBox{Vec3d::Zero(), Vec3d::Constant(4)},
-              0.0, 1.0);
-  model.setBoundary(std::make_shared<const DomainBoundary>(boundaryOfTetrahedra(mesh.points, mesh.tets)));
+  Model model(test::patternedSpline(10), DomainBox{Vec3d::Zero(), Vec3d::Constant(4)}, 0.0, 1.0);
+  model.setBoundary(
+      std::make_shared<const DomainBoundary>(boundaryOfTetrahedra(mesh.points, mesh.tets)));
   const ModelField field(model);
   RenderSettings s = test::viewOf(53, 45, Vec3d(9, 7, 11), Vec3d(2, 2, 2), 30, 0.02);
   s.transferFunction.color = {{0.0, Vec3f(0, 0, 1)}, {1.0, Vec3f(1, 0.5, 0)}};
@@ -178,9 +172,9 @@ TEST(BoundaryRaster, ARenderOfGatheredTilesEqualsOneOfRaysQueryingAlone) {
     Image alone(s.width, s.height);
     modelKernelSwitch(view, s.needsGradients(), [&]<int P, bool Masked, bool Shade, bool Skip>() {
       ASSERT_TRUE(Masked);
-      castRays<Masked, Shade>(s, setup.params(),
-                              [&] { return SplineRaySampler<P, Skip, Shade>(view); }, alone,
-                              nullptr);
+      castRays<Masked, Shade>(
+          s, setup.params(), [&] { return SplineRaySampler<P, Skip, Shade>(view); }, alone,
+          nullptr);
     });
     EXPECT_EQ(gathered.rgba, alone.rgba) << (shade ? "shaded" : "unshaded");
     int seen = 0;

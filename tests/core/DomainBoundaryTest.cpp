@@ -222,14 +222,7 @@ TEST(DomainBoundary, RaysSampleExactlyTheChordsOfTheMesh) {
 // boundary (it did: 39.8 dB between the blunt fin's images with and without skipping).
 TEST(DomainBoundary, SkippingLeavesTheImageOfABoundedModelUnchanged) {
   Model m = octahedronModel();
-  std::array<KnotVector, 3> knots;
-  for (auto& k : knots) k = KnotVector::clampedUniform(2, 12);
-  std::vector<float> ctrl(12 * 12 * 12);
-  for (int k = 0; k < 12; ++k)
-    for (int j = 0; j < 12; ++j)
-      for (int i = 0; i < 12; ++i)
-        ctrl[i + 12 * (j + 12 * k)] = float((7 * i + 3 * j + 5 * k) % 11) / 10.0f;
-  Model bounded(TensorBSpline(knots, std::move(ctrl)), m.domain(), 0.0, 1.0);
+  Model bounded(test::patternedSpline(12), m.domain(), 0.0, 1.0);
   bounded.setBoundary(std::make_shared<const DomainBoundary>(*m.boundary()));
   RenderSettings s = test::octahedronView(96, 80);
   s.transferFunction.color = {{0.0, Vec3f(0, 0, 1)}, {1.0, Vec3f(1, 0.5, 0)}};

@@ -131,8 +131,7 @@ MFADVR_HD MFADVR_INLINE bool crossesTriangle(const BoundaryLine& l, const double
   const double e1[3] = {tri[3] - tri[0], tri[4] - tri[1], tri[5] - tri[2]};
   const double e2[3] = {tri[6] - tri[0], tri[7] - tri[1], tri[8] - tri[2]};
   const double dn = (e1[1] * e2[2] - e1[2] * e2[1]) * d[0] +
-                    (e1[2] * e2[0] - e1[0] * e2[2]) * d[1] +
-                    (e1[0] * e2[1] - e1[1] * e2[0]) * d[2];
+                    (e1[2] * e2[0] - e1[0] * e2[2]) * d[1] + (e1[0] * e2[1] - e1[1] * e2[0]) * d[2];
   if (dn == 0.0) return false;
   t = (U * az + V * bz + W * cz) / det;
   step = dn < 0.0 ? 1 : -1;

@@ -155,8 +155,8 @@ BoundaryRaster::BoundaryRaster(const BoundaryView& boundary, const CameraRays& c
   }
 }
 
-void BoundaryRaster::tryTriangle(const Projected* pr, std::int32_t triangle, int x0, int y0,
-                                 int x1, int y1, int tileX, int tileY, int tileWidth,
+void BoundaryRaster::tryTriangle(const Projected* pr, std::int32_t triangle, int x0, int y0, int x1,
+                                 int y1, int tileX, int tileY, int tileWidth,
                                  BoundaryTileStretches& out) const {
   if (pr) {
     x0 = std::max(x0, pr->rect[0]);
@@ -170,8 +170,8 @@ void BoundaryRaster::tryTriangle(const Projected* pr, std::int32_t triangle, int
     for (int x = x0; x < x1; ++x) {
       if (edges) {
         const auto& e = pr->edge;
-        if (e[0][0] * x + e[0][1] * y + e[0][2] < 0.0 || e[1][0] * x + e[1][1] * y + e[1][2] < 0.0 ||
-            e[2][0] * x + e[2][1] * y + e[2][2] < 0.0)
+        if (e[0][0] * x + e[0][1] * y + e[0][2] < 0.0 ||
+            e[1][0] * x + e[1][1] * y + e[1][2] < 0.0 || e[2][0] * x + e[2][1] * y + e[2][2] < 0.0)
           continue;
       }
       const size_t p = static_cast<size_t>(y - tileY) * tileWidth + (x - tileX);
@@ -193,9 +193,8 @@ void BoundaryRaster::gather(int x0, int y0, int x1, int y1, BoundaryTileStretche
   const size_t pixels = static_cast<size_t>(width) * height;
   out.count.assign(pixels, 0);
   out.intervals.resize(pixels * 2 * kMaxBoundaryIntervals);
-  out.view = BoundaryTileView{out.count.data(), out.intervals.data(), x0,
-                              y0,               width,                height,
-                              camera_.width};
+  out.view = BoundaryTileView{out.count.data(), out.intervals.data(), x0, y0, width,
+                              height,           camera_.width};
   if (!usable_ || !boundary_.nodes) {
     std::fill(out.count.begin(), out.count.end(), kStretchesNotGathered);
     return;
@@ -217,8 +216,7 @@ void BoundaryRaster::gather(int x0, int y0, int x1, int y1, BoundaryTileStretche
       const size_t b = static_cast<size_t>(by) * binsX_ + bx;
       for (std::int32_t k = binStart_[b]; k < binStart_[b + 1]; ++k) {
         const std::int32_t i = binTriangle_[static_cast<size_t>(k)];
-        tryTriangle(&projected_[static_cast<size_t>(i)], i, cx0, cy0, cx1, cy1, x0, y0, width,
-                    out);
+        tryTriangle(&projected_[static_cast<size_t>(i)], i, cx0, cy0, cx1, cy1, x0, y0, width, out);
       }
     }
 

@@ -52,9 +52,7 @@ class BoundaryRaster {
   // Counts for the documentation and tests: triangles listed in bins, and those across the
   // camera's plane.
   std::int64_t binnedTriangles() const { return static_cast<std::int64_t>(binTriangle_.size()); }
-  std::int64_t straddlingTriangles() const {
-    return static_cast<std::int64_t>(straddling_.size());
-  }
+  std::int64_t straddlingTriangles() const { return static_cast<std::int64_t>(straddling_.size()); }
 
  private:
   // A projected triangle: its bounding pixel rectangle (inclusive) and, where its projection is
@@ -66,8 +64,7 @@ class BoundaryRaster {
     double edge[3][3];
   };
   void tryTriangle(const Projected* projected, std::int32_t triangle, int x0, int y0, int x1,
-                   int y1, int tileX, int tileY, int tileWidth,
-                   BoundaryTileStretches& out) const;
+                   int y1, int tileX, int tileY, int tileWidth, BoundaryTileStretches& out) const;
 
   BoundaryView boundary_;
   CameraRays camera_;
@@ -75,10 +72,10 @@ class BoundaryRaster {
   // every ray then queries the boundary alone.
   bool usable_ = true;
   int binsX_ = 0, binsY_ = 0;
-  std::vector<Projected> projected_;            // per triangle
-  std::vector<std::int32_t> binStart_;          // binsX * binsY + 1
-  std::vector<std::int32_t> binTriangle_;       // triangle indices, bin by bin
-  std::vector<std::int32_t> straddling_;        // triangles across the camera's plane
+  std::vector<Projected> projected_;       // per triangle
+  std::vector<std::int32_t> binStart_;     // binsX * binsY + 1
+  std::vector<std::int32_t> binTriangle_;  // triangle indices, bin by bin
+  std::vector<std::int32_t> straddling_;   // triangles across the camera's plane
 };
 
 }  // namespace mfadvr

@@ -63,9 +63,9 @@ auto samplerForTile(const MakeSampler& make, int x0, int y0, int x1, int y1) {
     return make();
 }
 
-// Casts every pixel's ray with samplers from make() or make(x0, y0, x1, y1) (one per tile). depth: where the rays of a
-// sampler that skips empty space may begin and end their march (DepthBounds.h; not for
-// Masked).
+// Casts every pixel's ray with samplers from make() or make(x0, y0, x1, y1) (one per tile). depth:
+// where the rays of a sampler that skips empty space may begin and end their march (DepthBounds.h;
+// not for Masked).
 template <bool Masked, bool Shade, class MakeSampler>
 void castRays(const RenderSettings& settings, const RayParams& params, const MakeSampler& make,
               Image& image, RenderStats* stats, DepthBoundsView depth = {}) {
