@@ -177,6 +177,8 @@ void BoundaryRaster::tryTriangle(const Projected* pr, std::int32_t triangle, int
       const size_t p = static_cast<size_t>(y - tileY) * tileWidth + (x - tileX);
       int& n = out.count[p];
       if (n > kTileCrossings) continue;  // overflowed: left to the per-ray query
+      // A line without direction crosses nothing (as in forEachCrossing).
+      if (!out.lines[p].valid) continue;
       double t = 0.0;
       int step = 0;
       if (!crossesTriangle(out.lines[p], tri, t, step)) continue;
