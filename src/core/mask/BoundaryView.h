@@ -270,6 +270,24 @@ MFADVR_HD MFADVR_INLINE int boundaryIntervals(const BoundaryView& v, const doubl
   return intervalsOfCrossings(c, n, intervals, kMaxBoundaryIntervals);
 }
 
+// 1 / |d|^2 (0 for a ray without direction): turns a point of the ray o + t d into its t.
+MFADVR_HD MFADVR_INLINE double rayInverseLength2(const double d[3]) {
+  double dd = 0.0;
+  for (int a = 0; a < 3; ++a) dd += d[a] * d[a];
+  return dd > 0.0 ? 1.0 / dd : 0.0;
+}
+
+// The t of p, a point of the ray o + t d: ((p - o) . d) / |d|^2, where its stretches inside are
+// looked up; for one ray (D = double) and for the lanes of a ray packet (a vector of doubles),
+// operation for operation alike, so that a lane finds what its ray alone finds.
+template <class D>
+MFADVR_HD MFADVR_INLINE D rayParameterOf(const D o[3], const D d[3], D inverseLength2,
+                                         const D p[3]) {
+  D t = {};
+  for (int a = 0; a < 3; ++a) t += (p[a] - o[a]) * d[a];
+  return t * inverseLength2;
+}
+
 // Whether distance t lies in one of the count stretches.
 MFADVR_HD MFADVR_INLINE bool inIntervals(const double* intervals, int count, double t) {
   for (int i = 0; i < count; ++i)

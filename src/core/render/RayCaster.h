@@ -79,16 +79,28 @@ void castRays(const RenderSettings& settings, const RayParams& params, const Mak
       settings,
       [&](int x0, int y0, int x1, int y1, RayCounters& counters) {
         auto sampler = samplerForTile(make, x0, y0, x1, y1);
+        auto oneRay = [&](int x, int y) {
+          RaySegment ray;
+          const bool hits = raySegment(params, x, y, ray);
+          RayStart start;
+          if (!Masked && hits && composite && decltype(sampler)::kSkipsEmptySpace)
+            start = boundSteps(depth, x, y, ray, params.sampleDistance);
+          integrateSegment<Masked, Shade>(params, sampler, hits ? &ray : nullptr, start,
+                                          image.pixel(x, y), counters);
+        };
         for (int y = y0; y < y1; ++y) {
           int x = x0;
 #if defined(MFADVR_SPLINE_LANE_KERNEL)
           // Eight rays at a time where the sampler takes packets; the same pixels either way.
-          if constexpr (!Masked && takesRayPackets<decltype(sampler)>()) {
+          if constexpr (takesRayPackets<decltype(sampler)>()) {
             for (; packets && x + kRayPacket <= x1; x += kRayPacket) {
               float rgba[kRayPacket][4];
-              integratePacket<Shade>(params, sampler, x, y, rgba, counters);
-              for (int l = 0; l < kRayPacket; ++l)
-                for (int c = 0; c < 4; ++c) image.pixel(x + l, y)[c] = rgba[l][c];
+              if (integratePacket<Masked, Shade>(params, sampler, x, y, rgba, counters)) {
+                for (int l = 0; l < kRayPacket; ++l)
+                  for (int c = 0; c < 4; ++c) image.pixel(x + l, y)[c] = rgba[l][c];
+              } else {
+                for (int l = 0; l < kRayPacket; ++l) oneRay(x + l, y);
+              }
             }
           }
 #endif
@@ -112,15 +124,7 @@ void castRays(const RenderSettings& settings, const RayParams& params, const Mak
                                                 image.pixel(x + g, y), counters);
             }
           }
-          for (; x < x1; ++x) {
-            RaySegment ray;
-            const bool hits = raySegment(params, x, y, ray);
-            RayStart start;
-            if (!Masked && hits && composite && decltype(sampler)::kSkipsEmptySpace)
-              start = boundSteps(depth, x, y, ray, params.sampleDistance);
-            integrateSegment<Masked, Shade>(params, sampler, hits ? &ray : nullptr, start,
-                                            image.pixel(x, y), counters);
-          }
+          for (; x < x1; ++x) oneRay(x, y);
         }
       },
       stats);

@@ -17,8 +17,12 @@
 //   static constexpr bool kRayPackets          true
 //   LaneVector8 evaluatePacket(const LaneDouble8 x[3])   values at the eight points
 //   void gradientPacket(LaneVector8 g[3])   their physical gradients (shaded renders)
-// Packets cover renders without a domain mask or empty-space skipping; those take one ray at a
-// time.
+// and for masked renders (Masked)
+//   bool beginPacket(const RaySegment rays[8], LaneInt8 live)   false: go one ray at a time
+//   LaneInt8 insidePacket(const LaneDouble8 x[3], LaneInt8& live)   inside() of each lane
+//   LaneDouble8 firstInsidePacket()   where each live lane may first be inside
+// A masked packet evaluates its lanes where any is inside; the others' values go unused, as
+// integrateRay never evaluates them. Renders with empty-space skipping take one ray at a time.
 #include <cstdint>
 
 #include "core/render/kernel/RayIntegrator.h"
@@ -72,19 +76,31 @@ MFADVR_INLINE void classifyPacket(const TransferFunctionView& tf, LaneVector8 va
   for (int c = 0; c < 5; ++c) channel[c] = value == value ? channel[c] : 0.0f;  // NaN: clear
 }
 
-// The rays of pixels (x0 + lane, y), lane = 0..7; out[lane] receives the pixel's RGBA.
-template <bool Shade, class Sampler>
-MFADVR_INLINE void integratePacket(const RayParams& rp, Sampler& sampler, int x0, int y,
+// The rays of pixels (x0 + lane, y), lane = 0..7; out[lane] receives the pixel's RGBA. False
+// (nothing rendered or counted) where a masked sampler cannot take the packet.
+template <bool Masked, bool Shade, class Sampler>
+MFADVR_INLINE bool integratePacket(const RayParams& rp, Sampler& sampler, int x0, int y,
                                    float out[kRayPacket][4], RayCounters& counters) {
   constexpr int K = kRayPacket;
   const double dt = rp.sampleDistance;
-  LaneDouble8 o[3], d[3], tEnter, tExit, t0, steps;
+  // Zeroed although every lane is set below: GCC 12 otherwise warns that they may be read
+  // uninitialized (it does not follow the lanes' stores through the loop).
+  LaneDouble8 o[3] = {}, d[3] = {}, tEnter = {}, tExit = {}, t0 = {}, steps = {};
   std::int64_t longest = 0;
   RayShadingOf<LaneVector8> shading = {};  // lane l: ray l's RayShading
   LaneInt8 live = {};                      // -1 in the lanes whose ray has steps left
+  RaySegment rays[K];
+  bool hits[K];
   for (int l = 0; l < K; ++l) {
-    RaySegment ray;
-    const bool hit = raySegment(rp, x0 + l, y, ray);
+    hits[l] = raySegment(rp, x0 + l, y, rays[l]);
+    if (hits[l] && rays[l].steps > 0) live[l] = -1;
+  }
+  if constexpr (Masked) {
+    if (!sampler.beginPacket(rays, live)) return false;
+  }
+  for (int l = 0; l < K; ++l) {
+    const RaySegment& ray = rays[l];
+    const bool hit = hits[l];
     for (int a = 0; a < 3; ++a) {
       o[a][l] = ray.o[a];
       d[a][l] = ray.d[a];
@@ -95,7 +111,6 @@ MFADVR_INLINE void integratePacket(const RayParams& rp, Sampler& sampler, int x0
     steps[l] = static_cast<double>(ray.steps);  // exact: far below 2^53 steps
     if (!hit) continue;
     ++counters.hits;
-    if (ray.steps > 0) live[l] = -1;
     if (ray.steps > longest) longest = ray.steps;
     if constexpr (Shade) {
       const float df[3] = {float(ray.d[0]), float(ray.d[1]), float(ray.d[2])};
@@ -110,7 +125,21 @@ MFADVR_INLINE void integratePacket(const RayParams& rp, Sampler& sampler, int x0
 
   LaneVector8 red = {}, green = {}, blue = {}, alpha = {};
   std::int64_t samples = 0;
-  for (std::int64_t k = 0; k < longest; ++k) {
+  std::int64_t first = 0;
+  if constexpr (Masked) {
+    // The steps before every lane's first stretch inside take no sample: the packet starts at
+    // the first step that may (two steps early, far beyond any rounding of a point's distance).
+    const LaneDouble8 enter = sampler.firstInsidePacket();
+    double k = INFINITY;
+    for (int l = 0; l < K; ++l) {
+      const double kl = __builtin_floor((enter[l] - t0[l]) / dt) - 2.0;
+      k = kl < k ? kl : k;
+    }
+    first = !(k > 0.0)                         ? 0
+            : k < static_cast<double>(longest) ? static_cast<std::int64_t>(k)
+                                               : longest;
+  }
+  for (std::int64_t k = first; k < longest; ++k) {
     LaneDouble8 length;
     const LaneDouble8 kv = LaneDouble8{} + static_cast<double>(k);
     const LaneDouble8 t = rayStep(kv, t0, tEnter, tExit, dt, length);
@@ -120,19 +149,25 @@ MFADVR_INLINE void integratePacket(const RayParams& rp, Sampler& sampler, int x0
     const LaneDouble8 m = t + 0.5 * length;
     LaneDouble8 x[3];
     for (int a = 0; a < 3; ++a) x[a] = o[a] + m * d[a];
+    // The lanes that take a sample: the live ones, those inside where Masked.
+    LaneInt8 in = live;
+    if constexpr (Masked) {
+      in = sampler.insidePacket(x, live);
+      if (!anyLane(in)) continue;
+    }
     const LaneVector8 values = sampler.evaluatePacket(x);
-    samples += countLanes(live);
+    samples += countLanes(in);
 
     // Classification (and shading); lanes without a visible sample composite a zero opacity,
     // which leaves them unchanged.
     LaneVector8 tf[5];
     classifyPacket(rp.tf, values, tf);
     LaneVector8 a = tf[4];
-    const LaneInt8 shortStep = live & __builtin_convertvector(length != dt, LaneInt8);
+    const LaneInt8 shortStep = in & __builtin_convertvector(length != dt, LaneInt8);
     if (anyLane(shortStep)) [[unlikely]]
       for (int l = 0; l < K; ++l)
         if (shortStep[l]) a[l] = correctOpacity(tf[3][l], rp.correctionExponent * length[l] / dt);
-    const LaneInt8 visible = live & (tf[3] > 0.0f);
+    const LaneInt8 visible = in & (tf[3] > 0.0f);
     a = visible ? a : 0.0f;
     LaneVector8 c[3] = {tf[0], tf[1], tf[2]};
     if constexpr (Shade) {
@@ -148,6 +183,7 @@ MFADVR_INLINE void integratePacket(const RayParams& rp, Sampler& sampler, int x0
   }
   counters.samples += samples;
   for (int l = 0; l < K; ++l) overBackground(rp, red[l], green[l], blue[l], alpha[l], out[l]);
+  return true;
 }
 
 #endif  // MFADVR_SPLINE_LANE_KERNEL

@@ -156,13 +156,11 @@ class SplineRaySampler {
     // The ray's stretches inside the mesh's boundary: the tile's, or gathered at its first
     // inside() test (only masked renders test; the unmasked kernels leave the traversal out).
     if (m_.boundary.nodes) {
-      double dd = 0.0;
       for (int a = 0; a < 3; ++a) {
         rayOrigin_[a] = o[a];
         rayDirection_[a] = d[a];
-        dd += d[a] * d[a];
       }
-      rayInverseLength2_ = dd > 0.0 ? 1.0 / dd : 0.0;
+      rayInverseLength2_ = rayInverseLength2(d);
       stretches_ = boundaryIntervals_;
       boundaryStretches_ = boundaryTile_.find(ray.pixel, stretches_);
       if (boundaryStretches_ == kStretchesNotGathered) stretches_ = boundaryIntervals_;
@@ -208,14 +206,8 @@ class SplineRaySampler {
     if (boundaryStretches_ == kStretchesNotGathered)
       boundaryStretches_ =
           boundaryIntervals(m_.boundary, rayOrigin_, rayDirection_, boundaryIntervals_);
-    if (boundaryStretches_ >= 0) {
-      double t = 0.0;
-      for (int a = 0; a < 3; ++a) t += (p[a] - rayOrigin_[a]) * rayDirection_[a];
-      return inIntervals(stretches_, boundaryStretches_, t * rayInverseLength2_);
-    }
-    double u[3];
-    toParameter(p, u);
-    return insideMask(m_.mask, u);
+    return insideOnRay(stretches_, boundaryStretches_, rayOrigin_, rayDirection_,
+                       rayInverseLength2_, p);
   }
 
   // Where the ray r leaves, on axis a, the aligned block of 2^level cells per axis whose first
@@ -407,6 +399,78 @@ class SplineRaySampler {
     return values;
   }
 
+  // Packets of masked renders: the lanes' rays (`live`: -1 in the lanes with steps to take)
+  // with their stretches inside the mesh's boundary, from the tile (useBoundaryTile). False
+  // where a live lane's stretches were not gathered: those rays go one at a time.
+  MFADVR_INLINE bool beginPacket(const RaySegment rays[8], LaneInt8 live) {
+    static_assert(kRayPackets, "a sampler made for ray packets");
+    for (int l = 0; l < 8; ++l) {
+      int count = -1;  // the mask decides
+      if (live[l] && m_.boundary.nodes) {
+        count = boundaryTile_.find(rays[l].pixel, laneStretches_[l]);
+        if (count == kStretchesNotGathered) return false;
+      }
+      laneStretchCount_[l] = count;
+      laneCursor_[l] = 0;
+      maskLanes_[l] = live[l] && count < 0 ? -1 : 0;
+      for (int a = 0; a < 3; ++a) {
+        laneOrigin_[a][l] = rays[l].o[a];
+        laneDirection_[a][l] = rays[l].d[a];
+      }
+      laneInverseLength2_[l] = rayInverseLength2(rays[l].d);
+      // The stretch the lane is in or before; none (an empty one) where it has none or the
+      // mask decides.
+      stretchStart_[l] = count > 0 ? laneStretches_[l][0] : INFINITY;
+      stretchEnd_[l] = count > 0 ? laneStretches_[l][1] : -INFINITY;
+    }
+    return true;
+  }
+
+  // Where each live lane's ray may first be inside: the start of its first stretch (-inf where
+  // the mask decides, +inf where nothing of the ray is inside).
+  MFADVR_INLINE LaneDouble8 firstInsidePacket() const {
+    return __builtin_convertvector(maskLanes_, LaneMask8) ? -INFINITY : stretchStart_;
+  }
+
+  // Which of the `live` lanes' points x[axis][lane] are inside: inside() of each lane's ray.
+  // The points of a lane advance along its ray, so each lane keeps the stretch it is in or
+  // before (its stretches are ordered and disjoint: the first that does not end before the
+  // point is the only one that can hold it). Lanes past their ray's last stretch are cleared
+  // from `live`: nothing of their rays is left inside.
+  MFADVR_INLINE LaneInt8 insidePacket(const LaneDouble8 x[3], LaneInt8& live) {
+    const LaneDouble8 t =
+        rayParameterOf<LaneDouble8>(laneOrigin_, laneDirection_, laneInverseLength2_, x);
+    const LaneInt8 beyond = live & ~maskLanes_ & __builtin_convertvector(t > stretchEnd_, LaneInt8);
+    if (anyLane(beyond)) [[unlikely]] {
+      for (int l = 0; l < 8; ++l) {
+        if (!beyond[l]) continue;
+        int& c = laneCursor_[l];
+        const int count = laneStretchCount_[l];
+        const double* stretches = laneStretches_[l];
+        while (c < count && t[l] > stretches[2 * c + 1]) ++c;
+        if (c == count) {
+          live[l] = 0;
+        } else {
+          stretchStart_[l] = stretches[2 * c];
+          stretchEnd_[l] = stretches[2 * c + 1];
+        }
+      }
+    }
+    LaneInt8 in =
+        live & __builtin_convertvector((t >= stretchStart_) & (t <= stretchEnd_), LaneInt8);
+    const LaneInt8 masked = live & maskLanes_;
+    if (anyLane(masked)) [[unlikely]] {
+      for (int l = 0; l < 8; ++l) {
+        if (!masked[l]) continue;
+        const double p[3] = {x[0][l], x[1][l], x[2][l]};
+        double u[3];
+        toParameter(p, u);
+        in[l] = insideMask(m_.mask, u) ? -1 : 0;
+      }
+    }
+    return in;
+  }
+
   // Physical gradients at the last packet's eight points, g[axis] over the lanes: each lane is
   // what gradient() gives it.
   MFADVR_INLINE void gradientPacket(LaneVector8 g[3]) const {
@@ -483,6 +547,19 @@ class SplineRaySampler {
     }
   }
 
+  // Whether p, a point of the ray o + t d, is inside: in the ray's `count` stretches inside the
+  // mesh's boundary, or where they do not decide (count -1: no boundary, or more crossings than
+  // kMaxBoundaryCrossings) in the domain mask.
+  MFADVR_HD MFADVR_INLINE bool insideOnRay(const double* stretches, int count, const double o[3],
+                                           const double d[3], double inverseLength2,
+                                           const double p[3]) const {
+    if (count >= 0)
+      return inIntervals(stretches, count, rayParameterOf<double>(o, d, inverseLength2, p));
+    double u[3];
+    toParameter(p, u);
+    return insideMask(m_.mask, u);
+  }
+
   MFADVR_HD MFADVR_INLINE void toParameter(const double p[3], double u[3]) const {
     for (int a = 0; a < 3; ++a) u[a] = (p[a] - m_.boxMin[a]) * m_.inverseExtent[a];
   }
@@ -503,6 +580,14 @@ class SplineRaySampler {
   const double* stretches_ = nullptr;
   BoundaryTileView boundaryTile_;
   double rayOrigin_[3], rayDirection_[3], rayInverseLength2_ = 0.0;
+#if defined(MFADVR_SPLINE_LANE_KERNEL)
+  // The same for each lane of a packet (beginPacket), with the stretch each lane is in or
+  // before (laneCursor_: its index) and the lanes where the mask decides.
+  int laneStretchCount_[8], laneCursor_[8];
+  const double* laneStretches_[8];
+  LaneDouble8 laneOrigin_[3], laneDirection_[3], laneInverseLength2_, stretchStart_, stretchEnd_;
+  LaneInt8 maskLanes_;
+#endif
   static constexpr int kOrder = Shade ? 1 : 0;
   AxisLocation locs_[kBatch][3];  // each lane's location, unless kLaneLocations
   // kLocateLanes: each lane's point; kLaneLocations: its spans and local coordinates, axis by
