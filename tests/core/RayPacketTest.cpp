@@ -24,6 +24,22 @@ namespace {
 
 using namespace test;
 
+// The renderer's frame of `m` (packets where it takes them) against one ray at a time, one
+// variation of the frame per render; returns the ray-by-ray counters.
+RenderStats expectPacketFrame(const Model& m, const TransferFunction& tf, bool oddStep, bool shade,
+                              int render) {
+  RenderSettings s = settingsFor(m.domain().min, m.domain().max, tf, shade);
+  s.skipEmptySpace = false;  // else the renderer takes one ray at a time
+  // Vary what a packet must get right, one variation per render (61: a width whose tiles' last
+  // pixels go one at a time).
+  varyFrame(s, render % 4, 61);
+  if (oddStep) s.sampleDistance = 0.037;  // steps that do not divide the segments
+  const ModelField field(m);
+  const ModelRenderSetup setup(field, s);
+  EXPECT_EQ(setup.view().empty, nullptr);
+  return expectFrameOfRayByRay(s, setup, render);
+}
+
 TEST(RayPacket, PacketsRenderTheImageAndCountersOfOneRayAtATime) {
 #if !defined(MFADVR_SPLINE_LANE_KERNEL)
   GTEST_SKIP() << "this build has no lane kernel (needs AVX2 and FMA): no ray packets";
@@ -39,20 +55,10 @@ TEST(RayPacket, PacketsRenderTheImageAndCountersOfOneRayAtATime) {
   for (int degree : {1, 2, 3})
     for (std::size_t f = 0; f < tfs.size(); ++f)
       for (bool shade : {false, true}) {
-        const Model& m = mlModel(degree);
-        RenderSettings s = settingsFor(m.domain().min, m.domain().max, tfs[f], shade);
-        s.skipEmptySpace = false;  // else the renderer takes one ray at a time
-        // Vary what a packet must get right, one variation per render (61: a width whose tiles'
-        // last pixels go one at a time).
-        varyFrame(s, renders % 4, 61);
-        if (f == 0) s.sampleDistance = 0.037;  // steps that do not divide the segments
-        const ModelField field(m);
-        const ModelRenderSetup setup(field, s);
-        ASSERT_EQ(setup.view().empty, nullptr);
-        const RenderStats rayStats = expectFrameOfRayByRay(s, setup, renders);
+        const RenderStats rayStats =
+            expectPacketFrame(mlModel(degree), tfs[f], f == 0, shade, renders++);
         terminated += rayStats.terminated;
         samples += rayStats.samples;
-        ++renders;
       }
   EXPECT_EQ(renders, 36);
   // The scenes exercise early termination (lanes ending before their packet).
@@ -86,21 +92,15 @@ TEST(RayPacket, MaskedPacketsRenderTheImageAndCountersOfOneRayAtATime) {
   int renders = 0;
   std::int64_t terminated = 0, samples = 0;
   const std::vector<TransferFunction> tfs = transferFunctions();
-  for (const Model* m : {&maskedModel(), &boundedModel(), &holedCubeModel()})
+  for (const Model* m : {&maskedModel(), &boundedModel(), &holedCubeModel()}) {
+    ASSERT_TRUE(m->mask().view().nodes || m->boundary());
     for (std::size_t f = 0; f < tfs.size(); f += 2)
       for (bool shade : {false, true}) {
-        RenderSettings s = settingsFor(m->domain().min, m->domain().max, tfs[f], shade);
-        s.skipEmptySpace = false;
-        varyFrame(s, renders % 4, 61);
-        if (f == 0) s.sampleDistance = 0.037;
-        const ModelField field(*m);
-        const ModelRenderSetup setup(field, s);
-        ASSERT_TRUE(setup.view().mask.nodes || setup.view().boundary.nodes);
-        const RenderStats rayStats = expectFrameOfRayByRay(s, setup, renders);
+        const RenderStats rayStats = expectPacketFrame(*m, tfs[f], f == 0, shade, renders++);
         terminated += rayStats.terminated;
         samples += rayStats.samples;
-        ++renders;
       }
+  }
   EXPECT_EQ(renders, 18);
   EXPECT_GT(terminated, 0);
   EXPECT_GT(samples, 0);
