@@ -2,8 +2,13 @@
 within MIN_PSNR dB of the reference (8-bit RGB) and the reference is not blank.
 
 compare_images.py --views MIN_PSNR REFERENCE_PREFIX OTHER_PREFIX...: the same for every view
-REFERENCE_PREFIX-a*-e*.png, each against OTHER_PREFIX with the same view suffix."""
+REFERENCE_PREFIX-a*-e*.png, each against OTHER_PREFIX with the same view suffix.
+
+compare_images.py --scene-views MIN_PSNR DIR SCENES SUFFIXES: --views for each scene of the
+comma-separated SCENES, with DIR/<scene>-<first suffix> the reference and the other suffixes of
+the comma-separated SUFFIXES the others (pv_views.py's files); one summary line per scene."""
 import math
+import os
 import sys
 
 import numpy
@@ -51,8 +56,9 @@ def psnr(reference_path, other_path):
     return psnr_of(ref, other)
 
 
-def compare_views(minimum, reference_prefix, others):
-    """Each OTHER-<view>.png against REFERENCE-<view>.png, for every view of the reference."""
+def compare_views(reference_prefix, others):
+    """Each OTHER-<view>.png against REFERENCE-<view>.png, for every view of the reference;
+    returns the worst PSNR and its file."""
     import glob
     references = sorted(glob.glob(reference_prefix + "-a*-e*.png"))
     if not references:
@@ -67,13 +73,27 @@ def compare_views(minimum, reference_prefix, others):
                 worst, where = value, prefix + view
     print("%d views x %d rank counts; worst %.2f dB (%s)" % (len(references), len(others), worst,
                                                            where))
+    return worst, where
+
+
+def require(minimum, worst, where):
     if worst < minimum:
         sys.exit("PSNR %.2f dB of %s is below %.1f dB" % (worst, where, minimum))
 
 
 def main():
     if sys.argv[1] == "--views":
-        compare_views(float(sys.argv[2]), sys.argv[3], sys.argv[4:])
+        require(float(sys.argv[2]), *compare_views(sys.argv[3], sys.argv[4:]))
+        return
+    if sys.argv[1] == "--scene-views":
+        minimum, folder = float(sys.argv[2]), sys.argv[3]
+        suffixes = sys.argv[5].split(",")
+        results = []
+        for scene in sys.argv[4].split(","):
+            prefix = os.path.join(folder, scene + "-")
+            results.append(compare_views(prefix + suffixes[0],
+                                         [prefix + suffix for suffix in suffixes[1:]]))
+        require(minimum, *min(results))
         return
     minimum = float(sys.argv[1])
     worst = math.inf

@@ -1,7 +1,8 @@
-"""pv_views.py SCENE OUT_PREFIX: renders SCENE from 24 cameras (azimuths 0, 45, ..., 315 at
-elevations -60, 0 and 60: from the front, behind, above and below) and writes
-OUT_PREFIX-a<azimuth>-e<elevation>.png for each. Run by pvbatch on 1, 2 or 4 MPI ranks
-(run_mpi_compare.sh SCENE OUT views compares the ranks' images view by view).
+"""pv_views.py SCENES OUT_DIR SUFFIX: renders each scene of the comma-separated SCENES from 24
+cameras (azimuths 0, 45, ..., 315 at elevations -60, 0 and 60: from the front, behind, above and
+below) and writes OUT_DIR/<scene>-SUFFIX-a<azimuth>-e<elevation>.png for each. Run by pvbatch on
+1, 2 or 4 MPI ranks, all scenes in one run (a pvbatch start costs about as much as a scene's 24
+views); run_mpi_compare.sh SCENES OUT views compares the ranks' images view by view.
 
 Scenes (files written by mfadvr_paraview_test_data, a CT-like head with field 'scalars' on a
 36 x 23.1 x 35.1 box with spacing 0.9, 0.7, 1.3 and origin 12, -7, 30):
@@ -39,9 +40,9 @@ def source(scene):
     return pvs.MFAModelReader(FileName=os.path.join(data, scene + ".mfa")), "scalars"
 
 
-def main():
-    scene, prefix = sys.argv[1], sys.argv[2]
-    pv_scene.load_plugin()
+def render_views(scene, prefix):
+    """The scene's 24 views, written as prefix-a<azimuth>-e<elevation>.png; the scene's source,
+    view and display are deleted afterwards, so that the next scene starts from nothing."""
     src, array = source(scene)
     view = pvs.CreateRenderView()
     view.ViewSize = SIZE
@@ -71,6 +72,16 @@ def main():
             pvs.Render(view)
             pvs.SaveScreenshot("%s-a%d-e%d.png" % (prefix, azimuth, elevation), view,
                                ImageResolution=SIZE)
+    pvs.Hide(src, view)
+    pvs.Delete(view)
+    pvs.Delete(src)
+
+
+def main():
+    scenes, out_dir, suffix = sys.argv[1].split(","), sys.argv[2], sys.argv[3]
+    pv_scene.load_plugin()
+    for scene in scenes:
+        render_views(scene, os.path.join(out_dir, "%s-%s" % (scene, suffix)))
 
 
 if __name__ == "__main__":
