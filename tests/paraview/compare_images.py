@@ -95,14 +95,13 @@ def main():
                                          [prefix + suffix for suffix in suffixes[1:]]))
         require(minimum, *min(results))
         return
-    minimum = float(sys.argv[1])
-    worst = math.inf
+    worst, where = math.inf, ""
     for path in sys.argv[3:]:
         value = psnr(sys.argv[2], path)
         print("%s vs %s: PSNR %.2f dB" % (path, sys.argv[2], value))
-        worst = min(worst, value)
-    if worst < minimum:
-        sys.exit("PSNR %.2f dB is below %.1f dB" % (worst, minimum))
+        if value < worst:
+            worst, where = value, path
+    require(float(sys.argv[1]), worst, where)
 
 
 if __name__ == "__main__":
