@@ -25,9 +25,10 @@ namespace {
 using namespace test;
 
 // The renderer's frame of `m` (packets where it takes them) against one ray at a time, one
-// variation of the frame per render; returns the ray-by-ray counters.
-RenderStats expectPacketFrame(const Model& m, const TransferFunction& tf, bool oddStep, bool shade,
-                              int render) {
+// variation of the frame per render; returns the ray-by-ray counters. (Unused where the packet
+// tests skip: builds without the lane kernel.)
+[[maybe_unused]] RenderStats expectPacketFrame(const Model& m, const TransferFunction& tf,
+                                               bool oddStep, bool shade, int render) {
   RenderSettings s = settingsFor(m.domain().min, m.domain().max, tf, shade);
   s.skipEmptySpace = false;  // else the renderer takes one ray at a time
   // Vary what a packet must get right, one variation per render (61: a width whose tiles' last
@@ -69,7 +70,7 @@ TEST(RayPacket, PacketsRenderTheImageAndCountersOfOneRayAtATime) {
 
 // A mesh's model: 4^3 unit cubes less a central cavity and a corner notch (rays of up to three
 // stretches inside), degree 2.
-const Model& holedCubeModel() {
+[[maybe_unused]] const Model& holedCubeModel() {
   static const Model m = [] {
     const TetMesh mesh = cubeMesh(4, [](int i, int j, int k) {
       const bool cavity = i >= 1 && i <= 2 && j >= 1 && j <= 2 && k >= 1 && k <= 2;

@@ -16,7 +16,7 @@
 namespace mfadvr {
 namespace {
 
-bool sameBits(float a, float b) {
+[[maybe_unused]] bool sameBits(float a, float b) {
   return std::memcmp(&a, &b, sizeof a) == 0;
 }
 
