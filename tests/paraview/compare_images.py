@@ -1,12 +1,10 @@
 """compare_images.py MIN_PSNR REFERENCE.png OTHER.png...: exit 1 unless every other image is
 within MIN_PSNR dB of the reference (8-bit RGB) and the reference is not blank.
 
-compare_images.py --views MIN_PSNR REFERENCE_PREFIX OTHER_PREFIX...: the same for every view
-REFERENCE_PREFIX-a*-e*.png, each against OTHER_PREFIX with the same view suffix.
-
-compare_images.py --scene-views MIN_PSNR DIR SCENES SUFFIXES: --views for each scene of the
-comma-separated SCENES, with DIR/<scene>-<first suffix> the reference and the other suffixes of
-the comma-separated SUFFIXES the others (pv_views.py's files); one summary line per scene."""
+compare_images.py --scene-views MIN_PSNR DIR SCENES SUFFIXES: the same for every view of each
+scene of the comma-separated SCENES (pv_views.py's files): DIR/<scene>-<first suffix>-a*-e*.png
+the references, the files of the same view with the other suffixes of the comma-separated
+SUFFIXES the others; one summary line per scene."""
 import math
 import os
 import sys
@@ -38,12 +36,6 @@ def is_blank(values):
     return len(values) - counts.max() < 0.01 * len(values)
 
 
-def psnr_of(ref, other):
-    """PSNR in dB of one image's channels against another's (8-bit)."""
-    mse = numpy.mean((ref - other) ** 2)
-    return math.inf if mse == 0 else 10 * math.log10(255.0 ** 2 / mse)
-
-
 def psnr(reference_path, other_path):
     """PSNR in dB of other against reference (8-bit RGB); exits when the reference is blank or
     the sizes differ."""
@@ -53,7 +45,8 @@ def psnr(reference_path, other_path):
     other_dims, other = pixels(other_path)
     if other_dims != dims:
         sys.exit("%s has another size than %s" % (other_path, reference_path))
-    return psnr_of(ref, other)
+    mse = numpy.mean((ref - other) ** 2)
+    return math.inf if mse == 0 else 10 * math.log10(255.0 ** 2 / mse)
 
 
 def compare_views(reference_prefix, others):
@@ -82,9 +75,6 @@ def require(minimum, worst, where):
 
 
 def main():
-    if sys.argv[1] == "--views":
-        require(float(sys.argv[2]), *compare_views(sys.argv[3], sys.argv[4:]))
-        return
     if sys.argv[1] == "--scene-views":
         minimum, folder = float(sys.argv[2]), sys.argv[3]
         suffixes = sys.argv[5].split(",")
